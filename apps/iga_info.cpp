@@ -1,0 +1,55 @@
+// `iga info MODEL.json`: what a model holds.
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "apps/iga_commands.hpp"
+#include "iga/model.hpp"
+
+namespace iga::app {
+
+namespace {
+std::string interval(const Interval& i) {
+  std::ostringstream os;
+  os << "[" << i.lo << ", " << i.hi << "]";
+  return os.str();
+}
+
+void describe(const std::string& name, const GeometryEntity& e) {
+  std::cout << "  " << name << ": " << entity_type(e);
+  if (const auto* c = std::get_if<NurbsCurve>(&e)) {
+    std::cout << ", degree " << c->degree() << ", " << c->num_control_points()
+              << " control points, " << c->knots().num_elements() << " elements"
+              << (c->is_rational() ? ", rational" : "") << ", u in " << interval(c->domain());
+  } else if (const auto* s = std::get_if<NurbsSurface>(&e)) {
+    std::cout << ", degree " << s->degree_u() << "x" << s->degree_v() << ", " << s->num_u() << "x"
+              << s->num_v() << " control points, " << s->knots_u().num_elements() << "x"
+              << s->knots_v().num_elements() << " elements" << (s->is_rational() ? ", rational" : "");
+  } else if (const auto* g = std::get_if<PatchGroup>(&e)) {
+    std::cout << " of " << g->patches.size() << ":";
+    for (const std::string& p : g->patches) std::cout << " " << p;
+  }
+  if (const Surface* s = as_surface(e)) {
+    std::cout << ", u in " << interval(s->domain().u) << ", v in " << interval(s->domain().v)
+              << (s->normal_sign() < 0 ? ", normal inward" : "")
+              << (s->closed_u() ? ", closed in u" : "") << (s->closed_v() ? ", closed in v" : "");
+  }
+  std::cout << "\n";
+}
+}  // namespace
+
+Action add_info_command(CLI::App& app) {
+  auto file = std::make_shared<std::string>();
+  CLI::App* cmd = app.add_subcommand("info", "List the entities of a model file");
+  cmd->add_option("model", *file, "Model file (JSON)")->required();
+  return [file]() {
+    const Model m = load_model(*file);
+    std::cout << *file << ": model \"" << m.name << "\"";
+    if (!m.description.empty()) std::cout << " -- " << m.description;
+    std::cout << "\n" << m.geometry.entities.size() << " geometric entities:\n";
+    for (const auto& [name, e] : m.geometry.entities) describe(name, e);
+    return 0;
+  };
+}
+
+}  // namespace iga::app

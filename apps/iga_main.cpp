@@ -1,0 +1,37 @@
+// iga: the generic command-line tool of the framework.
+//
+//   iga info MODEL.json                      list the model's entities
+//   iga eval MODEL.json --uv 0.5,0.5         point, derivatives, normal, metric, curvatures
+//   iga eval MODEL.json --u 0.3              curve: point, tangent, curvature, torsion, frame
+//   iga eval MODEL.json --grid 20 --out t.csv  a sample table as CSV
+//   iga make torus --major-radius 3 --minor-radius 1 --out torus.json   exact NURBS models
+//
+// Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
+#include <iostream>
+
+#include "apps/iga_commands.hpp"
+
+int main(int argc, char** argv) {
+  // 1. Command line: one subcommand is required.
+  CLI::App app{
+      "iga: isogeometric contact of rods and shells with rigid NURBS and analytic surfaces.\n"
+      "Models are JSON files (docs/model_format.md)."};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "iga 0.1.0");
+  const iga::app::Action info = iga::app::add_info_command(app);
+  const iga::app::Action eval = iga::app::add_eval_command(app);
+  const iga::app::Action make = iga::app::add_make_command(app);
+  CLI11_PARSE(app, argc, argv);
+
+  // 2. Run the chosen subcommand; every library error ends here with a message.
+  try {
+    const std::string name = app.get_subcommands().front()->get_name();
+    if (name == "info") return info();
+    if (name == "eval") return eval();
+    if (name == "make") return make();
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "iga: error: " << e.what() << "\n";
+    return 1;
+  }
+}

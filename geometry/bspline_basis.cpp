@@ -1,0 +1,110 @@
+// B-spline basis functions: [PT97] Algorithms A2.1, A2.2, A2.3.
+#include "geometry/bspline_basis.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+namespace iga {
+
+int find_span(int n_basis, int p, double u, std::span<const double> U) {
+  // A2.1 (p. 68), with n = n_basis - 1: binary search for U[i] <= u < U[i+1] in [p, n].
+  const int n = n_basis - 1;
+  if (u >= U[n + 1]) {
+    int s = n;  // the last non-empty span: step back over repeated end knots
+    while (s > p && U[s] == U[s + 1]) --s;
+    return s;
+  }
+  if (u <= U[p]) {
+    int s = p;
+    while (s < n && U[s + 1] == U[s]) ++s;
+    return s;
+  }
+  int low = p, high = n + 1;
+  int mid = (low + high) / 2;
+  while (u < U[mid] || u >= U[mid + 1]) {
+    if (u < U[mid])
+      high = mid;
+    else
+      low = mid;
+    mid = (low + high) / 2;
+  }
+  return mid;
+}
+
+void basis_funs(int span, double u, int p, std::span<const double> U, BasisValues& N) {
+  // A2.2 (p. 70): triangular scheme with left/right knot differences.
+  assert(p <= kMaxDegree);
+  double left[kMaxDegree + 1], right[kMaxDegree + 1];
+  N[0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N[r] / (right[r + 1] + left[j - r]);
+      N[r] = saved + right[r + 1] * temp;
+      saved = left[j - r] * temp;
+    }
+    N[j] = saved;
+  }
+}
+
+void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> U,
+                     BasisDerivs& ders) {
+  // A2.3 (p. 72). ndu holds basis functions (upper triangle) and knot differences (lower).
+  assert(p <= kMaxDegree && nd <= kMaxDerivOrder);
+  constexpr int M = kMaxDegree + 1;
+  double ndu[M][M];
+  double a[2][M];
+  double left[M], right[M];
+
+  ndu[0][0] = 1.0;
+  for (int j = 1; j <= p; ++j) {
+    left[j] = u - U[span + 1 - j];
+    right[j] = U[span + j] - u;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      ndu[j][r] = right[r + 1] + left[j - r];  // lower triangle
+      const double temp = ndu[r][j - 1] / ndu[j][r];
+      ndu[r][j] = saved + right[r + 1] * temp;  // upper triangle
+      saved = left[j - r] * temp;
+    }
+    ndu[j][j] = saved;
+  }
+  for (auto& row : ders) row.fill(0.0);
+  for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
+
+  const int n = std::min(nd, p);
+  for (int r = 0; r <= p; ++r) {
+    int s1 = 0, s2 = 1;
+    a[0][0] = 1.0;
+    for (int k = 1; k <= n; ++k) {
+      double d = 0.0;
+      const int rk = r - k, pk = p - k;
+      if (r >= k) {
+        a[s2][0] = a[s1][0] / ndu[pk + 1][rk];
+        d = a[s2][0] * ndu[rk][pk];
+      }
+      const int j1 = (rk >= -1) ? 1 : -rk;
+      const int j2 = (r - 1 <= pk) ? k - 1 : p - r;
+      for (int j = j1; j <= j2; ++j) {
+        a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][rk + j];
+        d += a[s2][j] * ndu[rk + j][pk];
+      }
+      if (r <= pk) {
+        a[s2][k] = -a[s1][k - 1] / ndu[pk + 1][r];
+        d += a[s2][k] * ndu[r][pk];
+      }
+      ders[k][r] = d;
+      std::swap(s1, s2);
+    }
+  }
+  // Multiply by p!/(p-k)!.
+  double r = p;
+  for (int k = 1; k <= n; ++k) {
+    for (int j = 0; j <= p; ++j) ders[k][j] *= r;
+    r *= (p - k);
+  }
+}
+
+}  // namespace iga

@@ -1,0 +1,70 @@
+// Exact NURBS constructions of lines, conics and quadrics, surfaces of revolution, the
+// bilinear hyperboloid patch of the reference paper, and an interpolated helix.
+// References: [PT97] The NURBS Book: A7.1 (circular arc), Sect. 7.5 (full circle, 9 points,
+// weights 1 and sqrt(2)/2), A8.1 (surface of revolution), Sect. 8.3 (general cylinder),
+// A9.1 (global curve interpolation); [KS15] eq. (11) for z = a x y.
+#pragma once
+
+#include <numbers>
+#include <vector>
+
+#include "geometry/nurbs_curve.hpp"
+#include "geometry/nurbs_surface.hpp"
+
+namespace iga {
+
+/// Straight segment from a to b, degree 1 (elevate for higher degree).
+NurbsCurve make_line(const Vector3d& a, const Vector3d& b);
+
+/// A7.1: circular arc of radius r around center in the plane spanned by the orthonormal
+/// x_axis, y_axis, from angle start to end (radians, end > start, end - start <= 2 pi),
+/// quadratic rational, as few segments as needed (<= 90 degrees each). Parameter in [0, 1].
+NurbsCurve make_circular_arc(const Vector3d& center, const Vector3d& x_axis,
+                             const Vector3d& y_axis, double r, double start, double end);
+/// Full circle: 9 control points, weights 1 and sqrt(2)/2, knots {0,0,0,1/4,1/4,...,1,1,1}.
+NurbsCurve make_circle(const Vector3d& center, const Vector3d& normal, double r);
+
+/// Bilinear plane patch with corners origin, origin + du, origin + du + dv, origin + dv.
+NurbsSurface make_plane_patch(const Vector3d& origin, const Vector3d& du, const Vector3d& dv);
+
+/// Cylinder of radius r about the axis through `base` with unit direction `axis`, height h,
+/// angular range [start, end] measured from `ref_dir` (projected normal to the axis).
+/// u runs around (the arc), v in [0, 1] along the axis (height v h); the normal S_u x S_v
+/// points outward.
+NurbsSurface make_cylinder(const Vector3d& base, const Vector3d& axis, const Vector3d& ref_dir,
+                           double r, double h, double start = 0.0, double end = 2.0 * std::numbers::pi);
+
+/// Sphere of radius r (revolution of a half circle); u around the axis, v from south to north
+/// pole; outward normal.
+NurbsSurface make_sphere(const Vector3d& center, double r);
+
+/// Torus about the axis through center: major radius R (tube centre circle), minor radius
+/// r < R; full in both directions; outward normal.
+NurbsSurface make_torus(const Vector3d& center, const Vector3d& axis, double R, double r);
+
+/// Cone frustum with the conventions of the analytic Cone ([KS15] B.23): points
+/// apex + s e_r + s tan(alpha) e_z for radial distance s in [s1, s2] (0 <= s1 < s2), alpha the
+/// angle of the generator to the plane normal to `axis`. u around the axis (from ref_dir),
+/// v along the generator; the normal S_u x S_v is the "outward" sin(a) e_r - cos(a) e_z.
+NurbsSurface make_cone(const Vector3d& apex, const Vector3d& axis, const Vector3d& ref_dir,
+                       double alpha, double s1, double s2);
+
+/// A8.1: revolve a NURBS profile (in 3-D) about the axis through `axis_point` with unit
+/// direction `axis`, by `angle` radians (<= 2 pi). u around the axis, v along the profile.
+NurbsSurface make_revolution(const NurbsCurve& profile, const Vector3d& axis_point,
+                             const Vector3d& axis, double angle = 2.0 * std::numbers::pi);
+
+/// [KS15] (11): z = a x y over [x0,x1] x [y0,y1] is exactly a bilinear (1x1) patch. Its knots
+/// span [x0,x1] x [y0,y1], so (u, v) = (x, y) as for the analytic Hyperboloid.
+NurbsSurface make_bilinear_hyperboloid(double a, double x0, double x1, double y0, double y1);
+
+/// A cubic B-spline interpolating the helix (R cos t, R sin t, pitch t / 2pi), t in
+/// [0, angle], at n_points points equally spaced in t (A9.1, parameters = t / angle, with
+/// averaged knots). max_deviation is the largest |C(s) - H(s angle)| over a dense sample.
+struct HelixApproximation {
+  NurbsCurve curve;
+  double max_deviation = 0.0;
+};
+HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_points);
+
+}  // namespace iga

@@ -1,0 +1,504 @@
+// JSON (de)serialization of geometric entities (format: docs/model_format.md).
+// The loader re-checks every invariant the constructors enforce ([PT97] Sect. 2.2: clamped,
+// non-decreasing knots, interior multiplicity <= p, m + 1 = n + p + 2 knots) before building
+// anything, so that each error names the JSON element at fault, not just the entity.
+#include "geometry/geometry_io.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+#include <type_traits>
+
+namespace iga {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Shortest text that reads back to x (the same digits the JSON output uses).
+std::string num(double x) {
+  return Json(x).dump();
+}
+
+// ---- reading ------------------------------------------------------------------------------
+
+int parse_degree(const JsonCursor& c) {
+  const int p = c.as_int();
+  if (p < 1 || p > kMaxDegree) c.fail("degree must be in 1.." + std::to_string(kMaxDegree));
+  return p;
+}
+
+/// A clamped knot vector of degree p, checked element by element. n_cp >= 0 requires exactly
+/// n_cp + p + 1 knots (a curve); n_cp < 0 only the minimum 2 (p + 1) (a surface direction,
+/// whose control net size is derived from the knots).
+std::vector<double> parse_knots(const JsonCursor& c, int p, int n_cp) {
+  const std::vector<double> U = c.as_numbers();
+  const std::size_t m = U.size(), np1 = static_cast<std::size_t>(p) + 1;
+  for (std::size_t i = 1; i < m; ++i)
+    if (U[i] < U[i - 1])
+      c[i].fail_plain("knots must be non-decreasing, got " + num(U[i]) + " after " + num(U[i - 1]));
+  if (n_cp >= 0 && m != static_cast<std::size_t>(n_cp) + np1)
+    c.fail_plain("expected " + std::to_string(static_cast<std::size_t>(n_cp) + np1) + " knots (" +
+                 std::to_string(n_cp) + " control points + degree " + std::to_string(p) +
+                 " + 1), got " + std::to_string(m));
+  if (m < 2 * np1)
+    c.fail_plain("a degree-" + std::to_string(p) + " knot vector needs at least " +
+                 std::to_string(2 * np1) + " knots, got " + std::to_string(m));
+  // Runs of equal knots: the end runs must have length exactly p + 1 (clamped, non-empty
+  // domain), interior runs at most p (the basis stays at least C^0).
+  std::size_t first = 1, last = 1;
+  while (first < m && U[first] == U[0]) ++first;
+  while (last < m && U[m - 1 - last] == U[m - 1]) ++last;
+  if (first < np1)
+    c[first].fail_plain(
+        "knot vector must be clamped: the first degree + 1 = " + std::to_string(np1) +
+        " knots must be equal, got " + num(U[first]) + " after " + num(U[0]));
+  if (first > np1)
+    c[np1].fail_plain("end knot " + num(U[0]) + " is repeated " + std::to_string(first) +
+                      " times, more than degree + 1 = " + std::to_string(np1));
+  if (last < np1)
+    c[m - 1 - last].fail_plain(
+        "knot vector must be clamped: the last degree + 1 = " + std::to_string(np1) +
+        " knots must be equal, got " + num(U[m - 1 - last]) + " before " + num(U[m - 1]));
+  if (last > np1)
+    c[m - 1 - np1].fail_plain("end knot " + num(U[m - 1]) + " is repeated " + std::to_string(last) +
+                              " times, more than degree + 1 = " + std::to_string(np1));
+  for (std::size_t s = first; s < m - last;) {
+    std::size_t e = s + 1;
+    while (e < m - last && U[e] == U[s]) ++e;
+    if (e - s > static_cast<std::size_t>(p))
+      c[s + np1 - 1].fail_plain("interior knot " + num(U[s]) + " has multiplicity " +
+                                std::to_string(e - s) + " > degree " + std::to_string(p));
+    s = e;
+  }
+  return U;
+}
+
+Vector3d parse_vec3(const JsonCursor& c) {
+  if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 coordinates [x, y, z]");
+  return Vector3d(c[0].as_number(), c[1].as_number(), c[2].as_number());
+}
+
+std::vector<Vector3d> parse_points(const JsonCursor& c, std::size_t n_expected,
+                                   const std::string& why) {
+  c.expect_array();
+  if (c.size() != n_expected)
+    c.fail_plain("expected " + std::to_string(n_expected) + " control points (" + why + "), got " +
+                 std::to_string(c.size()));
+  std::vector<Vector3d> P(n_expected);
+  for (std::size_t i = 0; i < n_expected; ++i) P[i] = parse_vec3(c[i]);
+  return P;
+}
+
+/// Optional "weights": one per control point, each > 0. Empty means all 1.
+std::vector<double> parse_weights(const JsonCursor& e, std::size_t n) {
+  if (!e.has("weights")) return {};
+  const JsonCursor c = e["weights"];
+  std::vector<double> w = c.as_numbers();
+  if (w.size() != n)
+    c.fail_plain("expected " + std::to_string(n) + " weights (one per control point), got " +
+                 std::to_string(w.size()));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(w[i] > 0.0)) c[i].fail("weight must be > 0");
+  return w;
+}
+
+void parse_normal(const JsonCursor& e, Surface& s) {
+  if (!e.has("normal")) return;
+  const JsonCursor c = e["normal"];
+  const std::string n = c.as_string();
+  if (n == "inward")
+    s.set_normal_sign(-1);
+  else if (n != "outward")
+    c.fail("normal must be \"outward\" or \"inward\"");
+}
+
+double parse_positive(const JsonCursor& c) {
+  const double x = c.as_number();
+  if (!(x > 0.0)) c.fail("must be > 0");
+  return x;
+}
+
+/// Whether the frame ignores this ref_dir (zero or parallel to the axis): then it is not
+/// written, and reading it back gives the default that the frame treats the same way.
+bool ref_dir_degenerate(const Placement& pl) {
+  return !(pl.axis.cross(pl.ref_dir).norm() > 1e-12 * pl.axis.norm() * pl.ref_dir.norm());
+}
+
+Placement parse_placement(const JsonCursor& e, bool need_center, bool need_axis) {
+  Placement pl;
+  if (need_center || e.has("center")) pl.center = parse_vec3(e["center"]);
+  if (need_axis || e.has("axis")) {
+    const JsonCursor c = e["axis"];
+    pl.axis = parse_vec3(c);
+    if (!(pl.axis.norm() > 0.0)) c.fail("axis must be a non-zero vector");
+  }
+  if (e.has("ref_dir")) {
+    const JsonCursor c = e["ref_dir"];
+    pl.ref_dir = parse_vec3(c);
+    if (ref_dir_degenerate(pl)) c.fail("ref_dir must be non-zero and not parallel to the axis");
+  }
+  return pl;  // without ref_dir: [1, 0, 0], for which the frame falls back when it is parallel
+}
+
+Interval parse_interval(const JsonCursor& c) {
+  if (!c.json().is_array() || c.json().size() != 2)
+    c.fail_type("[lo, hi] (null for an unbounded end)");
+  Interval I;
+  I.lo = c[0].json().is_null() ? -kInf : c[0].as_number();
+  I.hi = c[1].json().is_null() ? kInf : c[1].as_number();
+  if (!(I.lo < I.hi)) c.fail("expected lo < hi");
+  return I;
+}
+
+Domain2 parse_domain(const JsonCursor& e, Domain2 d) {
+  if (!e.has("domain")) return d;
+  const JsonCursor c = e["domain"];
+  c.expect_object({"u", "v"});
+  if (c.has("u")) d.u = parse_interval(c["u"]);
+  if (c.has("v")) d.v = parse_interval(c["v"]);
+  return d;
+}
+
+/// Runs a constructor; any GeometryError it still throws is reported at the entity.
+template <class F>
+auto build(const JsonCursor& e, F&& make) -> decltype(make()) {
+  try {
+    return make();
+  } catch (const GeometryError& err) {
+    e.fail_plain(err.what());
+  }
+}
+
+NurbsCurve parse_nurbs_curve(const JsonCursor& e) {
+  e.expect_object({"type", "degree", "knots", "control_points", "weights"});
+  const int p = parse_degree(e["degree"]);
+  const JsonCursor cp = e["control_points"];
+  cp.expect_array();
+  const std::size_t n = cp.size();
+  std::vector<double> U = parse_knots(e["knots"], p, static_cast<int>(n));
+  const std::vector<Vector3d> P = parse_points(cp, n, "one per basis function");
+  const std::vector<double> w = parse_weights(e, n);
+  return build(e, [&] { return NurbsCurve(p, std::move(U), P, w); });
+}
+
+NurbsSurface parse_nurbs_surface(const JsonCursor& e) {
+  e.expect_object({"type", "degree", "knots", "control_points", "weights", "normal"});
+  const JsonCursor deg = e["degree"];
+  if (!deg.json().is_array() || deg.json().size() != 2)
+    deg.fail_type("[degree_u, degree_v], two integers");
+  const int p = parse_degree(deg[0]), q = parse_degree(deg[1]);
+  const JsonCursor kc = e["knots"];
+  kc.expect_object({"u", "v"});
+  std::vector<double> Uu = parse_knots(kc["u"], p, -1);
+  std::vector<double> Uv = parse_knots(kc["v"], q, -1);
+  const std::size_t nu = Uu.size() - static_cast<std::size_t>(p) - 1;
+  const std::size_t nv = Uv.size() - static_cast<std::size_t>(q) - 1;
+  const std::vector<Vector3d> P =
+      parse_points(e["control_points"], nu * nv,
+                   "n_u x n_v = " + std::to_string(nu) + " x " + std::to_string(nv) +
+                       " from the knots and degrees, u index fastest");
+  const std::vector<double> w = parse_weights(e, nu * nv);
+  NurbsSurface s = build(e, [&] { return NurbsSurface(p, std::move(Uu), q, std::move(Uv), P, w); });
+  parse_normal(e, s);
+  return s;
+}
+
+/// Normal orientation and the surface itself, with its domain (default: S::default_domain()).
+template <class S, class F>
+S analytic(const JsonCursor& e, F&& make) {
+  const Domain2 d = parse_domain(e, S::default_domain());
+  S s = build(e, [&] { return make(d); });
+  parse_normal(e, s);
+  return s;
+}
+
+GeometryEntity parse_analytic(const JsonCursor& e, const std::string& type) {
+  if (type == "plane") {
+    e.expect_object({"type", "center", "axis", "ref_dir", "domain", "normal"});
+    const Placement pl = parse_placement(e, true, true);
+    return analytic<Plane>(e, [&](const Domain2& d) { return Plane(pl, d); });
+  }
+  if (type == "sphere") {
+    e.expect_object({"type", "center", "axis", "ref_dir", "radius", "domain", "normal"});
+    const Placement pl = parse_placement(e, true, false);
+    const double R = parse_positive(e["radius"]);
+    return analytic<Sphere>(e, [&](const Domain2& d) { return Sphere(pl, R, d); });
+  }
+  if (type == "cylinder") {
+    e.expect_object({"type", "center", "axis", "ref_dir", "radius", "domain", "normal"});
+    const Placement pl = parse_placement(e, true, true);
+    const double R = parse_positive(e["radius"]);
+    return analytic<Cylinder>(e, [&](const Domain2& d) { return Cylinder(pl, R, d); });
+  }
+  if (type == "torus") {
+    e.expect_object(
+        {"type", "center", "axis", "ref_dir", "major_radius", "minor_radius", "domain", "normal"});
+    const Placement pl = parse_placement(e, true, true);
+    const double R = parse_positive(e["major_radius"]);
+    const JsonCursor rc = e["minor_radius"];
+    const double r = parse_positive(rc);
+    if (!(r < R)) rc.fail("must be < major_radius = " + num(R));
+    return analytic<Torus>(e, [&](const Domain2& d) { return Torus(pl, R, r, d); });
+  }
+  if (type == "cone") {
+    e.expect_object({"type", "center", "axis", "ref_dir", "alpha", "domain", "normal"});
+    const Placement pl = parse_placement(e, true, true);
+    const JsonCursor ac = e["alpha"];
+    const double alpha = ac.as_number();
+    if (!(alpha > 0.0 && alpha < 0.5 * std::numbers::pi)) ac.fail("must be in (0, pi/2) radians");
+    return analytic<Cone>(e, [&](const Domain2& d) { return Cone(pl, alpha, d); });
+  }
+  if (type == "hyperboloid") {
+    e.expect_object({"type", "center", "axis", "ref_dir", "a", "domain", "normal"});
+    const Placement pl = parse_placement(e, false, false);
+    const double a = e["a"].as_number();
+    return analytic<Hyperboloid>(e, [&](const Domain2& d) { return Hyperboloid(pl, a, d); });
+  }
+  // revolution
+  e.expect_object({"type", "center", "axis", "ref_dir", "profile", "domain", "normal"});
+  const Placement pl = parse_placement(e, false, false);
+  const JsonCursor pc = e["profile"];
+  pc.expect_array(1);
+  const std::vector<double> coeffs = pc.as_numbers();
+  return analytic<Revolution>(e, [&](const Domain2& d) { return Revolution(pl, coeffs, d); });
+}
+
+PatchGroup parse_patch_group(const JsonCursor& e) {
+  e.expect_object({"type", "patches"});
+  const JsonCursor c = e["patches"];
+  c.expect_array(1);
+  PatchGroup g;
+  for (std::size_t i = 0; i < c.size(); ++i) g.patches.push_back(c[i].as_string());
+  return g;  // the names are checked once the whole section is read
+}
+
+constexpr const char* kEntityTypes[] = {"nurbs_curve", "nurbs_surface", "plane", "sphere",
+                                        "cylinder",    "torus",         "cone",  "hyperboloid",
+                                        "revolution",  "patch_group"};
+
+GeometryEntity parse_entity(const JsonCursor& e) {
+  if (!e.json().is_object()) e.fail_type("an object with a \"type\" key");
+  const JsonCursor tc = e["type"];
+  const std::string type = tc.as_string();
+  if (type == "nurbs_curve") return parse_nurbs_curve(e);
+  if (type == "nurbs_surface") return parse_nurbs_surface(e);
+  if (type == "patch_group") return parse_patch_group(e);
+  for (const char* t : kEntityTypes)
+    if (type == t) return parse_analytic(e, type);
+  std::string list;
+  for (const char* t : kEntityTypes) list += std::string(list.empty() ? "" : ", ") + t;
+  tc.fail("unknown entity type (expected one of " + list + ")");
+}
+
+void check_patch_group(const GeometryModel& m, const PatchGroup& g, const JsonCursor& e) {
+  const JsonCursor c = e["patches"];
+  for (std::size_t i = 0; i < g.patches.size(); ++i) {
+    const std::string& name = g.patches[i];
+    const GeometryEntity* member = m.find(name);
+    if (member == nullptr)
+      c[i].fail_plain("\"" + name + "\" does not name an entity of this geometry section");
+    if (as_surface(*member) == nullptr)
+      c[i].fail_plain("\"" + name + "\" is a " + entity_type(*member) +
+                      "; a patch group takes surfaces only (NURBS or analytic)");
+    for (std::size_t k = 0; k < i; ++k)
+      if (g.patches[k] == name) c[i].fail_plain("\"" + name + "\" is listed twice");
+  }
+}
+
+// ---- writing ------------------------------------------------------------------------------
+
+Json vec3_json(const Vector3d& x) {
+  return Json::array({x.x(), x.y(), x.z()});
+}
+
+/// The Cartesian coordinate x with fl(w * x) == y, so that reading (x, w) back reproduces the
+/// stored homogeneous coordinate y = w x bit for bit. fl(y / w) is within an ulp or two of
+/// such an x; among the candidates the one with the shortest decimal text is written (1.5
+/// rather than 1.5000000000000002 when both multiply back to y).
+double exact_coordinate(double y, double w) {
+  const double x0 = y / w;
+  double best = x0;
+  bool found = false;
+  std::size_t best_len = 0;
+  auto consider = [&](double x) {
+    if (w * x != y) return;
+    const std::size_t len = num(x).size();
+    if (!found || len < best_len) {
+      best = x;
+      best_len = len;
+      found = true;
+    }
+  };
+  consider(x0);
+  double up = x0, down = x0;
+  for (int k = 0; k < 4; ++k) {
+    up = std::nextafter(up, kInf);
+    down = std::nextafter(down, -kInf);
+    consider(up);
+    consider(down);
+  }
+  return best;
+}
+
+Json points_json(const std::vector<Vector4d>& pw) {
+  Json a = Json::array();
+  for (const Vector4d& q : pw)
+    a.push_back(Json::array({exact_coordinate(q.x(), q.w()), exact_coordinate(q.y(), q.w()),
+                             exact_coordinate(q.z(), q.w())}));
+  return a;
+}
+
+Json weights_json(const std::vector<Vector4d>& pw) {
+  Json a = Json::array();
+  for (const Vector4d& q : pw) a.push_back(q.w());
+  return a;
+}
+
+Json bound_json(double x) {
+  return std::isinf(x) ? Json(nullptr) : Json(x);
+}
+
+Json interval_json(const Interval& I) {
+  return Json::array({bound_json(I.lo), bound_json(I.hi)});
+}
+
+const char* normal_name(const Surface& s) {
+  return s.normal_sign() < 0 ? "inward" : "outward";
+}
+
+Json analytic_json(const AnalyticSurface& s) {
+  Json j;
+  j["type"] = s.type_name();
+  j["center"] = vec3_json(s.placement().center);
+  j["axis"] = vec3_json(s.placement().axis);
+  if (!ref_dir_degenerate(s.placement())) j["ref_dir"] = vec3_json(s.placement().ref_dir);
+  if (const auto* sp = dynamic_cast<const Sphere*>(&s)) j["radius"] = sp->radius();
+  if (const auto* cy = dynamic_cast<const Cylinder*>(&s)) j["radius"] = cy->radius();
+  if (const auto* to = dynamic_cast<const Torus*>(&s)) {
+    j["major_radius"] = to->major_radius();
+    j["minor_radius"] = to->minor_radius();
+  }
+  if (const auto* co = dynamic_cast<const Cone*>(&s)) j["alpha"] = co->alpha();
+  if (const auto* hy = dynamic_cast<const Hyperboloid*>(&s)) j["a"] = hy->a();
+  if (const auto* re = dynamic_cast<const Revolution*>(&s)) j["profile"] = re->coeffs();
+  j["domain"] = {{"u", interval_json(s.domain().u)}, {"v", interval_json(s.domain().v)}};
+  j["normal"] = normal_name(s);
+  return j;
+}
+
+}  // namespace
+
+// ---- public API ---------------------------------------------------------------------------
+
+std::string entity_type(const GeometryEntity& e) {
+  return std::visit(
+      [](const auto& x) -> std::string {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_same_v<T, NurbsCurve>)
+          return "nurbs_curve";
+        else if constexpr (std::is_same_v<T, PatchGroup>)
+          return "patch_group";
+        else
+          return x.type_name();
+      },
+      e);
+}
+
+const Surface* as_surface(const GeometryEntity& e) {
+  return std::visit(
+      [](const auto& x) -> const Surface* {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_base_of_v<Surface, T>)
+          return &x;
+        else
+          return nullptr;
+      },
+      e);
+}
+
+const GeometryEntity* GeometryModel::find(const std::string& name) const {
+  for (const auto& [n, e] : entities)
+    if (n == name) return &e;
+  return nullptr;
+}
+
+const Surface* GeometryModel::surface(const std::string& name) const {
+  const GeometryEntity* e = find(name);
+  return e != nullptr ? as_surface(*e) : nullptr;
+}
+
+const NurbsCurve* GeometryModel::curve(const std::string& name) const {
+  const GeometryEntity* e = find(name);
+  return e != nullptr ? std::get_if<NurbsCurve>(e) : nullptr;
+}
+
+std::vector<const Surface*> GeometryModel::surfaces_of(const std::string& name) const {
+  const GeometryEntity* e = find(name);
+  if (e == nullptr) throw std::out_of_range("no geometry entity named \"" + name + "\"");
+  if (const auto* g = std::get_if<PatchGroup>(e)) {
+    std::vector<const Surface*> out;
+    for (const std::string& member : g->patches) {
+      const Surface* s = surface(member);
+      if (s == nullptr)
+        throw std::out_of_range("patch group \"" + name + "\": \"" + member +
+                                "\" is not a surface of this geometry");
+      out.push_back(s);
+    }
+    return out;
+  }
+  if (const Surface* s = as_surface(*e)) return {s};
+  throw std::out_of_range("geometry entity \"" + name + "\" is a " + entity_type(*e) +
+                          ", not a surface");
+}
+
+GeometryModel parse_geometry(const Json& j, const std::string& file, const JsonPointer& at) {
+  const JsonCursor g(j, file, at);
+  if (!j.is_object()) g.fail_type("an object mapping entity names to entities");
+  GeometryModel m;
+  for (const std::string& name : g.keys()) {
+    if (name.empty()) g[name].fail_plain("entity names must not be empty");
+    m.entities.emplace_back(name, parse_entity(g[name]));
+  }
+  for (const auto& [name, e] : m.entities)
+    if (const auto* grp = std::get_if<PatchGroup>(&e)) check_patch_group(m, *grp, g[name]);
+  return m;
+}
+
+Json entity_to_json(const GeometryEntity& e) {
+  if (const auto* c = std::get_if<NurbsCurve>(&e)) {
+    Json j;
+    j["type"] = "nurbs_curve";
+    j["degree"] = c->degree();
+    j["knots"] = c->knots().knots();
+    j["control_points"] = points_json(c->homogeneous());
+    if (c->is_rational()) j["weights"] = weights_json(c->homogeneous());
+    return j;
+  }
+  if (const auto* s = std::get_if<NurbsSurface>(&e)) {
+    Json j;
+    j["type"] = "nurbs_surface";
+    j["degree"] = Json::array({s->degree_u(), s->degree_v()});
+    j["knots"] = {{"u", s->knots_u().knots()}, {"v", s->knots_v().knots()}};
+    j["control_points"] = points_json(s->homogeneous());
+    if (s->is_rational()) j["weights"] = weights_json(s->homogeneous());
+    j["normal"] = normal_name(*s);
+    return j;
+  }
+  if (const auto* g = std::get_if<PatchGroup>(&e)) {
+    Json j;
+    j["type"] = "patch_group";
+    j["patches"] = g->patches;
+    return j;
+  }
+  return analytic_json(dynamic_cast<const AnalyticSurface&>(*as_surface(e)));
+}
+
+Json geometry_to_json(const GeometryModel& m) {
+  Json j = Json::object();
+  for (const auto& [name, e] : m.entities) j[name] = entity_to_json(e);
+  return j;
+}
+
+}  // namespace iga

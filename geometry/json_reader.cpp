@@ -1,0 +1,382 @@
+// JSON input with errors that name file, path, value and expectation; readable JSON output.
+// A first SAX pass over the text tracks the JSON path so that syntax errors, overflowing
+// numbers and duplicate keys are reported where they are; the document is then parsed into an
+// order-preserving nlohmann::ordered_json.
+#include "geometry/json_reader.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <unordered_set>
+#include <utility>
+
+namespace iga {
+
+ModelError::ModelError(std::string file, std::string pointer, const std::string& message)
+    : std::runtime_error(pointer.empty() ? file + ": " + message
+                                         : file + ": " + pointer + ": " + message),
+      file_(std::move(file)),
+      pointer_(std::move(pointer)),
+      message_(message) {}
+
+namespace {
+
+/// 1-based line and column (in UTF-8 characters) of the byte at `offset` (0-based).
+std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::size_t offset) {
+  offset = std::min(offset, text.size());
+  std::size_t line = 1, line_start = 0;
+  for (std::size_t i = 0; i < offset; ++i)
+    if (text[i] == '\n') {
+      ++line;
+      line_start = i + 1;
+    }
+  std::size_t column = 1;
+  for (std::size_t i = line_start; i < offset; ++i)
+    if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;  // skip UTF-8 tails
+  return {line, column};
+}
+
+/// nlohmann's what() without "[json.exception.parse_error.101] parse error at line 1, ...: ".
+std::string bare_message(const std::string& what) {
+  std::string m = what;
+  if (!m.empty() && m.front() == '[') {
+    const std::size_t close = m.find("] ");
+    if (close != std::string::npos) m = m.substr(close + 2);
+  }
+  if (m.rfind("parse error", 0) == 0) {
+    const std::size_t colon = m.find(": ");
+    if (colon != std::string::npos) m = m.substr(colon + 2);
+  }
+  return m;
+}
+
+/// SAX handler that builds nothing: it keeps the JSON path of the current position, rejects
+/// duplicate keys and records where a parse error happened.
+class PathTracker final : public nlohmann::json_sax<Json> {
+ public:
+  struct Frame {
+    bool array = false;
+    std::size_t index = 0;  // next element of an array
+    std::string key;        // current key of an object
+    bool has_key = false;
+    std::unordered_set<std::string> keys;
+  };
+
+  bool null() override { return value(); }
+  bool boolean(bool) override { return value(); }
+  bool number_integer(number_integer_t) override { return value(); }
+  bool number_unsigned(number_unsigned_t) override { return value(); }
+  bool number_float(number_float_t, const string_t&) override { return value(); }
+  bool string(string_t&) override { return value(); }
+  bool binary(binary_t&) override { return value(); }
+  bool start_object(std::size_t) override {
+    stack_.push_back(Frame{});
+    return true;
+  }
+  bool key(string_t& k) override {
+    Frame& f = stack_.back();
+    f.key = k;
+    f.has_key = true;
+    if (!f.keys.insert(k).second) {
+      duplicate_ = true;
+      duplicate_key_ = k;
+      return false;
+    }
+    return true;
+  }
+  bool end_object() override {
+    stack_.pop_back();
+    return value();
+  }
+  bool start_array(std::size_t) override {
+    Frame f;
+    f.array = true;
+    stack_.push_back(std::move(f));
+    return true;
+  }
+  bool end_array() override {
+    stack_.pop_back();
+    return value();
+  }
+  bool parse_error(std::size_t position, const std::string& last_token,
+                   const nlohmann::json::exception& ex) override {
+    error_position_ = position;
+    error_token_ = last_token;
+    error_message_ = ex.what();
+    error_id_ = ex.id;
+    return false;
+  }
+
+  JsonPointer pointer() const {
+    JsonPointer p;
+    for (const Frame& f : stack_) {
+      if (f.array) {
+        p.push_back(std::to_string(f.index));
+      } else {
+        if (!f.has_key) break;
+        p.push_back(f.key);
+      }
+    }
+    return p;
+  }
+
+  bool duplicate_ = false;
+  std::string duplicate_key_;
+  std::size_t error_position_ = 0;
+  std::string error_token_, error_message_;
+  int error_id_ = 0;
+
+ private:
+  bool value() {
+    if (!stack_.empty()) {
+      Frame& f = stack_.back();
+      if (f.array)
+        ++f.index;
+      else
+        f.has_key = false;
+    }
+    return true;
+  }
+  std::vector<Frame> stack_;
+};
+
+}  // namespace
+
+Json parse_json_text(const std::string& text, const std::string& file) {
+  PathTracker tracker;
+  if (!Json::sax_parse(text, &tracker)) {
+    const std::string at = tracker.pointer().to_string();
+    if (tracker.duplicate_)
+      throw ModelError(
+          file, at,
+          "duplicate key \"" + tracker.duplicate_key_ + "\" (each key may appear once per object)");
+    // nlohmann reports the position after the last character read. Its token text starts at
+    // the last string or number scanned, so it is the offending token itself only when it is a
+    // whole string or number ("ball" after a missing comma, 1e999): then point at its start.
+    const std::string& token = tracker.error_token_;
+    const std::size_t end = tracker.error_position_;
+    const bool number =
+        !token.empty() && token.find_first_not_of("0123456789+-.eE") == std::string::npos;
+    const bool string = token.size() >= 2 && token.front() == '"' && token.back() == '"';
+    const bool clean = (number || string) && token.size() <= end;
+    const auto [line, col] =
+        line_column(text, clean ? end - token.size() : (end > 0 ? end - 1 : 0));
+    const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(col);
+    if (tracker.error_id_ == 406)  // out_of_range.406: number overflow
+      throw ModelError(file, at,
+                       "number " + token + " is out of range of a double (" + where + ")");
+    throw ModelError(file, at,
+                     "malformed JSON at " + where + ": " + bare_message(tracker.error_message_));
+  }
+  return Json::parse(text);  // cannot fail after the SAX pass
+}
+
+Json read_json_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, "", std::string("cannot open file: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ModelError(path, "", "cannot read file");
+  return parse_json_text(text.str(), path);
+}
+
+// ---- describing and writing values --------------------------------------------------------
+
+namespace {
+
+std::string dump_scalar(const Json& j) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    const double x = j.get<double>();
+    return std::isnan(x) ? "nan" : (x > 0 ? "inf" : "-inf");
+  }
+  return j.dump();
+}
+
+bool is_scalar(const Json& j) {
+  return !j.is_object() && !j.is_array();
+}
+
+bool is_scalar_array(const Json& j) {
+  if (!j.is_array()) return false;
+  for (const Json& e : j)
+    if (!is_scalar(e)) return false;
+  return true;
+}
+
+void write_pretty(std::string& out, const Json& j, int indent) {
+  const std::string pad(static_cast<std::size_t>(indent + 2), ' ');
+  const std::string close_pad(static_cast<std::size_t>(indent), ' ');
+  if (is_scalar(j)) {
+    out += j.dump();
+  } else if (j.empty()) {
+    out += j.is_array() ? "[]" : "{}";
+  } else if (is_scalar_array(j)) {
+    out += '[';
+    bool first = true;
+    for (const Json& e : j) {
+      if (!first) out += ", ";
+      out += e.dump();
+      first = false;
+    }
+    out += ']';
+  } else if (j.is_array()) {
+    out += "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out += pad;
+      write_pretty(out, j[i], indent + 2);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += close_pad + ']';
+  } else {
+    out += "{\n";
+    std::size_t i = 0;
+    for (auto it = j.begin(); it != j.end(); ++it, ++i) {
+      out += pad + Json(it.key()).dump() + ": ";
+      write_pretty(out, it.value(), indent + 2);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += close_pad + '}';
+  }
+}
+
+}  // namespace
+
+std::string short_dump(const Json& j, std::size_t max_chars) {
+  std::string s = is_scalar(j) ? dump_scalar(j) : j.dump();
+  if (s.size() > max_chars && max_chars > 3) {
+    std::size_t cut = max_chars - 3;
+    while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // UTF-8
+    s = s.substr(0, cut) + "...";
+  }
+  return s;
+}
+
+std::string describe_json(const Json& j) {
+  if (j.is_null()) return "null";
+  return std::string(j.type_name()) + " " + short_dump(j);
+}
+
+std::string format_json(const Json& j) {
+  std::string out;
+  write_pretty(out, j, 0);
+  return out;
+}
+
+// ---- JsonCursor ---------------------------------------------------------------------------
+
+JsonCursor::JsonCursor(const Json& j, std::string file, JsonPointer at)
+    : j_(&j), file_(std::move(file)), at_(std::move(at)) {}
+
+bool JsonCursor::has(const std::string& key) const {
+  return j_->is_object() && j_->contains(key);
+}
+
+JsonCursor JsonCursor::operator[](const std::string& key) const {
+  if (!j_->is_object()) fail_type("an object");
+  const auto it = j_->find(key);
+  if (it == j_->end()) fail_plain("missing required key \"" + key + "\"");
+  return JsonCursor(*it, file_, at_ / key);
+}
+
+JsonCursor JsonCursor::operator[](std::size_t index) const {
+  if (!j_->is_array()) fail_type("an array");
+  if (index >= j_->size())
+    fail_plain("index " + std::to_string(index) + " out of range (the array has " +
+               std::to_string(j_->size()) + " elements)");
+  return JsonCursor((*j_)[index], file_, at_ / index);
+}
+
+std::size_t JsonCursor::size() const {
+  if (!j_->is_array() && !j_->is_object()) fail_type("an array or an object");
+  return j_->size();
+}
+
+std::vector<std::string> JsonCursor::keys() const {
+  if (!j_->is_object()) fail_type("an object");
+  std::vector<std::string> k;
+  k.reserve(j_->size());
+  for (auto it = j_->begin(); it != j_->end(); ++it) k.push_back(it.key());
+  return k;
+}
+
+void JsonCursor::expect_object(std::initializer_list<const char*> allowed) const {
+  if (!j_->is_object()) fail_type("an object");
+  for (auto it = j_->begin(); it != j_->end(); ++it) {
+    bool known = false;
+    for (const char* a : allowed) known = known || it.key() == a;
+    if (known) continue;
+    std::string list;
+    for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+    throw ModelError(file_, (at_ / it.key()).to_string(),
+                     "unknown key \"" + it.key() + "\" (allowed here: " + list + ")");
+  }
+}
+
+void JsonCursor::expect_array(std::size_t min_size) const {
+  if (!j_->is_array()) fail_type("an array");
+  if (j_->size() < min_size)
+    fail("expected an array of at least " + std::to_string(min_size) + " element" +
+         (min_size == 1 ? "" : "s"));
+}
+
+double JsonCursor::as_number() const {
+  if (!j_->is_number()) fail_type("a number");
+  const double x = j_->get<double>();
+  if (!std::isfinite(x)) fail("expected a finite number");
+  return x;
+}
+
+int JsonCursor::as_int() const {
+  if (j_->is_number_integer()) {  // signed or unsigned
+    if (j_->is_number_unsigned()) {
+      const auto u = j_->get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+        fail("expected an integer in int range");
+      return static_cast<int>(u);
+    }
+    const auto i = j_->get<std::int64_t>();
+    if (i < std::numeric_limits<int>::min() || i > std::numeric_limits<int>::max())
+      fail("expected an integer in int range");
+    return static_cast<int>(i);
+  }
+  if (!j_->is_number()) fail_type("an integer");
+  const double x = j_->get<double>();
+  if (!(std::floor(x) == x) || std::abs(x) > std::numeric_limits<int>::max())
+    fail("expected an integer");
+  return static_cast<int>(x);
+}
+
+bool JsonCursor::as_bool() const {
+  if (!j_->is_boolean()) fail_type("true or false");
+  return j_->get<bool>();
+}
+
+std::string JsonCursor::as_string() const {
+  if (!j_->is_string()) fail_type("a string");
+  return j_->get<std::string>();
+}
+
+std::vector<double> JsonCursor::as_numbers() const {
+  expect_array();
+  std::vector<double> x(j_->size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = (*this)[i].as_number();
+  return x;
+}
+
+void JsonCursor::fail(const std::string& message) const {
+  throw ModelError(file_, at_.to_string(), message + ", got " + short_dump(*j_));
+}
+
+void JsonCursor::fail_plain(const std::string& message) const {
+  throw ModelError(file_, at_.to_string(), message);
+}
+
+void JsonCursor::fail_type(const std::string& expected) const {
+  throw ModelError(file_, at_.to_string(), "expected " + expected + ", got " + describe_json(*j_));
+}
+
+}  // namespace iga

@@ -1,0 +1,129 @@
+// NURBS surface evaluation: [PT97] A3.6 (B-spline surface derivatives), A4.4 (rational surface
+// derivatives, eq. 4.20), up to second order.
+#include "geometry/nurbs_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace iga {
+
+
+NurbsSurface::NurbsSurface(int degree_u, std::vector<double> knots_u, int degree_v,
+                           std::vector<double> knots_v, const std::vector<Vector3d>& points,
+                           const std::vector<double>& weights) {
+  validate_knots(degree_u, knots_u, -1);
+  validate_knots(degree_v, knots_v, -1);
+  ku_ = KnotVector(degree_u, std::move(knots_u));
+  kv_ = KnotVector(degree_v, std::move(knots_v));
+  if (static_cast<std::size_t>(num_u()) * static_cast<std::size_t>(num_v()) != points.size())
+    throw GeometryError("control net size must be " + std::to_string(num_u()) + " x " +
+                        std::to_string(num_v()) + " = " + std::to_string(num_u() * num_v()) +
+                        " (from knots and degrees), got " + std::to_string(points.size()));
+  pw_ = to_homogeneous(points, weights);
+  detect_closed();
+}
+
+NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v, std::vector<Vector4d> pw)
+    : ku_(std::move(knots_u)), kv_(std::move(knots_v)), pw_(std::move(pw)) {
+  if (static_cast<std::size_t>(num_u()) * static_cast<std::size_t>(num_v()) != pw_.size())
+    throw GeometryError("control net size must be " + std::to_string(num_u() * num_v()) +
+                        ", got " + std::to_string(pw_.size()));
+  check_homogeneous(pw_);
+  detect_closed();
+}
+
+void NurbsSurface::detect_closed() {
+  // A clamped direction is closed when its first and last rows of control points coincide
+  // (then S(lo, v) == S(hi, v) for all v). Tolerance relative to the net's size.
+  double scale = 0.0;
+  for (const Vector4d& q : pw_) scale = std::max(scale, (q.head<3>() / q.w()).cwiseAbs().maxCoeff());
+  const double tol = 1e-12 * std::max(scale, 1.0);
+  closed_u_ = closed_v_ = true;
+  for (int j = 0; j < num_v(); ++j)
+    if ((control_point(0, j) - control_point(num_u() - 1, j)).norm() > tol) closed_u_ = false;
+  for (int i = 0; i < num_u(); ++i)
+    if ((control_point(i, 0) - control_point(i, num_v() - 1)).norm() > tol) closed_v_ = false;
+}
+
+Vector3d NurbsSurface::control_point(int i, int j) const {
+  const Vector4d& q = pw_[static_cast<std::size_t>(index(i, j))];
+  return q.head<3>() / q.w();
+}
+
+std::vector<Vector3d> NurbsSurface::control_points() const {
+  return from_homogeneous(pw_);
+}
+
+std::vector<double> NurbsSurface::weights() const {
+  return weights_of(pw_);
+}
+
+bool NurbsSurface::is_rational() const { return any_weight_not_one(pw_); }
+
+Domain2 NurbsSurface::domain() const {
+  const auto [u0, u1] = ku_.domain();
+  const auto [v0, v1] = kv_.domain();
+  return {{u0, u1}, {v0, v1}};
+}
+
+SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
+  // A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
+  // S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
+  //           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) / w
+  const int p = degree_u(), q = degree_v();
+  order = std::clamp(order, 0, 2);
+  const Domain2 dom = domain();
+  u = std::clamp(u, dom.u.lo, dom.u.hi);
+  v = std::clamp(v, dom.v.lo, dom.v.hi);
+  const int su = ku_.find_span(u), sv = kv_.find_span(v);
+  BasisDerivs Nu, Nv;
+  ders_basis_funs(su, u, p, order, ku_.span(), Nu);
+  ders_basis_funs(sv, v, q, order, kv_.span(), Nv);
+
+  // A[k][l] for k + l <= order (homogeneous derivatives).
+  Vector4d A[3][3];
+  for (auto& row : A)
+    for (auto& x : row) x.setZero();
+  const int nu = num_u();
+  for (int l = 0; l <= order; ++l) {
+    for (int s = 0; s <= q; ++s) {
+      // temp_k = sum_r Nu[k][r] Pw[su-p+r][sv-q+s], k <= order - l
+      const std::size_t row = static_cast<std::size_t>((sv - q + s) * nu + su - p);
+      for (int k = 0; k + l <= order; ++k) {
+        Vector4d t = Vector4d::Zero();
+        for (int r = 0; r <= p; ++r) t.noalias() += Nu[k][r] * pw_[row + static_cast<std::size_t>(r)];
+        A[k][l].noalias() += Nv[l][s] * t;
+      }
+    }
+  }
+  Vector3d S[3][3];
+  constexpr double bin[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
+  const double w = A[0][0].w();
+  for (int k = 0; k <= order; ++k) {
+    for (int l = 0; k + l <= order; ++l) {
+      Vector3d x = A[k][l].head<3>();
+      for (int j = 1; j <= l; ++j) x -= bin[l][j] * A[0][j].w() * S[k][l - j];
+      for (int i = 1; i <= k; ++i) {
+        x -= bin[k][i] * A[i][0].w() * S[k - i][l];
+        for (int j = 1; j <= l; ++j) x -= bin[k][i] * bin[l][j] * A[i][j].w() * S[k - i][l - j];
+      }
+      S[k][l] = x / w;
+    }
+  }
+  SurfaceDerivs d;
+  d.order = order;
+  d.S = S[0][0];
+  if (order >= 1) {
+    d.Su = S[1][0];
+    d.Sv = S[0][1];
+  }
+  if (order >= 2) {
+    d.Suu = S[2][0];
+    d.Suv = S[1][1];
+    d.Svv = S[0][2];
+  }
+  return d;
+}
+
+}  // namespace iga

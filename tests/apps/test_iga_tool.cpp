@@ -1,0 +1,177 @@
+// Runs the `iga` executable as a user would: on every model in data/, on bad input, and with
+// bad command lines; checks exit codes, messages and the numbers it prints.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// Runs `iga ARGS`, capturing standard output and error in temporary files.
+Run iga(const std::string& args) {
+  static int counter = 0;
+  const fs::path dir = fs::temp_directory_path() / ("iga_tool_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path out = dir / ("out" + std::to_string(counter) + ".txt");
+  const fs::path err = dir / ("err" + std::to_string(counter++) + ".txt");
+  const std::string cmd = std::string("\"") + IGA_EXE + "\" " + args + " >\"" + out.string() +
+                          "\" 2>\"" + err.string() + "\" </dev/null";
+  const int raw = std::system(cmd.c_str());
+  Run r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+std::vector<fs::path> data_models() {
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(fs::path(IGA_SOURCE_DIR) / "data"))
+    if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::istringstream ls(line);
+    std::string cell;
+    while (std::getline(ls, cell, ',')) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("iga --help and subcommand help describe the commands", "[apps][iga]") {
+  const Run r = iga("--help");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("eval") && Catch::Contains("make") && Catch::Contains("info"));
+  const Run e = iga("eval --help");
+  CHECK(e.status == 0);
+  CHECK_THAT(e.out, Catch::Contains("--uv") && Catch::Contains("--grid") && Catch::Contains("--u"));
+}
+
+TEST_CASE("iga eval --center runs on every model in data/", "[apps][iga]") {
+  const auto models = data_models();
+  REQUIRE(models.size() >= 5);
+  for (const fs::path& m : models) {
+    INFO(m);
+    const Run info = iga("info \"" + m.string() + "\"");
+    CHECK(info.status == 0);
+    const Run r = iga("eval \"" + m.string() + "\" --center");
+    CHECK(r.status == 0);
+    CHECK(r.err.empty());
+    CHECK_THAT(r.out, Catch::Contains("point"));
+    CHECK_THAT(r.out, !Catch::Contains("nan") && !Catch::Contains("inf"));
+  }
+}
+
+TEST_CASE("iga eval --grid on the NURBS cylinder: points on the radius, normals outward",
+          "[apps][iga]") {
+  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/cylinder_patch.json";
+  const Run r = iga("eval \"" + model + "\" --grid 11");
+  REQUIRE(r.status == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 1 + 11 * 11);
+  CHECK(rows[0].front() == "entity");
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    REQUIRE(rows[i].size() == 13);
+    const double x = std::stod(rows[i][3]), y = std::stod(rows[i][4]);
+    const double nx = std::stod(rows[i][6]), ny = std::stod(rows[i][7]);
+    CHECK(std::hypot(x, y) == Approx(1.0).epsilon(1e-13));  // data/cylinder_patch.json: R = 1
+    CHECK(nx * x + ny * y == Approx(1.0).epsilon(1e-12));   // outward unit normal
+    // principal curvatures of a cylinder with the outward normal: 0 and -1/R
+    CHECK(std::stod(rows[i][9]) == Approx(0.0).margin(1e-10));
+    CHECK(std::stod(rows[i][10]) == Approx(-1.0).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("iga eval --u on the helix: curvature and torsion of the helix", "[apps][iga]") {
+  // data/helix_cubic.json: R = 1, pitch 1 -> c = 1/2pi, kappa = R/(R^2+c^2), tau = c/(R^2+c^2)
+  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/helix_cubic.json";
+  const Run r = iga("eval \"" + model + "\" --grid 5");
+  REQUIRE(r.status == 0);
+  const double c = 1.0 / (2 * M_PI);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 6);
+  // interior samples (the interpolant's end spans are less accurate)
+  for (std::size_t i = 2; i <= 4; ++i) {
+    CHECK(std::stod(rows[i][8]) == Approx(1.0 / (1 + c * c)).epsilon(2e-3));
+    CHECK(std::stod(rows[i][9]) == Approx(c / (1 + c * c)).epsilon(2e-2));
+  }
+}
+
+TEST_CASE("iga eval: bad models exit 1 with file, JSON path and value on stderr",
+          "[apps][iga][errors]") {
+  const std::string bad = std::string(IGA_SOURCE_DIR) + "/tests/data/bad/";
+  const Run r = iga("eval \"" + bad + "decreasing_knots.json\" --center");
+  CHECK(r.status == 1);
+  CHECK(r.out.empty());
+  CHECK_THAT(r.err, Catch::Contains("decreasing_knots.json") && Catch::Contains("/geometry/"));
+  const Run m = iga("eval \"" + bad + "malformed_json.json\" --center");
+  CHECK(m.status == 1);
+  CHECK_THAT(m.err, Catch::Contains("line") && Catch::Contains("column"));
+  const Run missing = iga("eval /nonexistent/model.json --center");
+  CHECK(missing.status == 1);
+  CHECK_THAT(missing.err, Catch::Contains("/nonexistent/model.json"));
+}
+
+TEST_CASE("iga eval: bad command lines are rejected", "[apps][iga][errors]") {
+  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/torus_patch.json";
+  CHECK(iga("eval \"" + model + "\"").status != 0);                    // no mode
+  CHECK(iga("eval \"" + model + "\" --uv 0.5").status != 0);          // one value
+  CHECK(iga("eval \"" + model + "\" --uv 99,0.5").status == 1);       // outside domain
+  CHECK(iga("eval \"" + model + "\" --u 0.5").status == 1);           // surface needs --uv
+  CHECK(iga("eval \"" + model + "\" --uv 0.5,0.5 --entity nope").status == 1);
+  CHECK(iga("frobnicate").status != 0);
+  CHECK(iga("").status != 0);
+}
+
+TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]") {
+  const fs::path dir = fs::temp_directory_path() / ("iga_make_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string torus = (dir / "torus.json").string();
+  REQUIRE(iga("make torus --major-radius 3 --minor-radius 1 --out \"" + torus + "\"").status == 0);
+  const Run r = iga("eval \"" + torus + "\" --grid 9");
+  REQUIRE(r.status == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 82);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const double x = std::stod(rows[i][3]), y = std::stod(rows[i][4]), z = std::stod(rows[i][5]);
+    // (B.16): distance to the tube's centre circle equals the minor radius
+    CHECK(std::hypot(std::hypot(x, y) - 3.0, z) == Approx(1.0).epsilon(1e-13));
+  }
+  const std::string cyl = (dir / "cyl4.json").string();
+  REQUIRE(iga("make cylinder --patches 4 --out \"" + cyl + "\"").status == 0);
+  const Run info = iga("info \"" + cyl + "\"");
+  CHECK_THAT(info.out, Catch::Contains("patch_group of 4"));
+  CHECK(iga("make klein-bottle --out x.json").status != 0);
+  fs::remove_all(dir);
+}

@@ -1,0 +1,430 @@
+// Tests of the exact NURBS constructions ([PT97] A7.1, Sect. 7.5, Sect. 8.3, A8.1, A9.1): shape
+// errors at round-off level at random points, derivatives against finite differences, normal
+// orientation, surfaces of revolution, the bilinear saddle of [KS15] (11) and the convergence
+// of the interpolated helix.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geometry/analytic_surfaces.hpp"
+#include "geometry/constructions.hpp"
+#include "geometry/knot_vector.hpp"
+#include "tests/support/geometry_checks.hpp"
+
+using namespace iga;
+using namespace iga::test;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+/// A random parameter strictly inside a random element (away from C^0 knots, so that
+/// central differences with steps <= 1e-4 stay in one element).
+/// Largest relative deviation of the first and second derivatives of a surface from central
+/// differences of point(), relative to |exact| + L.
+/// Unit normal S_u x S_v / |S_u x S_v| (computed here, independently of surface_frame).
+Vector3d raw_normal(const Surface& s, double u, double v) {
+  const SurfaceDerivs d = s.derivs(u, v, 1);
+  return d.Su.cross(d.Sv).normalized();
+}
+
+/// e_x, e_y of a frame with unit axis a and reference direction ref (computed here).
+void in_plane_axes(const Vector3d& a, const Vector3d& ref, Vector3d& ex, Vector3d& ey) {
+  ex = (ref - ref.dot(a) * a).normalized();
+  ey = a.cross(ex);
+}
+
+Vector3d helix(double R, double pitch, double t) {
+  return Vector3d(R * std::cos(t), R * std::sin(t), pitch * t / (2 * kPi));
+}
+
+}  // namespace
+
+TEST_CASE("make_line: degree 1 segment with linear parametrization", "[geometry][constructions]") {
+  const Vector3d a(1, -2, 3), b(-4, 0.5, 2);
+  const NurbsCurve c = make_line(a, b);
+  REQUIRE(c.degree() == 1);
+  for (double u = 0.0; u <= 1.0; u += 0.125)
+    CHECK((c.point(u) - (a + u * (b - a))).norm() <= 1e-15);
+}
+
+TEST_CASE("make_circle: 9 points, weights 1 and sqrt(2)/2, double knots at quarters",
+          "[geometry][constructions]") {
+  const NurbsCurve c = make_circle(Vector3d(1, 2, 3), Vector3d(0, 0, 1), 2.0);
+  REQUIRE(c.degree() == 2);
+  REQUIRE(c.num_control_points() == 9);
+  const std::vector<double> U = {0, 0, 0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1, 1, 1};
+  CHECK(c.knots().knots() == U);
+  for (int i = 0; i < 9; ++i)
+    CHECK(c.weight(i) == Approx(i % 2 == 0 ? 1.0 : std::sqrt(2.0) / 2).epsilon(1e-15));
+  // The corners of the control square lie at distance r sqrt(2) from the centre.
+  for (int i = 1; i < 9; i += 2)
+    CHECK((c.control_point(i) - Vector3d(1, 2, 3)).norm() ==
+          Approx(2.0 * std::sqrt(2.0)).epsilon(1e-15));
+}
+
+TEST_CASE(
+    "make_circle: radius error <= 1e-13 at random points, planar, closed, "
+    "counter-clockwise about the normal",
+    "[geometry][constructions]") {
+  std::mt19937 g(1);
+  double worst_r = 0.0, worst_plane = 0.0;
+  for (int k = 0; k < 20; ++k) {
+    const double r = std::pow(10.0, uniform(g, -2, 2));
+    const Vector3d c = r * Vector3d(uniform(g, -3, 3), uniform(g, -3, 3), uniform(g, -3, 3));
+    const Vector3d nrm = random_unit(g);
+    const NurbsCurve circ = make_circle(c, nrm, r);
+    const double size = r + c.norm();
+    CHECK((circ.point(0.0) - circ.point(1.0)).norm() <= 1e-15 * size);
+    for (int s = 0; s < 500; ++s) {
+      const double u = uniform(g, 0.0, 1.0);
+      const CurveDerivs d = circ.derivs(u, 1);
+      worst_r = std::max(worst_r, std::abs((d.d[0] - c).norm() - r) / size);
+      worst_plane = std::max(worst_plane, std::abs((d.d[0] - c).dot(nrm)) / size);
+      CHECK((d.d[0] - c).cross(d.d[1]).dot(nrm) > 0.0);
+    }
+  }
+  INFO("radius error " << worst_r << ", out-of-plane " << worst_plane);
+  CHECK(worst_r <= 1e-13);
+  CHECK(worst_plane <= 1e-13);
+}
+
+TEST_CASE(
+    "make_circular_arc: ceil(theta / 90 deg) segments, exact end points, radius and "
+    "monotone angle",
+    "[geometry][constructions]") {
+  const Vector3d c(0.5, -1, 2), X(1, 0, 0), Y(0, 0.6, 0.8);
+  const double r = 1.7;
+  for (const double deg : {10.0, 90.0, 91.0, 135.0, 180.0, 200.0, 270.0, 300.0, 360.0}) {
+    const double start = -0.7, theta = deg * kPi / 180.0;
+    const NurbsCurve a = make_circular_arc(c, X, Y, r, start, start + theta);
+    const int narcs = static_cast<int>(std::ceil(deg / 90.0 - 1e-9));
+    INFO("arc of " << deg << " degrees");
+    CHECK(a.num_control_points() == 2 * narcs + 1);
+    auto at = [&](double t) { return c + r * (std::cos(t) * X + std::sin(t) * Y); };
+    CHECK((a.point(0.0) - at(start)).norm() <= 1e-14);
+    CHECK((a.point(1.0) - at(start + theta)).norm() <= 1e-14);
+    double prev = -1e300, worst = 0.0;
+    for (int s = 0; s <= 2000; ++s) {
+      const Vector3d p = a.point(s / 2000.0) - c;
+      worst = std::max(worst, std::abs(p.norm() - r) / r);
+      // Polar angle measured from the start direction, in [0, 2 pi).
+      double phi = std::atan2(p.dot(Y), p.dot(X)) - start;
+      while (phi < -1e-12) phi += 2 * kPi;
+      if (s == 2000 && deg == 360.0) phi = 2 * kPi;
+      CHECK(phi >= prev - 1e-12);
+      CHECK(phi <= theta + 1e-12);
+      prev = phi;
+    }
+    CHECK(worst <= 1e-13);
+  }
+}
+
+TEST_CASE("make_circular_arc: rejects bad radius, angles and axes",
+          "[geometry][constructions][errors]") {
+  const Vector3d c = Vector3d::Zero(), X = Vector3d::UnitX(), Y = Vector3d::UnitY();
+  CHECK_THROWS_AS(make_circular_arc(c, X, Y, 0.0, 0.0, 1.0), GeometryError);
+  CHECK_THROWS_AS(make_circular_arc(c, X, Y, 1.0, 1.0, 1.0), GeometryError);
+  CHECK_THROWS_AS(make_circular_arc(c, X, Y, 1.0, 0.0, 7.0), GeometryError);
+  CHECK_THROWS_AS(make_circular_arc(c, X, 2 * Y, 1.0, 0.0, 1.0), GeometryError);
+  CHECK_THROWS_AS(make_circular_arc(c, X, Vector3d(1, 1, 0).normalized(), 1.0, 0.0, 1.0),
+                  GeometryError);
+  CHECK_THROWS_AS(make_circle(c, Vector3d::Zero(), 1.0), GeometryError);
+}
+
+TEST_CASE("NURBS constructions: derivatives agree with central finite differences",
+          "[geometry][constructions]") {
+  std::mt19937 g(3);
+  // Curves: circle and arc.
+  const NurbsCurve circ = make_circle(Vector3d(1, 0, -1), random_unit(g), 1.5);
+  const NurbsCurve arc =
+      make_circular_arc(Vector3d::Zero(), Vector3d::UnitY(), Vector3d::UnitZ(), 0.7, 0.2, 4.0);
+  for (const NurbsCurve* c : {&circ, &arc}) {
+    double worst = 0.0;
+    for (int k = 0; k < 300; ++k) {
+      const double u = inside_element(g, c->knots());
+      const CurveDerivs d = c->derivs(u, 2);
+      const double h1 = 1e-6, h2 = 1e-4;
+      const Vector3d fu = (c->point(u + h1) - c->point(u - h1)) / (2 * h1);
+      const Vector3d fuu = (c->point(u + h2) - 2 * c->point(u) + c->point(u - h2)) / (h2 * h2);
+      worst = std::max({worst, (fu - d.d[1]).norm() / (d.d[1].norm() + 1.0),
+                        (fuu - d.d[2]).norm() / (d.d[2].norm() + 1.0)});
+    }
+    CHECK(worst <= 1e-6);
+  }
+  // Surfaces.
+  const Vector3d axis = random_unit(g), ref = random_unit(g);
+  const std::vector<std::pair<const char*, NurbsSurface>> surfaces = {
+      {"cylinder", make_cylinder(Vector3d(1, 2, 3), axis, ref, 0.8, 2.0, 0.3, 5.0)},
+      {"sphere", make_sphere(Vector3d(-1, 0, 2), 1.3)},
+      {"torus", make_torus(Vector3d(0, 1, 0), axis, 2.0, 0.6)},
+      {"cone", make_cone(Vector3d(0, 0, 1), axis, ref, 0.7, 0.2, 1.5)},
+      {"hyperboloid", make_bilinear_hyperboloid(0.3, -2.0, 1.0, -1.0, 3.0)},
+      {"plane", make_plane_patch(Vector3d(1, 1, 1), Vector3d(2, 0, 1), Vector3d(0, 3, -1))},
+  };
+  for (const auto& [name, s] : surfaces) {
+    double worst = 0.0;
+    for (int k = 0; k < 300; ++k) {
+      const double u = inside_element(g, s.knots_u()), v = inside_element(g, s.knots_v());
+      worst = std::max(worst, surface_fd_error(s, u, v, 1.0));
+    }
+    INFO(name << ": worst relative finite-difference error " << worst);
+    CHECK(worst <= 1e-6);
+  }
+}
+
+TEST_CASE(
+    "make_cylinder: distance to the axis equals r (<= 1e-13), outward normal, angular "
+    "range from ref_dir",
+    "[geometry][constructions]") {
+  std::mt19937 g(4);
+  double worst_r = 0.0, worst_n = 0.0, worst_h = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    const double r = std::pow(10.0, uniform(g, -1, 1)), h = uniform(g, 0.5, 3.0);
+    const Vector3d base = r * Vector3d(uniform(g, -2, 2), uniform(g, -2, 2), uniform(g, -2, 2));
+    const Vector3d a = random_unit(g), ref = random_unit(g);
+    const double start = uniform(g, -1, 1);
+    const double end = k % 2 == 0 ? start + 2 * kPi : start + uniform(g, 0.2, 6.0);
+    const NurbsSurface s = make_cylinder(base, a, ref, r, h, start, end);
+    const double size = r + base.norm() + h;
+    Vector3d ex, ey;
+    in_plane_axes(a, ref, ex, ey);
+    for (double v : {0.0, 0.4, 1.0}) {
+      CHECK(
+          (s.point(0.0, v) - (base + r * (std::cos(start) * ex + std::sin(start) * ey) + v * h * a))
+              .norm() <= 1e-13 * size);
+      CHECK((s.point(1.0, v) - (base + r * (std::cos(end) * ex + std::sin(end) * ey) + v * h * a))
+                .norm() <= 1e-13 * size);
+    }
+    for (int q = 0; q < 400; ++q) {
+      const double u = uniform(g, 0, 1), v = uniform(g, 0, 1);
+      const Vector3d x = s.point(u, v) - base;
+      const Vector3d radial = x - x.dot(a) * a;
+      worst_r = std::max(worst_r, std::abs(radial.norm() - r) / size);
+      worst_h = std::max(worst_h, std::abs(x.dot(a) - v * h) / size);
+      worst_n = std::max(worst_n, (raw_normal(s, u, v) - radial.normalized()).norm());
+    }
+  }
+  INFO("radius error " << worst_r << ", axial error " << worst_h << ", normal error " << worst_n);
+  CHECK(worst_r <= 1e-13);
+  CHECK(worst_h <= 1e-13);
+  CHECK(worst_n <= 1e-12);
+}
+
+TEST_CASE("make_sphere: |S - c| = r (<= 1e-13), poles at v = 0, 1, outward normal",
+          "[geometry][constructions]") {
+  std::mt19937 g(5);
+  double worst_r = 0.0, worst_n = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    const double r = std::pow(10.0, uniform(g, -1, 1));
+    const Vector3d c = r * Vector3d(uniform(g, -2, 2), uniform(g, -2, 2), uniform(g, -2, 2));
+    const NurbsSurface s = make_sphere(c, r);
+    const double size = r + c.norm();
+    for (double u : {0.0, 0.3, 0.9}) {
+      CHECK((s.point(u, 0.0) - (c - r * Vector3d::UnitZ())).norm() <= 1e-14 * size);
+      CHECK((s.point(u, 1.0) - (c + r * Vector3d::UnitZ())).norm() <= 1e-14 * size);
+    }
+    for (int q = 0; q < 400; ++q) {
+      const double u = uniform(g, 0, 1), v = uniform(g, 0, 1);
+      worst_r = std::max(worst_r, std::abs((s.point(u, v) - c).norm() - r) / size);
+      if (v > 0.01 && v < 0.99)  // the normal is undefined at the poles
+        worst_n = std::max(worst_n, (raw_normal(s, u, v) - (s.point(u, v) - c) / r).norm());
+    }
+  }
+  INFO("radius error " << worst_r << ", normal error " << worst_n);
+  CHECK(worst_r <= 1e-13);
+  CHECK(worst_n <= 1e-11);
+}
+
+TEST_CASE("make_torus: (B.16) distance vanishes (<= 1e-13), closed both ways, outward normal",
+          "[geometry][constructions]") {
+  std::mt19937 g(6);
+  double worst_p = 0.0, worst_n = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    const double R = uniform(g, 1.0, 5.0), r = uniform(g, 0.1, 0.95) * R;
+    const Vector3d c(uniform(g, -2, 2), uniform(g, -2, 2), uniform(g, -2, 2));
+    const Vector3d a = random_unit(g);
+    const NurbsSurface s = make_torus(c, a, R, r);
+    const double size = R + r + c.norm();
+    for (double t = 0.0; t <= 1.0; t += 0.1) {
+      CHECK((s.point(0.0, t) - s.point(1.0, t)).norm() <= 1e-14 * size);
+      CHECK((s.point(t, 0.0) - s.point(t, 1.0)).norm() <= 1e-14 * size);
+    }
+    for (int q = 0; q < 400; ++q) {
+      const double u = uniform(g, 0, 1), v = uniform(g, 0, 1);
+      const Vector3d x = s.point(u, v) - c;
+      const double z = x.dot(a);
+      const Vector3d radial = x - z * a;
+      // (B.16): sqrt(x^2 + y^2 + z^2 + R^2 - 2 R s) - r = 0 on the surface.
+      const double p = std::sqrt(x.squaredNorm() + R * R - 2 * R * radial.norm()) - r;
+      worst_p = std::max(worst_p, std::abs(p) / size);
+      const Vector3d tube_centre = R * radial.normalized();
+      worst_n = std::max(worst_n, (raw_normal(s, u, v) - (x - tube_centre) / r).norm());
+    }
+  }
+  INFO("distance error " << worst_p << ", normal error " << worst_n);
+  CHECK(worst_p <= 1e-13);
+  CHECK(worst_n <= 1e-11);
+}
+
+TEST_CASE(
+    "make_cone: (B.23) s sin(a) - z cos(a) vanishes (<= 1e-13), s in [s1, s2], normal "
+    "sin(a) e_r - cos(a) e_z",
+    "[geometry][constructions]") {
+  std::mt19937 g(7);
+  double worst_p = 0.0, worst_n = 0.0;
+  for (int k = 0; k < 10; ++k) {
+    const double alpha = uniform(g, 0.05, 1.5), s1 = uniform(g, 0.0, 1.0);
+    const double s2 = s1 + uniform(g, 0.2, 2.0);
+    const Vector3d apex(uniform(g, -2, 2), uniform(g, -2, 2), uniform(g, -2, 2));
+    const Vector3d a = random_unit(g), ref = random_unit(g);
+    const NurbsSurface s = make_cone(apex, a, ref, alpha, s1, s2);
+    const double size = s2 / std::cos(alpha) + apex.norm();
+    Vector3d ex, ey;
+    in_plane_axes(a, ref, ex, ey);
+    CHECK((s.point(0.0, 0.0) - (apex + s1 * ex + s1 * std::tan(alpha) * a)).norm() <= 1e-13 * size);
+    CHECK((s.point(0.0, 1.0) - (apex + s2 * ex + s2 * std::tan(alpha) * a)).norm() <= 1e-13 * size);
+    for (int q = 0; q < 400; ++q) {
+      const double u = uniform(g, 0, 1), v = uniform(g, 0, 1);
+      const Vector3d x = s.point(u, v) - apex;
+      const double z = x.dot(a);
+      const Vector3d radial = x - z * a;
+      const double sr = radial.norm();
+      CHECK(sr >= s1 - 1e-13 * size);
+      CHECK(sr <= s2 + 1e-13 * size);
+      worst_p = std::max(worst_p, std::abs(sr * std::sin(alpha) - z * std::cos(alpha)) / size);
+      if (sr > 1e-3 * s2) {
+        const Vector3d n = std::sin(alpha) * radial / sr - std::cos(alpha) * a;
+        worst_n = std::max(worst_n, (raw_normal(s, u, v) - n).norm());
+      }
+    }
+  }
+  INFO("(B.23) error " << worst_p << ", normal error " << worst_n);
+  CHECK(worst_p <= 1e-13);
+  CHECK(worst_n <= 1e-11);
+}
+
+TEST_CASE(
+    "make_revolution: a NURBS profile keeps its distance to the axis and its height; "
+    "u = 0 is the profile and u = 1 the profile rotated by the angle",
+    "[geometry][constructions]") {
+  std::mt19937 g(8);
+  for (const double angle : {2 * kPi, 2.5, 0.5 * kPi, 4.0}) {
+    // A random rational cubic profile in 3-D (not planar), partly on the axis side.
+    std::vector<Vector3d> P;
+    std::vector<double> W;
+    for (int i = 0; i < 6; ++i) {
+      P.emplace_back(uniform(g, -1, 2), uniform(g, -1, 2), uniform(g, -1, 2));
+      W.push_back(uniform(g, 0.5, 2.0));
+    }
+    const NurbsCurve prof(3, {0, 0, 0, 0, 0.3, 0.6, 1, 1, 1, 1}, P, W);
+    const Vector3d o(uniform(g, -1, 1), uniform(g, -1, 1), uniform(g, -1, 1));
+    const Vector3d a = random_unit(g);
+    const NurbsSurface s = make_revolution(prof, o, 3.0 * a, angle);  // axis need not be unit
+    const Eigen::AngleAxisd rot(angle, a);
+    double worst = 0.0;
+    for (int q = 0; q < 2000; ++q) {
+      const double u = uniform(g, 0, 1), v = uniform(g, 0, 1);
+      const Vector3d x = s.point(u, v) - o, y = prof.point(v) - o;
+      const double hx = x.dot(a), hy = y.dot(a);
+      worst =
+          std::max({worst, std::abs((x - hx * a).norm() - (y - hy * a).norm()), std::abs(hx - hy)});
+      if (q % 10 == 0) {
+        CHECK((s.point(0.0, v) - prof.point(v)).norm() <= 1e-13);
+        CHECK((s.point(1.0, v) - (o + rot * y)).norm() <= 1e-13);
+      }
+    }
+    INFO("angle " << angle << ": worst distance/height error " << worst);
+    CHECK(worst <= 1e-13);
+  }
+  CHECK_THROWS_AS(make_revolution(make_line(Vector3d(1, 0, 0), Vector3d(1, 0, 1)), Vector3d::Zero(),
+                                  Vector3d::Zero()),
+                  GeometryError);
+  CHECK_THROWS_AS(make_revolution(make_line(Vector3d(1, 0, 0), Vector3d(1, 0, 1)), Vector3d::Zero(),
+                                  Vector3d::UnitZ(), 7.0),
+                  GeometryError);
+}
+
+TEST_CASE(
+    "make_bilinear_hyperboloid: z == a x y (<= 1e-14) and equal to the analytic "
+    "Hyperboloid with (u, v) = (x, y)",
+    "[geometry][constructions]") {
+  std::mt19937 g(9);
+  const double a = 2.5e-2;  // the paper's saddle (Sect. 6.1)
+  const NurbsSurface s = make_bilinear_hyperboloid(a, -10.0, 10.0, -10.0, 10.0);
+  const Hyperboloid h(Placement{}, a);
+  REQUIRE(s.degree_u() == 1);
+  REQUIRE(s.degree_v() == 1);
+  double worst_z = 0.0, worst_d = 0.0;
+  for (int q = 0; q < 5000; ++q) {
+    const double x = uniform(g, -10, 10), y = uniform(g, -10, 10);
+    const SurfaceDerivs d = s.derivs(x, y, 2), e = h.derivs(x, y, 2);
+    worst_z = std::max(
+        {worst_z, std::abs(d.S.z() - a * d.S.x() * d.S.y()) / std::max(1.0, std::abs(d.S.z())),
+         std::abs(d.S.x() - x) / 10, std::abs(d.S.y() - y) / 10});
+    worst_d = std::max({worst_d, (d.S - e.S).norm(), (d.Su - e.Su).norm(), (d.Sv - e.Sv).norm(),
+                        (d.Suu - e.Suu).norm(), (d.Suv - e.Suv).norm(), (d.Svv - e.Svv).norm()});
+  }
+  INFO("z - a x y: " << worst_z << ", derivatives vs analytic: " << worst_d);
+  CHECK(worst_z <= 1e-14);
+  CHECK(worst_d <= 1e-13);
+  // (22): the normal points to the +z side.
+  CHECK(raw_normal(s, 3.0, -4.0).z() > 0.0);
+  CHECK_THROWS_AS(make_bilinear_hyperboloid(a, 1.0, 1.0, 0.0, 1.0), GeometryError);
+}
+
+TEST_CASE("make_plane_patch: corners and bilinear map", "[geometry][constructions]") {
+  const Vector3d o(1, 2, 3), du(2, 0, 1), dv(0, 3, -1);
+  const NurbsSurface s = make_plane_patch(o, du, dv);
+  for (double u = 0; u <= 1; u += 0.25)
+    for (double v = 0; v <= 1; v += 0.25)
+      CHECK((s.point(u, v) - (o + u * du + v * dv)).norm() <= 1e-14);
+  CHECK((raw_normal(s, 0.5, 0.5) - du.cross(dv).normalized()).norm() <= 1e-15);
+}
+
+TEST_CASE("make_helix_cubic: interpolates the data, reported deviation is honest and small",
+          "[geometry][constructions][helix]") {
+  const double R = 1.0, pitch = 2.0, angle = kPi;
+  const HelixApproximation h = make_helix_cubic(R, pitch, angle, 33);
+  REQUIRE(h.curve.degree() == 3);
+  REQUIRE(h.curve.num_control_points() == 33);
+  // Interpolation at t_k = k / 32.
+  for (int k = 0; k <= 32; ++k)
+    CHECK((h.curve.point(k / 32.0) - helix(R, pitch, angle * k / 32.0)).norm() <= 1e-13 * R);
+  INFO("reported deviation " << h.max_deviation);
+  CHECK(h.max_deviation > 0.0);
+  CHECK(h.max_deviation < 1e-4 * R);
+  // An independent random sampling never exceeds the reported maximum by more than a little.
+  std::mt19937 g(10);
+  double mine = 0.0;
+  for (int q = 0; q < 20000; ++q) {
+    const double s = uniform(g, 0, 1);
+    mine = std::max(mine, (h.curve.point(s) - helix(R, pitch, s * angle)).norm());
+  }
+  CHECK(mine <= 1.01 * h.max_deviation);
+  CHECK(mine >= 0.5 * h.max_deviation);
+  CHECK_THROWS_AS(make_helix_cubic(R, pitch, angle, 3), GeometryError);
+  CHECK_THROWS_AS(make_helix_cubic(-1.0, pitch, angle, 10), GeometryError);
+}
+
+TEST_CASE("make_helix_cubic: deviation decreases like h^4 (observed order >= 3.5)",
+          "[geometry][constructions][helix]") {
+  for (const double pitch : {0.0, 1.0, 2.0}) {
+    double prev = 0.0;
+    for (int n_el = 8; n_el <= 128; n_el *= 2) {  // n_points - 1 doubles: h halves
+      const double dev = make_helix_cubic(1.0, pitch, kPi, n_el + 1).max_deviation;
+      if (prev > 0.0) {
+        const double order = std::log2(prev / dev);
+        INFO("pitch " << pitch << ", " << n_el << " intervals: deviation " << dev
+                      << ", observed order " << order);
+        CHECK(order >= 3.5);
+      }
+      prev = dev;
+    }
+  }
+}

@@ -1,0 +1,368 @@
+// Tests of the geometry JSON layer (json_reader, geometry_io): exact round trips, file order,
+// defaults, and errors that name the file, the JSON path and the bad value.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "geometry/geometry_io.hpp"
+#include "geometry/json_reader.hpp"
+
+using namespace iga;
+
+namespace {
+
+const std::string kBad = std::string(IGA_SOURCE_DIR) + "/tests/data/bad/";
+const std::string kModels = std::string(IGA_SOURCE_DIR) + "/tests/data/models/";
+
+/// The geometry section of a model file, as the model loader reads it.
+GeometryModel load_geometry(const std::string& path) {
+  const Json doc = read_json_file(path);
+  return parse_geometry(doc.at("geometry"), path, JsonPointer("/geometry"));
+}
+
+/// Geometry -> JSON text -> geometry, through the same reader as files.
+GeometryModel text_round_trip(const GeometryModel& m) {
+  return parse_geometry(parse_json_text(geometry_to_json(m).dump(), "mem.json"), "mem.json",
+                        JsonPointer("/geometry"));
+}
+
+/// The ModelError message of parsing `text` as a geometry section (empty if none is thrown).
+ModelError geometry_error(const std::string& text) {
+  try {
+    parse_geometry(parse_json_text(text, "g.json"), "g.json", JsonPointer("/geometry"));
+  } catch (const ModelError& e) {
+    return e;
+  }
+  FAIL("no ModelError for " << text);
+  return ModelError("", "", "");
+}
+
+GeometryModel hand_built() {
+  GeometryModel m;
+  const std::vector<Vector3d> P = {{0, 0, 0}, {1, 0.25, 0}, {2, 1, 0.5}, {3, 1, 0}};
+  m.entities.emplace_back("rail", NurbsCurve(2, {0, 0, 0, 0.4, 1, 1, 1}, P,
+                                             {1, std::numbers::sqrt2 / 2, 1.0 / 3.0, 1}));
+  std::vector<Vector3d> net;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 2; ++i) net.emplace_back(0.1 * i, 0.3 * j, 0.7 * i * j);
+  NurbsSurface patch(1, {0, 0, 1, 1}, 2, {0, 0, 0, 1, 1, 1}, net, {1, 0.9, 0.8, 0.7, 1, 1.1});
+  patch.set_normal_sign(-1);
+  m.entities.emplace_back("patch", patch);
+  const Placement tilted{Vector3d(0.1, -0.2, 0.3), Vector3d(0, 0.6, 0.8), Vector3d(1, 0, 0)};
+  m.entities.emplace_back("plane", Plane(tilted));
+  m.entities.emplace_back("sphere", Sphere(tilted, 0.3));
+  Cylinder cyl(Placement{}, 1.0 / 7.0);
+  cyl.set_domain({{0, 2 * std::numbers::pi}, {-1, 2}});
+  m.entities.emplace_back("cylinder", cyl);
+  m.entities.emplace_back("torus", Torus(tilted, 2.0, 0.1));
+  Cone cone(Placement{}, 0.3);
+  cone.set_normal_sign(-1);
+  m.entities.emplace_back("cone", cone);
+  m.entities.emplace_back("hyperboloid", Hyperboloid(Placement{}, -0.1));
+  m.entities.emplace_back("revolution", Revolution(Placement{}, {0.0, 0.1, 0.5}));
+  m.entities.emplace_back("group", PatchGroup{{"patch", "sphere"}});
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("geometry_io: every entity type survives save -> parse exactly", "[geometry][io]") {
+  const GeometryModel m = hand_built();
+  const GeometryModel back = text_round_trip(m);
+  REQUIRE(back.entities.size() == m.entities.size());
+  for (std::size_t i = 0; i < m.entities.size(); ++i) {
+    INFO(m.entities[i].first);
+    CHECK(back.entities[i].first == m.entities[i].first);
+    CHECK(entity_type(back.entities[i].second) == entity_type(m.entities[i].second));
+    CHECK(back.entities[i].second == m.entities[i].second);
+  }
+  CHECK(back == m);
+}
+
+TEST_CASE("geometry_io: rational control points round-trip bit for bit", "[geometry][io]") {
+  // The file holds P and w; the curve stores w P. Written coordinates must reproduce w P.
+  std::mt19937 gen(12345);
+  std::uniform_real_distribution<double> coord(-1e3, 1e3), weight(0.01, 10.0);
+  std::vector<Vector3d> P(40);
+  std::vector<double> w(40);
+  for (std::size_t i = 0; i < P.size(); ++i) {
+    P[i] = Vector3d(coord(gen), coord(gen), coord(gen) * 1e-7);
+    w[i] = weight(gen);
+  }
+  std::vector<double> U = {0, 0, 0, 0};
+  for (int k = 1; k < 37; ++k) U.push_back(k / 37.0);
+  U.insert(U.end(), {1, 1, 1, 1});
+  GeometryModel m;
+  m.entities.emplace_back("c", NurbsCurve(3, U, P, w));
+  const GeometryModel once = text_round_trip(m);
+  CHECK(once == m);
+  CHECK(text_round_trip(once) == once);
+}
+
+TEST_CASE("geometry_io: saved text is stable on a second round", "[geometry][io]") {
+  const GeometryModel m = load_geometry(kModels + "all_entities.json");
+  const std::string first = format_json(geometry_to_json(m));
+  const GeometryModel again =
+      parse_geometry(parse_json_text(first, "first.json"), "first.json", JsonPointer("/geometry"));
+  CHECK(again == m);
+  CHECK(format_json(geometry_to_json(again)) == first);
+}
+
+TEST_CASE("geometry_io: entities keep the file order and not alphabetical order",
+          "[geometry][io]") {
+  const GeometryModel m = load_geometry(kModels + "all_entities.json");
+  std::vector<std::string> names;
+  for (const auto& [name, e] : m.entities) names.push_back(name);
+  const std::vector<std::string> expected = {"rail", "roof",   "floor",  "ball", "drum",
+                                             "ring", "funnel", "saddle", "bowl", "obstacle"};
+  CHECK(names == expected);
+  // Writing keeps that order too.
+  const Json j = geometry_to_json(m);
+  std::vector<std::string> written;
+  for (auto it = j.begin(); it != j.end(); ++it) written.push_back(it.key());
+  CHECK(written == expected);
+}
+
+TEST_CASE("geometry_io: a plain nlohmann::json is accepted with keys in its sorted order",
+          "[geometry][io]") {
+  nlohmann::json j;
+  j["zeta"] = {{"type", "plane"}, {"center", {0, 0, 0}}, {"axis", {0, 0, 1}}};
+  j["alpha"] = {{"type", "sphere"}, {"center", {0, 0, 0}}, {"radius", 1}};
+  const GeometryModel m = parse_geometry(j, "plain", JsonPointer("/geometry"));
+  REQUIRE(m.entities.size() == 2);
+  CHECK(m.entities[0].first == "alpha");
+  CHECK(m.entities[1].first == "zeta");
+}
+
+TEST_CASE("geometry_io: omitted keys take the documented defaults", "[geometry][io]") {
+  const Json j = Json::parse(R"({
+    "c": {"type": "nurbs_curve", "degree": 1, "knots": [0, 0, 1, 1],
+          "control_points": [[0, 0, 0], [1, 2, 3]]},
+    "s": {"type": "sphere", "center": [1, 2, 3], "radius": 2},
+    "h": {"type": "hyperboloid", "a": 0.5},
+    "x": {"type": "cylinder", "center": [0, 0, 0], "axis": [1, 0, 0], "radius": 1}
+  })");
+  const GeometryModel m = parse_geometry(j, "d.json", JsonPointer("/geometry"));
+  const NurbsCurve& c = *m.curve("c");
+  CHECK_FALSE(c.is_rational());
+  CHECK(c.weight(1) == 1.0);
+  const auto& s = std::get<Sphere>(*m.find("s"));
+  CHECK(s.placement().axis == Vector3d::UnitZ());
+  CHECK(s.domain() == Sphere::default_domain());
+  CHECK(s.normal_sign() == 1);
+  const auto& h = std::get<Hyperboloid>(*m.find("h"));
+  CHECK(h.placement() == Placement{});
+  CHECK(std::isinf(h.domain().u.lo));
+  // axis = x with the default ref_dir = x: the frame falls back to a valid e_x.
+  const Surface& x = *m.surface("x");
+  const SurfaceDerivs d = x.derivs(0.3, 0.2, 1);
+  CHECK(d.Su.cross(d.Sv).norm() == Approx(1.0).epsilon(1e-12));
+  CHECK(text_round_trip(m) == m);
+}
+
+TEST_CASE("geometry_io: domain null bounds are unbounded and partial domains keep defaults",
+          "[geometry][io]") {
+  const Json j = Json::parse(R"({
+    "p": {"type": "plane", "center": [0, 0, 0], "axis": [0, 0, 1],
+          "domain": {"u": [null, 2], "v": [-1, null]}},
+    "c": {"type": "cylinder", "center": [0, 0, 0], "axis": [0, 0, 1], "radius": 1,
+          "domain": {"v": [0, 3]}}
+  })");
+  const GeometryModel m = parse_geometry(j, "d.json", JsonPointer("/geometry"));
+  const Domain2 dp = m.surface("p")->domain();
+  CHECK(dp.u.lo == -std::numeric_limits<double>::infinity());
+  CHECK(dp.u.hi == 2.0);
+  CHECK(dp.v.lo == -1.0);
+  CHECK(dp.v.hi == std::numeric_limits<double>::infinity());
+  const Domain2 dc = m.surface("c")->domain();
+  CHECK(dc.u == Cylinder::default_domain().u);
+  CHECK(dc.v == (Interval{0.0, 3.0}));
+  const Json out = geometry_to_json(m);
+  CHECK(out["p"]["domain"]["u"][0].is_null());
+  CHECK(out["p"]["domain"]["v"][1].is_null());
+}
+
+TEST_CASE("geometry_io: \"inward\" flips the normal of NURBS and analytic surfaces",
+          "[geometry][io]") {
+  const GeometryModel m = load_geometry(kModels + "all_entities.json");
+  CHECK(m.surface("roof")->normal_sign() == -1);
+  CHECK(m.surface("funnel")->normal_sign() == -1);
+  CHECK(m.surface("floor")->normal_sign() == 1);
+  CHECK(geometry_to_json(m)["roof"]["normal"] == "inward");
+}
+
+TEST_CASE("geometry_io: patch groups resolve to their member surfaces", "[geometry][io]") {
+  const GeometryModel m = load_geometry(kModels + "all_entities.json");
+  const std::vector<const Surface*> s = m.surfaces_of("obstacle");
+  REQUIRE(s.size() == 3);
+  CHECK(s[0] == m.surface("roof"));
+  CHECK(s[1] == m.surface("floor"));
+  CHECK(s[2] == m.surface("ball"));
+  CHECK(m.surfaces_of("ball") == std::vector<const Surface*>{m.surface("ball")});
+  CHECK(m.surface("rail") == nullptr);
+  CHECK(m.surface("obstacle") == nullptr);
+  CHECK(m.curve("rail") != nullptr);
+  CHECK_THROWS_AS(m.surfaces_of("rail"), std::out_of_range);
+  CHECK_THROWS_AS(m.surfaces_of("nothing"), std::out_of_range);
+  CHECK(entity_type(*m.find("obstacle")) == "patch_group");
+  CHECK(entity_type(*m.find("rail")) == "nurbs_curve");
+  CHECK(entity_type(*m.find("bowl")) == "revolution");
+}
+
+TEST_CASE("geometry_io: loaded NURBS evaluate the geometry of the file", "[geometry][io]") {
+  const GeometryModel m = load_geometry(kModels + "all_entities.json");
+  const NurbsCurve& rail = *m.curve("rail");
+  CHECK((rail.point(0.0) - Vector3d(0, 0, 0)).norm() == Approx(0.0).margin(1e-14));
+  CHECK((rail.point(1.0) - Vector3d(3, 1, 0)).norm() == Approx(0.0).margin(1e-14));
+  CHECK(rail.weight(1) == 0.7071067811865476);
+  const auto& roof = std::get<NurbsSurface>(*m.find("roof"));
+  CHECK(roof.num_u() == 3);
+  CHECK(roof.num_v() == 2);
+  CHECK((roof.control_point(1, 1) - Vector3d(0.5, 1, 1.5)).norm() ==
+        Approx(0.0).margin(1e-15));  // u index fastest
+}
+
+// ---- errors -------------------------------------------------------------------------------
+
+namespace {
+
+struct BadCase {
+  const char* file;
+  const char* pointer;
+  std::vector<std::string> fragments;  // pieces the message must contain (value, reason)
+};
+
+}  // namespace
+
+TEST_CASE("geometry_io: bad geometry files name the file and the JSON path and the value",
+          "[geometry][io][errors]") {
+  const std::vector<BadCase> cases = {
+      {"malformed_json.json", "/geometry", {"malformed JSON", "line 5, column 5", "expected '}'"}},
+      {"missing_key.json", "/geometry/rail", {"missing required key \"knots\""}},
+      {"unknown_key.json", "/geometry/ball/colour", {"unknown key \"colour\"", "radius"}},
+      {"wrong_type.json", "/geometry/ball/radius", {"expected a number, got string \"abc\""}},
+      {"decreasing_knots.json",
+       "/geometry/patch/knots/u/4",
+       {"knots must be non-decreasing, got 0.25 after 0.5"}},
+      {"knot_count.json", "/geometry/rail/knots", {"expected 8 knots", "got 7"}},
+      {"weight_not_positive.json", "/geometry/rail/weights/1", {"weight must be > 0, got -0.5"}},
+      {"overflow_number.json", "/geometry/rail/control_points/1/2", {"1e999", "line 7"}},
+      {"degree_zero.json", "/geometry/rail/degree", {"degree must be in 1..10, got 0"}},
+      {"interior_multiplicity.json",
+       "/geometry/rail/knots/5",
+       {"interior knot 0.5 has multiplicity 3 > degree 2"}},
+      {"control_point_size.json",
+       "/geometry/roof/control_points/3",
+       {"expected 3 coordinates [x, y, z], got array [1,2]"}},
+      {"negative_radius.json", "/geometry/drum/radius", {"must be > 0, got -3"}},
+      {"torus_minor_radius.json",
+       "/geometry/ring/minor_radius",
+       {"must be < major_radius = 1", "got 2"}},
+      {"group_names_curve.json",
+       "/geometry/obstacle/patches/1",
+       {"\"rail\" is a nurbs_curve", "surfaces only"}},
+      {"group_unknown_name.json",
+       "/geometry/obstacle/patches/1",
+       {"\"roof\" does not name an entity"}},
+      {"duplicate_key.json", "/geometry/ball/radius", {"duplicate key \"radius\""}},
+      {"unknown_type.json", "/geometry/rail/type", {"unknown entity type", "got \"nurbs_curv\""}},
+      {"domain_reversed.json", "/geometry/floor/domain/u", {"lo < hi", "got [1,-1]"}},
+      {"bad_normal.json", "/geometry/floor/normal", {"\"outward\" or \"inward\"", "got \"up\""}},
+      {"weights_count.json", "/geometry/rail/weights", {"expected 2 weights", "got 3"}},
+  };
+  for (const BadCase& c : cases) {
+    const std::string path = kBad + c.file;
+    INFO(c.file);
+    try {
+      load_geometry(path);
+      FAIL("accepted " << c.file);
+    } catch (const ModelError& e) {
+      const std::string what = e.what();
+      INFO(what);
+      CHECK(e.file() == path);
+      CHECK(e.pointer() == c.pointer);
+      CHECK(what.rfind(path + ": " + c.pointer + ": ", 0) == 0);
+      for (const std::string& f : c.fragments) CHECK(what.find(f) != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("json_reader: malformed text reports line and column from the byte offset",
+          "[geometry][io][errors]") {
+  const std::string text = "{\n  \"a\": [1, 2,\n        3,, 4]\n}";
+  try {
+    parse_json_text(text, "t.json");
+    FAIL("accepted malformed JSON");
+  } catch (const ModelError& e) {
+    INFO(e.what());
+    CHECK(e.pointer() == "/a/3");
+    CHECK(std::string(e.what()).find("line 3, column 11") != std::string::npos);
+  }
+  // Unterminated document: the position is the end of the text.
+  try {
+    parse_json_text("{\"a\": 1", "t.json");
+    FAIL("accepted truncated JSON");
+  } catch (const ModelError& e) {
+    CHECK(std::string(e.what()).find("line 1, column 8") != std::string::npos);
+  }
+}
+
+TEST_CASE("json_reader: type errors say what was expected and what came",
+          "[geometry][io][errors]") {
+  const Json j = Json::parse(R"({"n": "abc", "i": 2.5, "b": 1, "long": [
+    1000000, 2000000, 3000000, 4000000, 5000000, 6000000, 7000000, 8000000, 9000000]})");
+  const JsonCursor root(j, "c.json");
+  CHECK_THROWS_WITH(root["n"].as_number(), "c.json: /n: expected a number, got string \"abc\"");
+  CHECK_THROWS_WITH(root["i"].as_int(), "c.json: /i: expected an integer, got 2.5");
+  CHECK_THROWS_WITH(root["b"].as_bool(), "c.json: /b: expected true or false, got number 1");
+  CHECK_THROWS_WITH(root["x"], "c.json: missing required key \"x\"");
+  CHECK_THROWS_WITH(root["long"].as_string(),
+                    Catch::Matches("c\\.json: /long: expected a string, got array "
+                                   "\\[1000000,2000000,.*\\.\\.\\."));
+  CHECK(short_dump(j["long"]).size() <= 60);
+  // Non-finite values built in memory are rejected too.
+  const Json inf = {{"x", std::numeric_limits<double>::infinity()}};
+  CHECK_THROWS_WITH(JsonCursor(inf, "m")["x"].as_number(),
+                    "m: /x: expected a finite number, got inf");
+}
+
+TEST_CASE("geometry_io: errors in memory name the element and not just the entity",
+          "[geometry][io][errors]") {
+  const ModelError e1 = geometry_error(R"({"s": {"type": "nurbs_surface", "degree": [2, 1],
+      "knots": {"u": [0, 0, 0, 1, 1, 1], "v": [0, 0, 1, 1]},
+      "control_points": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0]]}})");
+  CHECK(e1.pointer() == "/geometry/s/control_points");
+  CHECK(e1.message().find("expected 6 control points") != std::string::npos);
+  CHECK(e1.message().find("got 5") != std::string::npos);
+
+  const ModelError e2 = geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 2,
+      "knots": [0, 0, 0.5, 1, 1, 1], "control_points": [[0,0,0],[1,0,0],[2,0,0]]}})");
+  CHECK(e2.pointer() == "/geometry/c/knots/2");
+  CHECK(e2.message().find("clamped") != std::string::npos);
+
+  const ModelError e3 = geometry_error(R"({"k": {"type": "cone", "center": [0,0,0],
+      "axis": [0,0,1], "alpha": 1.6}})");
+  CHECK(e3.pointer() == "/geometry/k/alpha");
+  CHECK(e3.message() == "must be in (0, pi/2) radians, got 1.6");
+
+  const ModelError e4 = geometry_error(R"({"p": {"type": "plane", "center": [0,0,0],
+      "axis": [0,0,2], "ref_dir": [0,0,-1]}})");
+  CHECK(e4.pointer() == "/geometry/p/ref_dir");
+
+  const ModelError e5 = geometry_error(R"({"g": {"type": "patch_group", "patches": ["g"]}})");
+  CHECK(e5.pointer() == "/geometry/g/patches/0");
+  CHECK(e5.message().find("is a patch_group") != std::string::npos);
+
+  const ModelError e6 = geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 11,
+      "knots": [0, 1], "control_points": []}})");
+  CHECK(e6.message() == "degree must be in 1..10, got 11");
+
+  const ModelError e7 = geometry_error(R"([1, 2])");
+  CHECK(e7.pointer() == "/geometry");
+  CHECK(e7.message().find("got array [1,2]") != std::string::npos);
+}
