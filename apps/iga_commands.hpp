@@ -13,5 +13,6 @@ using Action = std::function<int()>;
 Action add_info_command(CLI::App& app);
 Action add_eval_command(CLI::App& app);
 Action add_make_command(CLI::App& app);
+Action add_project_command(CLI::App& app);
 
 }  // namespace iga::app

@@ -5,6 +5,7 @@
 //   iga eval MODEL.json --u 0.3              curve: point, tangent, curvature, torsion, frame
 //   iga eval MODEL.json --grid 20 --out t.csv  a sample table as CSV
 //   iga make torus --major-radius 3 --minor-radius 1 --out torus.json   exact NURBS models
+//   iga project MODEL.json --points pts.csv [--ray dirs.csv] --out feet.csv  projections
 //
 // Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
 #include <iostream>
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   const iga::app::Action info = iga::app::add_info_command(app);
   const iga::app::Action eval = iga::app::add_eval_command(app);
   const iga::app::Action make = iga::app::add_make_command(app);
+  const iga::app::Action project = iga::app::add_project_command(app);
   CLI11_PARSE(app, argc, argv);
 
   // 2. Run the chosen subcommand; every library error ends here with a message.
@@ -29,6 +31,7 @@ int main(int argc, char** argv) {
     if (name == "info") return info();
     if (name == "eval") return eval();
     if (name == "make") return make();
+    if (name == "project") return project();
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "iga: error: " << e.what() << "\n";

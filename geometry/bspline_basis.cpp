@@ -71,8 +71,36 @@ void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> 
     }
     ndu[j][j] = saved;
   }
-  for (auto& row : ders) row.fill(0.0);
+  for (int k = 0; k <= nd; ++k)
+    for (int j = 0; j <= p; ++j) ders[k][j] = 0.0;
   for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
+
+  if (nd <= 2 && p >= 2) {
+    // Orders 1 and 2 with A2.3's coefficients a_{k,j} written out (the hot path of surface
+    // evaluation); ndu[j][p-k] are the basis functions of degree p-k, ndu[p-k+1][.] the knot
+    // differences. Terms whose indices leave the triangle are absent (zero).
+    // Reciprocal knot differences, each computed once (divisions dominate this kernel).
+    double inv_p[kMaxDegree + 1], inv_q[kMaxDegree + 1];
+    for (int r = 0; r < p; ++r) inv_p[r] = 1.0 / ndu[p][r];
+    if (nd >= 2)
+      for (int r = 0; r < p - 1; ++r) inv_q[r] = 1.0 / ndu[p - 1][r];
+    for (int r = 0; r <= p; ++r) {
+      const double a10 = r >= 1 ? inv_p[r - 1] : 0.0;
+      const double a11 = r <= p - 1 ? -inv_p[r] : 0.0;
+      double d1 = 0.0;
+      if (r >= 1) d1 += a10 * ndu[r - 1][p - 1];
+      if (r <= p - 1) d1 += a11 * ndu[r][p - 1];
+      if (nd >= 1) ders[1][r] = p * d1;
+      if (nd >= 2) {
+        double d2 = 0.0;
+        if (r >= 2) d2 += a10 * inv_q[r - 2] * ndu[r - 2][p - 2];
+        if (r >= 1 && r <= p - 1) d2 += (a11 - a10) * inv_q[r - 1] * ndu[r - 1][p - 2];
+        if (r <= p - 2) d2 += -a11 * inv_q[r] * ndu[r][p - 2];
+        ders[2][r] = p * (p - 1) * d2;
+      }
+    }
+    return;
+  }
 
   const int n = std::min(nd, p);
   for (int r = 0; r <= p; ++r) {

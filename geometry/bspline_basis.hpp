@@ -22,7 +22,8 @@ inline constexpr int kMaxDerivOrder = 3;
 
 /// Values of the p+1 non-zero basis functions at u (entries past p unused).
 using BasisValues = std::array<double, kMaxDegree + 1>;
-/// ders[k][j] = k-th derivative of N_{span-p+j,p}(u); rows past the requested order are zero.
+/// ders[k][j] = k-th derivative of N_{span-p+j,p}(u) for k <= the requested order (rows
+/// beyond it are left untouched).
 using BasisDerivs = std::array<BasisValues, kMaxDerivOrder + 1>;
 
 /// A2.1: the knot span index i with U[i] <= u < U[i+1], for n_basis basis functions of degree

@@ -67,63 +67,77 @@ Domain2 NurbsSurface::domain() const {
   return {{u0, u1}, {v0, v1}};
 }
 
-SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
-  // A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
-  // S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
-  //           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) / w
-  const int p = degree_u(), q = degree_v();
-  order = std::clamp(order, 0, 2);
-  const Domain2 dom = domain();
-  u = std::clamp(u, dom.u.lo, dom.u.hi);
-  v = std::clamp(v, dom.v.lo, dom.v.hi);
-  const int su = ku_.find_span(u), sv = kv_.find_span(v);
-  BasisDerivs Nu, Nv;
-  ders_basis_funs(su, u, p, order, ku_.span(), Nu);
-  ders_basis_funs(sv, v, q, order, kv_.span(), Nv);
+namespace {
 
-  // A[k][l] for k + l <= order (homogeneous derivatives).
-  Vector4d A[3][3];
-  for (auto& row : A)
-    for (auto& x : row) x.setZero();
-  const int nu = num_u();
-  for (int l = 0; l <= order; ++l) {
-    for (int s = 0; s <= q; ++s) {
-      // temp_k = sum_r Nu[k][r] Pw[su-p+r][sv-q+s], k <= order - l
-      const std::size_t row = static_cast<std::size_t>((sv - q + s) * nu + su - p);
-      for (int k = 0; k + l <= order; ++k) {
-        Vector4d t = Vector4d::Zero();
-        for (int r = 0; r <= p; ++r) t.noalias() += Nu[k][r] * pw_[row + static_cast<std::size_t>(r)];
-        A[k][l].noalias() += Nv[l][s] * t;
-      }
+// A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
+// S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
+//           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) / w
+// The order O is a template parameter so that the derivative loops unroll.
+template <int O>
+SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p, int q, int su,
+                          int sv, int nu, const std::vector<Vector4d>& pw) {
+  // First the u-sums of every row of the element's net, T[k] = sum_r Nu[k][r] Pw[.][.], then
+  // the v-sums A[k][l] = sum_s Nv[l][s] T_s[k], k + l <= O.
+  Vector4d A[O + 1][O + 1];
+  for (int k = 0; k <= O; ++k)
+    for (int l = 0; l <= O; ++l) A[k][l].setZero();
+  for (int s = 0; s <= q; ++s) {
+    const Vector4d* P = &pw[static_cast<std::size_t>((sv - q + s) * nu + su - p)];
+    Vector4d T[O + 1];
+    for (int k = 0; k <= O; ++k) {
+      T[k] = Nu[k][0] * P[0];
+      for (int r = 1; r <= p; ++r) T[k].noalias() += Nu[k][r] * P[r];
     }
+    for (int l = 0; l <= O; ++l)
+      for (int k = 0; k + l <= O; ++k) A[k][l].noalias() += Nv[l][s] * T[k];
   }
-  Vector3d S[3][3];
   constexpr double bin[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
-  const double w = A[0][0].w();
-  for (int k = 0; k <= order; ++k) {
-    for (int l = 0; k + l <= order; ++l) {
-      Vector3d x = A[k][l].head<3>();
+  Vector3d S[O + 1][O + 1];
+  const double inv_w = 1.0 / A[0][0].w();
+  for (int k = 0; k <= O; ++k) {
+    for (int l = 0; k + l <= O; ++l) {
+      Vector3d x = A[k][l].template head<3>();
       for (int j = 1; j <= l; ++j) x -= bin[l][j] * A[0][j].w() * S[k][l - j];
       for (int i = 1; i <= k; ++i) {
         x -= bin[k][i] * A[i][0].w() * S[k - i][l];
         for (int j = 1; j <= l; ++j) x -= bin[k][i] * bin[l][j] * A[i][j].w() * S[k - i][l - j];
       }
-      S[k][l] = x / w;
+      S[k][l] = x * inv_w;
     }
   }
   SurfaceDerivs d;
-  d.order = order;
+  d.order = O;
   d.S = S[0][0];
-  if (order >= 1) {
+  if constexpr (O >= 1) {
     d.Su = S[1][0];
     d.Sv = S[0][1];
   }
-  if (order >= 2) {
+  if constexpr (O >= 2) {
     d.Suu = S[2][0];
     d.Suv = S[1][1];
     d.Svv = S[0][2];
   }
   return d;
+}
+
+}  // namespace
+
+SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
+  const int p = degree_u(), q = degree_v();
+  order = std::clamp(order, 0, 2);
+  const std::vector<double>& U = ku_.knots();
+  const std::vector<double>& V = kv_.knots();
+  u = std::clamp(u, U[static_cast<std::size_t>(p)], U[U.size() - 1 - static_cast<std::size_t>(p)]);
+  v = std::clamp(v, V[static_cast<std::size_t>(q)], V[V.size() - 1 - static_cast<std::size_t>(q)]);
+  const int su = ku_.find_span(u), sv = kv_.find_span(v);
+  BasisDerivs Nu, Nv;
+  ders_basis_funs(su, u, p, order, U, Nu);
+  ders_basis_funs(sv, v, q, order, V, Nv);
+  switch (order) {
+    case 0: return eval_derivs<0>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    case 1: return eval_derivs<1>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    default: return eval_derivs<2>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+  }
 }
 
 }  // namespace iga

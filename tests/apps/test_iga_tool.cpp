@@ -175,3 +175,54 @@ TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]"
   CHECK(iga("make klein-bottle --out x.json").status != 0);
   fs::remove_all(dir);
 }
+
+TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[apps][iga][project]") {
+  const fs::path dir = fs::temp_directory_path() / ("iga_project_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/cylinder_4patch.json";  // R = 1, z in [0, 4]
+  {
+    std::ofstream pts(dir / "pts.csv");
+    pts.precision(17);
+    pts << "x,y,z\n";
+    for (int k = 0; k < 50; ++k) {
+      const double a = 0.37 * k, r = 0.3 + 0.05 * k;
+      pts << r * std::cos(a) << "," << r * std::sin(a) << "," << 0.5 + 0.06 * k << "\n";
+    }
+    std::ofstream dirs(dir / "dirs.csv");
+    dirs.precision(17);
+    for (int k = 0; k < 50; ++k) {
+      const double a = 0.37 * k;
+      dirs << std::cos(a) << "," << std::sin(a) << ",0\n";  // radial: the ray meets the cylinder
+    }
+  }
+  const Run r = iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\"");
+  REQUIRE(r.status == 0);
+  const auto rows = csv_rows(r.out);
+  REQUIRE(rows.size() == 51);
+  CHECK(rows[0].size() == 12);
+  for (int k = 0; k < 50; ++k) {
+    const auto& row = rows[static_cast<std::size_t>(k + 1)];
+    const double rad = 0.3 + 0.05 * k;
+    CHECK(std::stod(row[8]) == Approx(rad - 1.0).margin(1e-10));  // (B.10): p = |d| - R
+    CHECK(row[9] == "interior");
+  }
+  const Run ray = iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() +
+                      "\" --ray \"" + (dir / "dirs.csv").string() + "\" --out \"" +
+                      (dir / "ray.csv").string() + "\"");
+  REQUIRE(ray.status == 0);
+  const auto ray_rows = csv_rows(slurp(dir / "ray.csv"));
+  REQUIRE(ray_rows.size() == 51);
+  for (int k = 0; k < 50; ++k) {
+    const double rad = 0.3 + 0.05 * k;
+    CHECK(std::stod(ray_rows[static_cast<std::size_t>(k + 1)][8]) == Approx(1.0 - rad).margin(1e-10));
+  }
+  // bad input: a row with two values names the file and the line
+  {
+    std::ofstream bad(dir / "bad.csv");
+    bad << "x,y,z\n1,2,3\n4,5\n";
+  }
+  const Run b = iga("project \"" + model + "\" --points \"" + (dir / "bad.csv").string() + "\"");
+  CHECK(b.status == 1);
+  CHECK_THAT(b.err, Catch::Contains("bad.csv:3"));
+  fs::remove_all(dir);
+}

@@ -155,3 +155,23 @@ TEST_CASE("KnotVector: breaks, multiplicity, Greville abscissae, uniform factory
   CHECK(g.back() == Approx(2.0).epsilon(1e-15));
   for (std::size_t i = 1; i < g.size(); ++i) CHECK(g[i] > g[i - 1]);
 }
+
+TEST_CASE("ders_basis_funs: the order <= 2 fast path equals the general A2.3 loop",
+          "[geometry][basis]") {
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<double> unif(0.0, 1.0);
+  for (int p = 1; p <= 6; ++p) {
+    const int n = p + 7;
+    const std::vector<double> U = test::random_knots(rng, p, n, p);
+    for (int k = 0; k < 300; ++k) {
+      const double u = k < static_cast<int>(U.size()) ? U[k] : unif(rng);
+      const int span = find_span(n, p, u, U);
+      BasisDerivs fast, general;
+      ders_basis_funs(span, u, p, 2, U, fast);     // fast path (p >= 2)
+      ders_basis_funs(span, u, p, 3, U, general);  // general loop
+      for (int d = 0; d <= 2; ++d)
+        for (int j = 0; j <= p; ++j)
+          CHECK(fast[d][j] == Approx(general[d][j]).epsilon(1e-12).margin(1e-12 * (1 + std::abs(general[1][j]))));
+    }
+  }
+}

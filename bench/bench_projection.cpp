@@ -1,0 +1,183 @@
+// Projection benchmark of issue 3: closest point (cold and warm) and ray projection onto the
+// bicubic 8x8 free-form patch (data/freeform_bicubic.json) and the NURBS torus
+// (data/torus_patch.json), on three sets of random points:
+//   A: a band |distance| <= 5 % of the patch size around the surface, feet interior;
+//   B: a box 30 % larger than the patch's bounding box (many feet on edges and corners);
+//   C: far points, 1-3 bounding-box diagonals away.
+// Every answer is judged against a brute-force reference (a dense grid of surface points,
+// then the bound-constrained Newton from the best grid points). Reported: projections per
+// second (median of 5 runs, one core), the share that is the global minimum, and the worst
+// orthogonality residual; rays are cast from each point towards its reference foot point
+// (that foot is the nearest intersection), for the points whose foot is interior.
+// Usage: bench_projection [N points per set, default 100000]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "contact/closest_point.hpp"
+#include "contact/ray_projection.hpp"
+#include "geometry/geometry_io.hpp"
+#include "geometry/json_reader.hpp"
+
+using namespace iga;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+NurbsSurface load(const std::string& file) {
+  const std::string path = std::string(IGA_SOURCE_DIR) + "/data/" + file;
+  const GeometryModel g = parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
+  for (const auto& [name, e] : g.entities)
+    if (const auto* s = std::get_if<NurbsSurface>(&e)) return *s;
+  throw std::runtime_error(path + ": no NURBS surface");
+}
+
+struct Reference {
+  int n = 150;
+  std::vector<Vector2d> uv;
+  std::vector<Vector3d> x;
+  explicit Reference(const Surface& s) {
+    const Domain2 d = s.domain();
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Vector2d t(d.u.lo + (d.u.hi - d.u.lo) * i / (n - 1), d.v.lo + (d.v.hi - d.v.lo) * j / (n - 1));
+        uv.push_back(t);
+        x.push_back(s.point(t[0], t[1]));
+      }
+  }
+  ProjectionResult closest(const Surface& s, const Vector3d& p) const {
+    // best 4 grid points, each polished
+    std::array<std::pair<double, int>, 4> best;
+    best.fill({1e300, 0});
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      const double d2 = (x[k] - p).squaredNorm();
+      if (d2 < best[3].first) {
+        best[3] = {d2, static_cast<int>(k)};
+        std::sort(best.begin(), best.end());
+      }
+    }
+    ProjectionResult r;
+    double r2 = 1e300;
+    for (const auto& [d2, k] : best) {
+      const ProjectionResult q = closest_point_local(s, p, uv[static_cast<std::size_t>(k)]);
+      const double q2 = (q.point - p).squaredNorm();
+      if (q2 < r2) r2 = q2, r = q;
+    }
+    return r;
+  }
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+template <class F>
+double rate(std::size_t n, F&& run) {  // items per second, median of 5 runs
+  std::vector<double> r;
+  for (int rep = 0; rep < 5; ++rep) {
+    const auto t0 = Clock::now();
+    run();
+    r.push_back(static_cast<double>(n) / std::chrono::duration<double>(Clock::now() - t0).count());
+  }
+  return median(r);
+}
+
+void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
+  const PatchProjector P(s);
+  const Reference ref(s);
+  const Box3 box = P.box();
+  const Vector3d c = 0.5 * (box.lo + box.hi), half = 0.5 * (box.hi - box.lo);
+  const double diag = (box.hi - box.lo).norm();
+  const double size = half.maxCoeff() * 2;
+  std::mt19937 g(12345);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const Domain2 dom = s.domain();
+  for (char set : {'A', 'B', 'C'}) {
+    std::vector<Vector3d> pts(N), near(N);
+    for (std::size_t i = 0; i < N; ++i) {
+      if (set == 'A') {
+        const double u = dom.u.lo + (0.02 + 0.96 * U(g)) * (dom.u.hi - dom.u.lo);
+        const double v = dom.v.lo + (0.02 + 0.96 * U(g)) * (dom.v.hi - dom.v.lo);
+        const SurfaceDerivs d = s.derivs(u, v, 1);
+        pts[i] = d.S + (2 * U(g) - 1) * 0.05 * size * d.Su.cross(d.Sv).normalized();
+      } else if (set == 'B') {
+        pts[i] = c + 1.3 * Vector3d((2 * U(g) - 1) * half.x(), (2 * U(g) - 1) * half.y(), (2 * U(g) - 1) * half.z());
+      } else {
+        Vector3d dir(U(g) - 0.5, U(g) - 0.5, U(g) - 0.5);
+        pts[i] = c + (1.0 + 2.0 * U(g)) * diag * dir.normalized();
+      }
+      // the warm-start partner: a nearby point (1 % of the size away)
+      near[i] = pts[i] + 0.01 * size * Vector3d(U(g) - 0.5, U(g) - 0.5, U(g) - 0.5).normalized();
+    }
+    // reference
+    std::vector<ProjectionResult> refs(N);
+    for (std::size_t i = 0; i < N; ++i) refs[i] = ref.closest(s, pts[i]);
+    // cold
+    std::vector<ProjectionResult> cold(N);
+    const double cold_rate = rate(N, [&] { for (std::size_t i = 0; i < N; ++i) cold[i] = P.project(pts[i]); });
+    // warm: guess = the cold answer of the nearby partner point
+    std::vector<ProjectionResult> partner(N), warm(N);
+    for (std::size_t i = 0; i < N; ++i) partner[i] = P.project(near[i]);
+    const double warm_rate = rate(N, [&] { for (std::size_t i = 0; i < N; ++i) warm[i] = P.project(pts[i], partner[i].uv); });
+    std::size_t good_cold = 0, good_warm = 0, interior = 0, edge = 0, vertex = 0;
+    double it_cold = 0, it_warm = 0;
+    double worst_res = 0.0, worst_gap = 0.0;
+    for (std::size_t i = 0; i < N; ++i) {
+      const double dr = (refs[i].point - pts[i]).norm();
+      const double tol = 1e-10 * diag;
+      const double dc = (cold[i].point - pts[i]).norm(), dw = (warm[i].point - pts[i]).norm();
+      good_cold += dc <= dr + tol;
+      good_warm += dw <= dr + tol;
+      worst_gap = std::max(worst_gap, dc - dr);
+      if (found(cold[i].status)) worst_res = std::max(worst_res, cold[i].residual);
+      it_cold += cold[i].iterations;
+      it_warm += warm[i].iterations;
+      interior += cold[i].status == ProjectionStatus::interior;
+      edge += cold[i].status == ProjectionStatus::edge;
+      vertex += cold[i].status == ProjectionStatus::vertex;
+    }
+    // rays towards the reference foot, for interior feet
+    std::vector<std::size_t> ray_ids;
+    for (std::size_t i = 0; i < N; ++i)
+      if (refs[i].status == ProjectionStatus::interior && (refs[i].point - pts[i]).norm() > 1e-6 * size)
+        ray_ids.push_back(i);
+    std::vector<ProjectionResult> rays(ray_ids.size());
+    const double ray_rate = ray_ids.empty() ? 0.0 : rate(ray_ids.size(), [&] {
+      for (std::size_t k = 0; k < ray_ids.size(); ++k) {
+        const std::size_t i = ray_ids[k];
+        rays[k] = ray_project(P, pts[i], refs[i].point - pts[i]);
+      }
+    });
+    std::size_t ray_good = 0;
+    double ray_worst = 0.0;
+    for (std::size_t k = 0; k < ray_ids.size(); ++k) {
+      const std::size_t i = ray_ids[k];
+      const bool ok = found(rays[k].status) && (rays[k].point - refs[i].point).norm() <= 1e-8 * diag;
+      ray_good += ok;
+      if (found(rays[k].status)) ray_worst = std::max(ray_worst, rays[k].residual);
+    }
+    std::printf("%-9s %c | cold %9.0f /s  warm %9.0f /s | global min cold %8.4f %%  warm %8.4f %% | "
+                "feet int/edge/vert %6zu/%6zu/%6zu | worst residual %.1e | worst excess %.1e | "
+                "Newton iterations cold %.2f warm %.2f\n",
+                label, set, cold_rate, warm_rate, 100.0 * good_cold / N, 100.0 * good_warm / N,
+                interior, edge, vertex, worst_res, worst_gap, it_cold / N, it_warm / N);
+    std::printf("%-9s %c | rays %9.0f /s on %zu interior feet | nearest hit found %8.4f %% | worst ray residual %.1e\n",
+                label, set, ray_rate, ray_ids.size(), ray_ids.empty() ? 100.0 : 100.0 * ray_good / ray_ids.size(), ray_worst);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::size_t N = argc > 1 ? static_cast<std::size_t>(std::atol(argv[1])) : 100000;
+  std::printf("closest point and ray projection, %zu points per set, one core\n", N);
+  run_case("freeform", load("freeform_bicubic.json"), N);
+  run_case("torus", load("torus_patch.json"), N);
+  return 0;
+}

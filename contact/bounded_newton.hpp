@@ -1,0 +1,189 @@
+// Bound-constrained Newton minimization in 1 or 2 parameters, shared by the closest point
+// projections onto curves and surfaces ([KS15] eqs. 12, 16-18; Sect. 2.2 for the bounds).
+// Internal header of contact/.
+//
+// The model supplies, at a parameter t, the objective f = 1/2 |x - rho(t)|^2 (12), its gradient
+// g (16), Hessian H (17) and, per parameter, the scale |rho_i| |x - rho| that turns g_i into
+// the cosine of the angle between x - rho and the tangent rho_i (the orthogonality residual).
+// Algorithm: active set (a parameter at a bound whose gradient points out of the box is held),
+// Newton step on the free parameters, Levenberg-Marquardt shift where the reduced Hessian is
+// not positive definite (far points, concave sides), projection onto the box, and an Armijo
+// backtracking line search; closed directions wrap around instead of being bounded.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "contact/projection.hpp"
+
+namespace iga::detail {
+
+template <int D>
+struct LocalModel {
+  using Vec = Eigen::Matrix<double, D, 1>;
+  using Mat = Eigen::Matrix<double, D, D>;
+  double f = 0.0;
+  Vec g = Vec::Zero();
+  Mat H = Mat::Zero();
+  Vec scale = Vec::Ones();  ///< |rho_i| |x - rho| (> 0)
+};
+
+template <int D>
+struct NewtonOutcome {
+  Eigen::Matrix<double, D, 1> t;
+  int iterations = 0;
+  int at_bound = 0;  ///< parameters resting on a bound at the end
+  bool converged = false;
+  double residual = 0.0;
+};
+
+template <int D>
+struct Box {
+  Eigen::Matrix<double, D, 1> lo, hi;
+  bool wrap[D] = {};  ///< closed direction: periodic with period hi - lo
+};
+
+/// Symmetric positive definite test and a shift making it so (Levenberg-Marquardt).
+template <int D>
+Eigen::Matrix<double, D, D> make_positive(const Eigen::Matrix<double, D, D>& H, double floor) {
+  double min_eig;
+  if constexpr (D == 1) {
+    min_eig = H(0, 0);
+  } else {
+    const double tr = H(0, 0) + H(1, 1);
+    const double det = H(0, 0) * H(1, 1) - H(0, 1) * H(1, 0);
+    const double disc = std::sqrt(std::max(0.0, 0.25 * tr * tr - det));
+    min_eig = 0.5 * tr - disc;
+  }
+  if (min_eig >= floor) return H;
+  Eigen::Matrix<double, D, D> Hs = H;
+  Hs.diagonal().array() += (floor - min_eig);
+  return Hs;
+}
+
+/// Largest |g_i| / scale_i over the parameters not held at a bound.
+template <int D>
+double projected_residual(const LocalModel<D>& m, const Eigen::Matrix<double, D, 1>& t,
+                          const Box<D>& box) {
+  double res = 0.0;
+  for (int i = 0; i < D; ++i) {
+    const bool held = !box.wrap[i] && ((t[i] <= box.lo[i] && m.g[i] > 0.0) ||
+                                       (t[i] >= box.hi[i] && m.g[i] < 0.0));
+    if (!held) res = std::max(res, std::abs(m.g[i]) / m.scale[i]);
+  }
+  return res;
+}
+
+/// Minimizes the model over the box from t0. `eval(t)` returns LocalModel<D>; `wrap_t(t)` maps
+/// a parameter into the box for wrapped directions (identity otherwise).
+template <int D, class Eval>
+NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, const Box<D>& box,
+                                const ProjectionOptions& opt) {
+  using Vec = Eigen::Matrix<double, D, 1>;
+  using Mat = Eigen::Matrix<double, D, D>;
+  auto into_box = [&box](Vec& s) {
+    for (int i = 0; i < D; ++i) {
+      if (box.wrap[i]) {
+        const double period = box.hi[i] - box.lo[i];
+        double r = std::fmod(s[i] - box.lo[i], period);
+        if (r < 0) r += period;
+        s[i] = box.lo[i] + r;
+      } else {
+        s[i] = std::clamp(s[i], box.lo[i], box.hi[i]);
+      }
+    }
+  };
+  // Step tolerance: relative to the box size (or to 1 + |t| where unbounded).
+  Vec step_tol;
+  for (int i = 0; i < D; ++i) {
+    const double w = box.hi[i] - box.lo[i];
+    step_tol[i] = opt.tol_step * (std::isfinite(w) ? w : 1.0 + std::abs(t[i]));
+  }
+
+  NewtonOutcome<D> out;
+  into_box(t);
+  LocalModel<D> m = eval(t);
+  for (int it = 0; it < opt.max_iterations; ++it) {
+    // Active set (held at a bound) and the projected-gradient (orthogonality) residual.
+    bool active[D];
+    for (int i = 0; i < D; ++i)
+      active[i] = !box.wrap[i] && ((t[i] <= box.lo[i] && m.g[i] > 0.0) ||
+                                   (t[i] >= box.hi[i] && m.g[i] < 0.0));
+    const double res = projected_residual<D>(m, t, box);
+    out.residual = res;
+    if (res <= opt.tol_residual) {
+      out.converged = true;
+      break;
+    }
+    out.iterations = it + 1;
+    // Newton step on the free parameters, with a positive definite (shifted) Hessian.
+    Mat H = m.H;
+    Vec g = m.g;
+    for (int i = 0; i < D; ++i)
+      if (active[i]) {
+        H.row(i).setZero();
+        H.col(i).setZero();
+        H(i, i) = 1.0;
+        g[i] = 0.0;
+      }
+    const double hmax = H.cwiseAbs().maxCoeff();
+    const Mat Hp = make_positive<D>(H, 1e-10 * hmax + 1e-300);
+    Vec newton = -Hp.ldlt().solve(g);
+    if (!newton.allFinite()) newton = -g / (hmax + 1e-300);
+
+    // Projected Armijo backtracking along a direction; the accepted trial's model is reused
+    // as the next iterate's, so an iteration costs one evaluation when the full step is taken.
+    Vec t_new = t, taken = Vec::Zero();
+    LocalModel<D> m_new;
+    auto line_search = [&](const Vec& dir) {
+      double alpha = 1.0;
+      for (int ls = 0; ls < 40; ++ls) {
+        t_new = t + alpha * dir;
+        into_box(t_new);
+        taken = t_new - t;
+        for (int i = 0; i < D; ++i)  // a wrapped step is the short way round
+          if (box.wrap[i]) taken[i] = alpha * dir[i];
+        const double slope = m.g.dot(taken);
+        if (slope < 0.0) {
+          m_new = eval(t_new);
+          if (m_new.f <= m.f + 1e-4 * slope) return true;
+          // Near the solution the decrease (~ slope) drops below the round-off of f itself
+          // and Armijo cannot see it; there the projected gradient is the merit instead.
+          if (-slope <= 1e-10 * m.f &&
+              projected_residual<D>(m_new, t_new, box) < projected_residual<D>(m, t, box))
+            return true;
+        }
+        alpha *= 0.5;
+      }
+      return false;
+    };
+    // Clamping can spoil the Newton direction at the bounds (coupled H); the projected
+    // steepest descent direction always decreases f while the projected gradient is not zero.
+    bool accepted = line_search(newton);
+    if (!accepted) accepted = line_search(-g / (hmax + 1e-300));
+    if (!accepted) {
+      // No decrease at this precision along either direction: a minimum to round-off.
+      out.converged = true;
+      break;
+    }
+    t = t_new;
+    m = m_new;
+    bool small = true;
+    for (int i = 0; i < D; ++i) small = small && std::abs(taken[i]) <= step_tol[i];
+    if (small) {
+      out.converged = true;
+      out.residual = projected_residual<D>(m, t, box);
+      break;
+    }
+  }
+  out.t = t;
+  if (!out.converged) out.residual = projected_residual<D>(m, t, box);
+  for (int i = 0; i < D; ++i)
+    if (!box.wrap[i] && (t[i] <= box.lo[i] || t[i] >= box.hi[i])) ++out.at_bound;
+  return out;
+}
+
+}  // namespace iga::detail

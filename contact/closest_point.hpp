@@ -1,0 +1,79 @@
+// Closest point projection of a point onto a surface patch or a curve ("rigid surface is
+// master", [KS15] Sect. 2.4, eqs. 10-18), robust for any start: bound-constrained Newton on
+// F(alpha) = 1/2 |r - rho(alpha)|^2 (eq. 12) with gradient (16) and Hessian (17), an active set
+// for the patch bounds (Sect. 2.2: surface, then edge, then vertex), Levenberg-Marquardt
+// regularization where the Hessian (17) is not positive definite, and an Armijo line search.
+// Cold starts are seeded from the Bezier extraction: element boxes give lower bounds on the
+// distance, samples give upper bounds, elements are visited best-first and pruned
+// (branch and bound), so the global minimum is found also on edges and corners.
+#pragma once
+
+#include <vector>
+
+#include "contact/projection.hpp"
+#include "geometry/nurbs_curve.hpp"
+#include "geometry/nurbs_surface.hpp"
+#include "geometry/refinement.hpp"
+
+namespace iga {
+
+/// interior, edge or vertex: how many parameters of uv lie on a bound of the surface's domain
+/// (closed directions have no bound).
+ProjectionStatus boundary_status(const Surface& s, const Vector2d& uv);
+
+/// Local (warm-started) closest point projection onto any Surface, within the parameter box
+/// `bounds` (by default the surface's domain; infinite bounds allowed). Directions the surface
+/// reports as closed wrap around instead of stopping at the bound (seamless full circles).
+ProjectionResult closest_point_local(const Surface& s, const Vector3d& x, const Vector2d& start,
+                                     const ProjectionOptions& opt = {});
+ProjectionResult closest_point_local(const Surface& s, const Vector3d& x, const Vector2d& start,
+                                     const Domain2& bounds, const ProjectionOptions& opt = {});
+
+/// Global closest point projection onto one NURBS patch: precomputes the Bezier elements,
+/// their boxes and samples once; then projects any number of points, cold or warm.
+class PatchProjector {
+ public:
+  /// samples_per_dir: samples per element and direction used for seeding (2..8).
+  explicit PatchProjector(const NurbsSurface& s, int samples_per_dir = 8);
+
+  const NurbsSurface& surface() const { return s_; }
+  /// Box of the whole patch (union of the element boxes).
+  const Box3& box() const { return box_; }
+  const std::vector<BezierPatch>& elements() const { return elements_; }
+  const std::vector<Box3>& element_boxes() const { return boxes_; }
+
+  /// Cold start: the global minimum (branch and bound over elements).
+  ProjectionResult project(const Vector3d& x, const ProjectionOptions& opt = {}) const;
+  /// Warm start from a parameter guess (e.g. the previous load step's foot point): one local
+  /// Newton. Falls back to the cold search if it does not converge.
+  ProjectionResult project(const Vector3d& x, const Vector2d& guess,
+                           const ProjectionOptions& opt = {}) const;
+  /// Cold search, but only among elements whose box lies within `max_distance` of x; returns
+  /// status not_converged with distance = +inf when none does.
+  ProjectionResult project_within(const Vector3d& x, double max_distance,
+                                  const ProjectionOptions& opt = {}) const;
+
+ private:
+  struct Sample {
+    Vector2d uv;
+    Vector3d x;
+  };
+  static constexpr int kMaxSamples = 64;  // 8 x 8
+  NurbsSurface s_;
+  std::vector<BezierPatch> elements_;
+  int samples_per_dir_ = 8;
+  std::vector<Box3> boxes_;
+  std::vector<std::vector<Sample>> samples_;  // per element
+  std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
+  std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])
+  Box3 box_;
+};
+
+/// Closest point on a NURBS curve: warm (local Newton from u0, clamped to the domain, ends are
+/// "vertex") and cold (global, over Bezier segments with box bounds) versions. uv(0) = u.
+ProjectionResult closest_point_local(const NurbsCurve& c, const Vector3d& x, double u0,
+                                     const ProjectionOptions& opt = {});
+ProjectionResult closest_point(const NurbsCurve& c, const Vector3d& x,
+                               const ProjectionOptions& opt = {});
+
+}  // namespace iga

@@ -1,0 +1,252 @@
+// Multi-patch rigid surfaces ([KS15] Sect. 2.2, Remark 5).
+#include "contact/rigid_surface.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "contact/analytic_projection.hpp"
+#include "contact/ray_projection.hpp"
+
+namespace iga {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+double box_distance(const Box3& b, const Vector3d& x) {
+  return (b.lo - x).cwiseMax(x - b.hi).cwiseMax(0.0).norm();
+}
+
+// Samples along side `side` of a surface (0: u = lo, 1: u = hi, 2: v = lo, 3: v = hi).
+std::vector<Vector3d> side_samples(const Surface& s, int side, int n) {
+  const Domain2 d = s.domain();
+  std::vector<Vector3d> pts;
+  for (int k = 0; k < n; ++k) {
+    const double t = (k + 0.5) / n;  // inner points: corners alone do not make a shared side
+    const double u = side == 0 ? d.u.lo : side == 1 ? d.u.hi : d.u.lo + t * (d.u.hi - d.u.lo);
+    const double v = side == 2 ? d.v.lo : side == 3 ? d.v.hi : d.v.lo + t * (d.v.hi - d.v.lo);
+    pts.push_back(s.point(u, v));
+  }
+  return pts;
+}
+
+}  // namespace
+
+RigidSurface RigidSurface::from_geometry(const GeometryModel& g, const std::string& name) {
+  const GeometryEntity* e = g.find(name);
+  if (!e) throw std::invalid_argument("no geometric entity named '" + name + "'");
+  if (std::holds_alternative<NurbsCurve>(*e))
+    throw std::invalid_argument("'" + name + "' is a curve, not a rigid surface");
+  RigidSurface rs;
+  for (const Surface* s : g.surfaces_of(name)) {
+    if (const auto* n = dynamic_cast<const NurbsSurface*>(s))
+      rs.add(*n);
+    else if (const auto* a = dynamic_cast<const AnalyticSurface*>(s))
+      rs.add(*a);
+  }
+  return rs;
+}
+
+int RigidSurface::add(const NurbsSurface& s) {
+  Piece p;
+  auto proj = std::make_shared<PatchProjector>(s);
+  p.surface = std::shared_ptr<const Surface>(proj, &proj->surface());
+  p.box = proj->box();
+  p.nurbs = std::move(proj);
+  pieces_.push_back(std::move(p));
+  box_.extend(pieces_.back().box.lo);
+  box_.extend(pieces_.back().box.hi);
+  detect_shared_sides();
+  return num_patches() - 1;
+}
+
+int RigidSurface::add(const AnalyticSurface& s) {
+  Piece p;
+  // Copy the concrete type (the pieces outlive the caller's objects).
+  if (const auto* q = dynamic_cast<const Plane*>(&s)) p.surface = std::make_shared<Plane>(*q);
+  else if (const auto* q1 = dynamic_cast<const Sphere*>(&s)) p.surface = std::make_shared<Sphere>(*q1);
+  else if (const auto* q2 = dynamic_cast<const Cylinder*>(&s)) p.surface = std::make_shared<Cylinder>(*q2);
+  else if (const auto* q3 = dynamic_cast<const Torus*>(&s)) p.surface = std::make_shared<Torus>(*q3);
+  else if (const auto* q4 = dynamic_cast<const Cone*>(&s)) p.surface = std::make_shared<Cone>(*q4);
+  else if (const auto* q5 = dynamic_cast<const Hyperboloid*>(&s)) p.surface = std::make_shared<Hyperboloid>(*q5);
+  else if (const auto* q6 = dynamic_cast<const Revolution*>(&s)) p.surface = std::make_shared<Revolution>(*q6);
+  else throw std::invalid_argument("unsupported analytic surface " + s.type_name());
+  // Box: sampled over a bounded domain; unbounded pieces get an infinite box.
+  const Domain2 d = s.domain();
+  if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) && std::isfinite(d.v.hi)) {
+    // Sampling bounds the surface only approximately: pad by the largest sample spacing.
+    double pad = 0.0;
+    const int n = 24;
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) {
+        const SurfaceDerivs dd = s.derivs(d.u.lo + (d.u.hi - d.u.lo) * i / n, d.v.lo + (d.v.hi - d.v.lo) * j / n, 1);
+        p.box.extend(dd.S);
+        pad = std::max(pad, dd.Su.norm() * (d.u.hi - d.u.lo) / n + dd.Sv.norm() * (d.v.hi - d.v.lo) / n);
+      }
+    p.box.lo.array() -= pad;
+    p.box.hi.array() += pad;
+  } else {
+    p.box.lo.setConstant(-kInf);
+    p.box.hi.setConstant(kInf);
+  }
+  pieces_.push_back(std::move(p));
+  box_.extend(pieces_.back().box.lo);
+  box_.extend(pieces_.back().box.hi);
+  detect_shared_sides();
+  return num_patches() - 1;
+}
+
+void RigidSurface::detect_shared_sides() {
+  // A side is shared when sample points along it lie on another piece (or, for a closed
+  // direction, when the piece itself is closed there) to within 1e-9 of the model size.
+  const double size = std::isfinite((box_.hi - box_.lo).norm()) ? (box_.hi - box_.lo).norm() : 1.0;
+  const double tol = 1e-9 * size;
+  for (std::size_t i = 0; i < pieces_.size(); ++i) {
+    Piece& p = pieces_[i];
+    const Surface& s = *p.surface;
+    const Domain2 d = s.domain();
+    for (int side = 0; side < 4; ++side) {
+      p.shared[side] = side < 2 ? s.closed_u() : s.closed_v();
+      const Interval I = side < 2 ? d.u : d.v;
+      if (p.shared[side] || !std::isfinite(side % 2 == 0 ? I.lo : I.hi)) continue;
+      const Interval other = side < 2 ? d.v : d.u;
+      if (!std::isfinite(other.lo) || !std::isfinite(other.hi)) continue;
+      const std::vector<Vector3d> pts = side_samples(s, side, 5);
+      for (std::size_t j = 0; j < pieces_.size() && !p.shared[side]; ++j) {
+        if (j == i) continue;
+        bool all = true;
+        for (const Vector3d& x : pts) {
+          if (box_distance(pieces_[j].box, x) > tol) {
+            all = false;
+            break;
+          }
+          const ProjectionResult r = project_piece(static_cast<int>(j), x, kInf, {});
+          if (!found(r.status) || std::abs(r.distance) > tol) {
+            all = false;
+            break;
+          }
+        }
+        p.shared[side] = all;
+      }
+    }
+  }
+}
+
+bool RigidSurface::side_shared(int patch, int side) const {
+  return pieces_.at(static_cast<std::size_t>(patch)).shared[side];
+}
+
+ProjectionResult RigidSurface::project_piece(int i, const Vector3d& x, double max_distance,
+                                             const ProjectionOptions& opt) const {
+  const Piece& p = pieces_[static_cast<std::size_t>(i)];
+  ProjectionResult r;
+  if (p.nurbs) {
+    r = p.nurbs->project_within(x, max_distance, opt);
+  } else {
+    r = closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
+    if (std::abs(r.distance) > max_distance) {
+      r.status = ProjectionStatus::far;
+      r.distance = kInf;
+    }
+  }
+  r.patch = i;
+  return r;
+}
+
+void RigidSurface::union_status(ProjectionResult& r) const {
+  if (r.status != ProjectionStatus::edge && r.status != ProjectionStatus::vertex) return;
+  const Piece& p = pieces_[static_cast<std::size_t>(r.patch)];
+  const Domain2 d = p.surface->domain();
+  int free_sides = 0;
+  const bool on[4] = {r.uv[0] <= d.u.lo, r.uv[0] >= d.u.hi, r.uv[1] <= d.v.lo, r.uv[1] >= d.v.hi};
+  for (int side = 0; side < 4; ++side) free_sides += on[side] && !p.shared[side];
+  r.status = free_sides == 0   ? ProjectionStatus::interior
+             : free_sides == 1 ? ProjectionStatus::edge
+                               : ProjectionStatus::vertex;
+}
+
+ProjectionResult RigidSurface::closest_point_within(const Vector3d& x, double max_distance,
+                                                    const ProjectionOptions& opt) const {
+  // Pieces in the order of their box distance; each one's search is bounded by the best so far.
+  thread_local std::vector<std::pair<double, int>> order;
+  order.clear();
+  for (int i = 0; i < num_patches(); ++i) {
+    const double lb = box_distance(pieces_[static_cast<std::size_t>(i)].box, x);
+    if (lb <= max_distance) order.emplace_back(lb, i);
+  }
+  std::sort(order.begin(), order.end());
+  ProjectionResult best;
+  best.status = ProjectionStatus::far;
+  best.distance = kInf;
+  double best_d = max_distance;
+  int iterations = 0;
+  for (const auto& [lb, i] : order) {
+    if (lb > best_d) break;
+    const ProjectionResult r = project_piece(i, x, best_d, opt);
+    iterations += r.iterations;
+    if (r.status == ProjectionStatus::far) continue;
+    const double d = (r.point - x).norm();
+    if (d > max_distance) continue;
+    // Ties (a point over a shared edge) keep the first piece: no jumping between patches.
+    if (best.status == ProjectionStatus::far || d < best_d * (1.0 - 1e-12)) {
+      best_d = d;
+      best = r;
+    }
+  }
+  best.iterations = iterations;
+  union_status(best);
+  return best;
+}
+
+ProjectionResult RigidSurface::closest_point(const Vector3d& x, const ProjectionOptions& opt) const {
+  return closest_point_within(x, kInf, opt);
+}
+
+ProjectionResult RigidSurface::closest_point(const Vector3d& x, const ProjectionResult& previous,
+                                             const ProjectionOptions& opt) const {
+  if (previous.patch < 0 || previous.patch >= num_patches() || !found(previous.status))
+    return closest_point(x, opt);
+  const Piece& p = pieces_[static_cast<std::size_t>(previous.patch)];
+  ProjectionResult r;
+  if (p.nurbs)
+    r = closest_point_local(p.nurbs->surface(), x, previous.uv, opt);
+  else
+    r = closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
+  r.patch = previous.patch;
+  if (r.status == ProjectionStatus::interior) return r;
+  // At an edge (possibly shared) or not converged: search all pieces, bounded by this answer.
+  const double bound = found(r.status) ? (r.point - x).norm() * (1.0 + 1e-12) : kInf;
+  ProjectionResult g = closest_point_within(x, bound, opt);
+  g.iterations += r.iterations;
+  if (g.status == ProjectionStatus::far) {
+    union_status(r);
+    return r;
+  }
+  return g;
+}
+
+ProjectionResult RigidSurface::ray(const Vector3d& x, const Vector3d& N,
+                                   const ProjectionOptions& opt) const {
+  ProjectionResult best;
+  best.status = ProjectionStatus::miss;
+  bool tangent = false;
+  int iterations = 0;
+  for (int i = 0; i < num_patches(); ++i) {
+    const Piece& p = pieces_[static_cast<std::size_t>(i)];
+    ProjectionResult r = p.nurbs ? ray_project(*p.nurbs, x, N, opt)
+                                 : ray_project_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, N, opt);
+    r.patch = i;
+    iterations += r.iterations;
+    tangent = tangent || r.status == ProjectionStatus::tangent;
+    if (found(r.status) && (!found(best.status) || std::abs(r.distance) < std::abs(best.distance)))
+      best = r;
+  }
+  if (!found(best.status) && tangent) best.status = ProjectionStatus::tangent;
+  best.iterations = iterations;
+  union_status(best);
+  return best;
+}
+
+}  // namespace iga

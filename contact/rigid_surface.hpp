@@ -1,0 +1,71 @@
+// A rigid body's surface made of pieces: NURBS patches and analytic surfaces from one model,
+// acting as one surface for projections ([KS15] Sect. 2.2: the global proximity domain is the
+// union of the pieces' domains; Remark 5: one rigid surface for all deformable elements).
+// Shared edges between patches are detected, so a foot point on them counts as interior;
+// closed patches (full circles) are seamless; warm starts continue from the previous patch.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact/closest_point.hpp"
+#include "contact/projection.hpp"
+#include "geometry/analytic_surfaces.hpp"
+#include "geometry/geometry_io.hpp"
+
+namespace iga {
+
+class RigidSurface {
+ public:
+  RigidSurface() = default;
+  /// The surface or patch group `name` of a geometry model. Throws std::invalid_argument if
+  /// the name is unknown or a curve.
+  static RigidSurface from_geometry(const GeometryModel& g, const std::string& name);
+
+  /// Adds a patch; returns its index. Shared edges are recomputed.
+  int add(const NurbsSurface& s);
+  int add(const AnalyticSurface& s);
+
+  int num_patches() const { return static_cast<int>(pieces_.size()); }
+  const Surface& patch(int i) const { return *pieces_[static_cast<std::size_t>(i)].surface; }
+  /// The NURBS projector of patch i, or nullptr for an analytic piece.
+  const PatchProjector* nurbs(int i) const { return pieces_[static_cast<std::size_t>(i)].nurbs.get(); }
+  /// Bounding box of all pieces (infinite for unbounded analytic surfaces).
+  const Box3& box() const { return box_; }
+
+  /// Cold closest point: the global minimum over all pieces (patch boxes prune).
+  ProjectionResult closest_point(const Vector3d& x, const ProjectionOptions& opt = {}) const;
+  /// Closest point within `max_distance` only (status far if none is).
+  ProjectionResult closest_point_within(const Vector3d& x, double max_distance,
+                                        const ProjectionOptions& opt = {}) const;
+  /// Warm start from a previous result (its patch and uv): a local Newton on that patch; if
+  /// the foot point reaches one of the patch's edges, the search continues over all pieces.
+  ProjectionResult closest_point(const Vector3d& x, const ProjectionResult& previous,
+                                 const ProjectionOptions& opt = {}) const;
+  /// Ray x + xi3 N: the hit with the smallest |xi3| over all pieces (miss / tangent if none).
+  ProjectionResult ray(const Vector3d& x, const Vector3d& N,
+                       const ProjectionOptions& opt = {}) const;
+
+  /// Sides of patch i: 0: u = lo, 1: u = hi, 2: v = lo, 3: v = hi. True when the side
+  /// coincides with a side of another patch (or with the opposite side: a closed direction).
+  bool side_shared(int patch, int side) const;
+
+ private:
+  struct Piece {
+    std::shared_ptr<const Surface> surface;
+    std::shared_ptr<const PatchProjector> nurbs;  // NURBS pieces only
+    Box3 box;
+    bool shared[4] = {};
+  };
+  ProjectionResult project_piece(int i, const Vector3d& x, double max_distance,
+                                 const ProjectionOptions& opt) const;
+  /// Status with respect to the union: sides shared with a neighbour are not edges.
+  void union_status(ProjectionResult& r) const;
+  void detect_shared_sides();
+
+  std::vector<Piece> pieces_;
+  Box3 box_;
+};
+
+}  // namespace iga

@@ -1,0 +1,245 @@
+// Closest point projection onto NURBS patches and curves ([KS15] eqs. 10-18, Sect. 2.2):
+// orthogonality, global minimum against brute force, edges and corners, seams, warm starts,
+// and agreement with closed forms for the exact NURBS quadrics.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "contact/closest_point.hpp"
+#include "contact/ray_projection.hpp"
+#include "geometry/constructions.hpp"
+#include "geometry/differential_geometry.hpp"
+#include "tests/support/projection_reference.hpp"
+
+using namespace iga;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+
+Vector3d random_in_box(std::mt19937& g, const Box3& b, double grow) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vector3d c = 0.5 * (b.lo + b.hi), h = 0.5 * (b.hi - b.lo) * (1.0 + grow);
+  return c + Vector3d((2 * u(g) - 1) * h.x(), (2 * u(g) - 1) * h.y(), (2 * u(g) - 1) * h.z());
+}
+}  // namespace
+
+TEST_CASE("PatchProjector: orthogonality residual at convergence on the free-form patch",
+          "[contact][closest]") {
+  const PatchProjector P(test::data_surface("freeform_bicubic.json"));
+  std::mt19937 g(1);
+  std::uniform_real_distribution<double> u(0.02, 0.98), off(-0.5, 0.5);
+  const double size = (P.box().hi - P.box().lo).norm();
+  for (int k = 0; k < 2000; ++k) {
+    // points near the surface (|p| <= 5 % of the size 10), feet inside
+    const Vector2d uv(u(g), u(g));
+    const SurfaceDerivs d = P.surface().derivs(uv[0], uv[1], 1);
+    const Vector3d n = d.Su.cross(d.Sv).normalized();
+    const Vector3d x = d.S + off(g) * n;
+    const ProjectionResult r = P.project(x);
+    REQUIRE(found(r.status));
+    const SurfaceDerivs f = P.surface().derivs(r.uv[0], r.uv[1], 1);
+    const Vector3d diff = x - f.S;
+    if (r.status == ProjectionStatus::interior) {
+      // (16) = 0: the tangential error of the foot point, relative to max(|x - rho|, size)
+      // (the bare cosine of the angle is ill-conditioned as |x - rho| -> 0).
+      const double scale = std::max(diff.norm(), size);
+      CHECK(std::abs(diff.dot(f.Su)) / (f.Su.norm() * scale) <= 1e-12);
+      CHECK(std::abs(diff.dot(f.Sv)) / (f.Sv.norm() * scale) <= 1e-12);
+      CHECK(r.residual <= 1e-12);
+    }
+    CHECK(std::abs(r.distance) <= std::abs((x - d.S).norm()) + 1e-12);
+  }
+}
+
+TEST_CASE("PatchProjector: cold start finds the global minimum (brute-force reference)",
+          "[contact][closest]") {
+  const PatchProjector P(test::data_surface("freeform_bicubic.json"));
+  std::mt19937 g(2);
+  int checked = 0;
+  for (double grow : {0.1, 0.3, 3.0}) {  // near, around (edges/corners), far
+    for (int k = 0; k < 120; ++k) {
+      const Vector3d x = random_in_box(g, P.box(), grow);
+      const ProjectionResult r = P.project(x);
+      const ProjectionResult ref = test::brute_force_closest(P.surface(), x);
+      INFO("x = " << x.transpose() << " status " << to_string(r.status));
+      REQUIRE(found(r.status));
+      INFO("ours " << (r.point - x).norm() << " ref " << (ref.point - x).norm() << " uv " << r.uv.transpose() << " ref uv " << ref.uv.transpose());
+      CHECK((r.point - x).norm() <= (ref.point - x).norm() + 1e-10);
+      ++checked;
+    }
+  }
+  CHECK(checked == 360);
+}
+
+TEST_CASE("PatchProjector: warm and cold starts agree near the surface", "[contact][closest]") {
+  const PatchProjector P(test::data_surface("freeform_bicubic.json"));
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> u(0.05, 0.95), off(-0.3, 0.3), jit(-0.02, 0.02);
+  for (int k = 0; k < 1000; ++k) {
+    const Vector2d uv(u(g), u(g));
+    const SurfaceDerivs d = P.surface().derivs(uv[0], uv[1], 1);
+    const Vector3d x = d.S + off(g) * d.Su.cross(d.Sv).normalized();
+    const ProjectionResult cold = P.project(x);
+    const ProjectionResult warm = P.project(x, uv + Vector2d(jit(g), jit(g)));
+    CHECK((cold.point - warm.point).norm() <= 1e-10);
+    CHECK(cold.distance == Approx(warm.distance).margin(1e-10));
+  }
+}
+
+TEST_CASE("PatchProjector: points beyond an edge or a corner land on it", "[contact][closest]") {
+  // Unit square in z = 0, normal +z (bilinear patch).
+  const PatchProjector P(make_plane_patch(Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()));
+  const ProjectionResult e = P.project(Vector3d(1.5, 0.25, 0.3));
+  CHECK(e.status == ProjectionStatus::edge);
+  CHECK((e.point - Vector3d(1, 0.25, 0)).norm() <= 1e-14);
+  CHECK(e.distance == Approx(std::sqrt(0.25 + 0.09)).epsilon(1e-14));
+  const ProjectionResult below = P.project(Vector3d(0.4, -0.7, -0.2));
+  CHECK(below.status == ProjectionStatus::edge);
+  CHECK(below.distance == Approx(-std::sqrt(0.49 + 0.04)).epsilon(1e-14));  // under: negative
+  const ProjectionResult v = P.project(Vector3d(-0.5, 1.5, 0.1));
+  CHECK(v.status == ProjectionStatus::vertex);
+  CHECK((v.point - Vector3d(0, 1, 0)).norm() <= 1e-14);
+  const ProjectionResult in = P.project(Vector3d(0.3, 0.6, -0.4));
+  CHECK(in.status == ProjectionStatus::interior);
+  CHECK(in.distance == Approx(-0.4).epsilon(1e-14));
+
+  // A curved patch: a quarter cylinder, points beyond its straight edge and its arc edge.
+  const NurbsSurface q = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0,
+                                       1.0, 0.0, kPi / 2);
+  const PatchProjector Q(q);
+  const ProjectionResult top = Q.project(Vector3d(1.0, 1.0, 1.7));  // above the top arc
+  CHECK(top.status == ProjectionStatus::edge);
+  CHECK(top.point.z() == Approx(1.0).epsilon(1e-14));
+  CHECK(top.point.head<2>().norm() == Approx(2.0).epsilon(1e-13));
+  const ProjectionResult side = Q.project(Vector3d(-1.0, 3.0, 0.5));  // beyond the x = 0 line
+  CHECK(side.status == ProjectionStatus::edge);
+  CHECK((side.point - Vector3d(0, 2, 0.5)).norm() <= 1e-12);
+  const ProjectionResult corner = Q.project(Vector3d(3.0, -1.0, -1.0));
+  CHECK(corner.status == ProjectionStatus::vertex);
+  CHECK((corner.point - Vector3d(2, 0, 0)).norm() <= 1e-12);
+}
+
+TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
+          "[contact][closest][closed-form]") {
+  // (B.10) cylinder, (B.4) sphere, (B.16) torus, (B.23) cone: |p| from the formulas, 10,000
+  // random points on both sides within the proximity domain.
+  std::mt19937 g(4);
+  std::uniform_real_distribution<double> ang(0.0, 2 * kPi), unit(0.0, 1.0);
+  const double R = 1.5, r = 0.6, H = 3.0, alpha = 0.5;
+  const PatchProjector cyl(make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), R, H));
+  const PatchProjector sph(make_sphere(Vector3d::Zero(), R));
+  const PatchProjector tor(make_torus(Vector3d::Zero(), Vector3d::UnitZ(), 3.0, r));
+  const PatchProjector con(make_cone(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), alpha, 1.0, 3.0));
+  int n = 0;
+  for (int k = 0; k < 2500; ++k) {
+    const double phi = ang(g), t = unit(g);
+    {  // cylinder: p = |d| - R (B.10), outward normal, foot height unchanged
+      const double rho = R * (0.2 + 1.6 * t), z = 0.05 * H + 0.9 * H * unit(g);
+      const Vector3d x(rho * std::cos(phi), rho * std::sin(phi), z);
+      const ProjectionResult c = cyl.project(x);
+      CHECK(c.status == ProjectionStatus::interior);
+      CHECK(c.distance == Approx(rho - R).margin(1e-10));
+      CHECK((c.point - Vector3d(R * std::cos(phi), R * std::sin(phi), z)).norm() <= 1e-10);
+    }
+    {  // sphere: p = |x| - R (B.4)
+      const double rho = R * (0.2 + 1.6 * t), th = std::acos(1.8 * unit(g) - 0.9);
+      const Vector3d x = rho * Vector3d(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi), std::cos(th));
+      const ProjectionResult c = sph.project(x);
+      CHECK(found(c.status));
+      CHECK(c.distance == Approx(rho - R).margin(1e-10));
+      CHECK((c.point - R * x.normalized()).norm() <= 1e-10);
+    }
+    {  // torus: p = sqrt(x^2 + y^2 + z^2 + R^2 - 2 R s) - r (B.16)
+      const double a = 0.1 * r + 1.8 * r * t, th = ang(g);
+      const Vector3d x((3.0 + a * std::cos(th)) * std::cos(phi), (3.0 + a * std::cos(th)) * std::sin(phi), a * std::sin(th));
+      const double s = x.head<2>().norm();
+      const double p = std::sqrt(x.squaredNorm() + 9.0 - 6.0 * s) - r;
+      const ProjectionResult c = tor.project(x);
+      CHECK(c.status == ProjectionStatus::interior);
+      CHECK(c.distance == Approx(p).margin(1e-10));
+    }
+    {  // cone: p = s sin(alpha) - z cos(alpha) (B.23), within the frustum's normal band
+      const double sg = 1.3 + 1.4 * t, pp = 0.8 * unit(g) - 0.4;  // foot radial distance, offset
+      const Vector3d foot(sg * std::cos(phi), sg * std::sin(phi), sg * std::tan(alpha));
+      const Vector3d nrm(std::sin(alpha) * std::cos(phi), std::sin(alpha) * std::sin(phi), -std::cos(alpha));
+      const Vector3d x = foot + pp * nrm;
+      const double p = x.head<2>().norm() * std::sin(alpha) - x.z() * std::cos(alpha);
+      const ProjectionResult c = con.project(x);
+      CHECK(c.status == ProjectionStatus::interior);
+      CHECK(c.distance == Approx(p).margin(1e-10));
+      CHECK((c.point - foot).norm() <= 1e-10);
+    }
+    n += 4;
+  }
+  CHECK(n == 10000);
+}
+
+TEST_CASE("PatchProjector: a full cylinder is seamless, warm starts continue across the seam",
+          "[contact][closest][seam]") {
+  const NurbsSurface s = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0);
+  REQUIRE(s.closed_u());
+  const PatchProjector P(s);
+  for (double phi : {-1e-3, -1e-9, 0.0, 1e-9, 1e-3}) {
+    const Vector3d x(1.3 * std::cos(phi), 1.3 * std::sin(phi), 1.0);
+    const ProjectionResult r = P.project(x);
+    CHECK(r.status == ProjectionStatus::interior);
+    CHECK(r.distance == Approx(0.3).epsilon(1e-12));
+    // warm start from the other side of the seam
+    const ProjectionResult w = P.project(x, Vector2d(phi < 0 ? 0.01 : 0.99, 0.5));
+    CHECK(w.status == ProjectionStatus::interior);
+    CHECK((w.point - r.point).norm() <= 1e-12);
+  }
+}
+
+TEST_CASE("ray_project: agrees with the closest point where the normals are parallel",
+          "[contact][ray]") {
+  const PatchProjector P(test::data_surface("freeform_bicubic.json"));
+  std::mt19937 g(5);
+  std::uniform_real_distribution<double> u(0.05, 0.95), off(-0.5, 0.5);
+  for (int k = 0; k < 500; ++k) {
+    const Vector2d uv(u(g), u(g));
+    const SurfaceDerivs d = P.surface().derivs(uv[0], uv[1], 1);
+    const Vector3d n = d.Su.cross(d.Sv).normalized();
+    const double p = off(g);
+    const Vector3d x = d.S + p * n;
+    // the ray from x along the surface normal at its foot hits the foot at xi3 = -p (2)-(3)
+    const ProjectionResult cp = P.project(x);
+    const ProjectionResult ray = ray_project(P, x, cp.normal);
+    REQUIRE(found(ray.status));
+    INFO("ray res " << ray.residual << " it " << ray.iterations << " cp res " << cp.residual << " p " << p);
+    CHECK((ray.point - cp.point).norm() <= 1e-10);
+    CHECK(ray.distance == Approx(-cp.distance).margin(1e-10));
+  }
+  // A ray beside the patch misses; a ray inside the plane of a flat patch is tangent or misses.
+  const PatchProjector Q(make_plane_patch(Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()));
+  CHECK(ray_project(Q, Vector3d(2, 2, 1), Vector3d::UnitZ()).status == ProjectionStatus::miss);
+  const ProjectionResult t = ray_project(Q, Vector3d(-1, 0.5, 0), Vector3d::UnitX());
+  CHECK((t.status == ProjectionStatus::tangent || t.status == ProjectionStatus::miss));
+  const ProjectionResult hit = ray_project(Q, Vector3d(0.2, 0.7, 2), Vector3d(0, 0, -2));
+  CHECK(hit.status == ProjectionStatus::interior);
+  CHECK(hit.distance == Approx(2.0).epsilon(1e-14));  // N normalized: x + 2 (-e_z) = foot
+}
+
+TEST_CASE("closest_point on curves: circle, helix, and the ends as vertices",
+          "[contact][closest][curve]") {
+  const NurbsCurve circle = make_circle(Vector3d::Zero(), Vector3d::UnitZ(), 2.0);
+  std::mt19937 g(6);
+  std::uniform_real_distribution<double> ang(0, 2 * kPi), rad(0.3, 5.0), z(-1, 1);
+  for (int k = 0; k < 1000; ++k) {
+    const double a = ang(g), rr = rad(g), zz = z(g);
+    const Vector3d x(rr * std::cos(a), rr * std::sin(a), zz);
+    const ProjectionResult r = closest_point(circle, x);
+    CHECK(r.distance == Approx(std::hypot(rr - 2.0, zz)).epsilon(1e-12));
+  }
+  const NurbsCurve line = make_line(Vector3d::Zero(), Vector3d(1, 0, 0));
+  const ProjectionResult end = closest_point(line, Vector3d(1.5, 1, 0));
+  CHECK(end.status == ProjectionStatus::vertex);
+  CHECK((end.point - Vector3d(1, 0, 0)).norm() <= 1e-15);
+  const HelixApproximation h = make_helix_cubic(1.0, 1.0, kPi, 33);
+  const ProjectionResult hr = closest_point(h.curve, Vector3d(0.0, 1.5, 0.25));
+  CHECK(hr.status == ProjectionStatus::interior);
+  const CurveDerivs d = h.curve.derivs(hr.uv[0], 1);
+  CHECK(std::abs((Vector3d(0.0, 1.5, 0.25) - hr.point).dot(d.d[1].normalized())) <= 1e-12);
+}

@@ -1,0 +1,106 @@
+// Multi-patch rigid surfaces: a cylinder split into patches answers as the single patch does,
+// shared edges are not edges, warm starts follow a moving point across patches and seams.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "contact/rigid_surface.hpp"
+#include "geometry/constructions.hpp"
+#include "geometry/json_reader.hpp"
+
+using namespace iga;
+
+namespace {
+constexpr double kPi = std::numbers::pi;
+
+RigidSurface split_cylinder(int parts, double R, double H) {
+  RigidSurface rs;
+  for (int k = 0; k < parts; ++k)
+    rs.add(make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), R, H,
+                         2 * kPi * k / parts, 2 * kPi * (k + 1) / parts));
+  return rs;
+}
+}  // namespace
+
+TEST_CASE("RigidSurface: shared sides of a split cylinder are detected", "[contact][multipatch]") {
+  const RigidSurface rs = split_cylinder(4, 1.0, 2.0);
+  REQUIRE(rs.num_patches() == 4);
+  for (int i = 0; i < 4; ++i) {
+    CHECK(rs.side_shared(i, 0));   // u = lo: the previous sector
+    CHECK(rs.side_shared(i, 1));   // u = hi: the next sector
+    CHECK(!rs.side_shared(i, 2));  // bottom circle
+    CHECK(!rs.side_shared(i, 3));  // top circle
+  }
+  RigidSurface one;
+  one.add(make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  CHECK(one.side_shared(0, 0));  // closed in u: the seam is shared with itself
+  CHECK(!one.side_shared(0, 2));
+}
+
+TEST_CASE("RigidSurface: a 4-patch cylinder gives the single patch's answers",
+          "[contact][multipatch]") {
+  const RigidSurface four = split_cylinder(4, 1.0, 2.0);
+  RigidSurface one;
+  one.add(make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  std::mt19937 g(7);
+  std::uniform_real_distribution<double> ang(0, 2 * kPi), rad(0.2, 2.5), z(-0.5, 2.5);
+  for (int k = 0; k < 5000; ++k) {
+    // every 10th point exactly above a shared edge (angle a multiple of pi/2)
+    const double a = k % 10 == 0 ? (k / 10 % 4) * kPi / 2 : ang(g);
+    const Vector3d x(rad(g) * std::cos(a), rad(g) * std::sin(a), z(g));
+    const ProjectionResult r4 = four.closest_point(x), r1 = one.closest_point(x);
+    REQUIRE(found(r4.status));
+    CHECK((r4.point - r1.point).norm() <= 1e-10);
+    CHECK(r4.distance == Approx(r1.distance).margin(1e-10));
+    CHECK(r4.status == r1.status);  // interior over shared edges, edge beyond the ends
+  }
+}
+
+TEST_CASE("RigidSurface: warm starts follow a point around the cylinder across patches",
+          "[contact][multipatch][warm]") {
+  const RigidSurface four = split_cylinder(4, 1.0, 2.0);
+  // The path starts at 0.1 rad (inside patch 0) and ends at 5 pi + 0.1 (inside patch 2), so
+  // it crosses 10 sector boundaries; none of its points lies exactly on one.
+  ProjectionResult prev = four.closest_point(Vector3d(1.2 * std::cos(0.1), 1.2 * std::sin(0.1), 1.0));
+  int patch_changes = 0;
+  for (int k = 1; k <= 800; ++k) {
+    const double a = 0.1 + 2.5 * 2 * kPi * k / 800;  // 2.5 turns: seams and shared edges
+    const Vector3d x(1.2 * std::cos(a), 1.2 * std::sin(a), 1.0 + 0.3 * std::sin(3 * a));
+    const ProjectionResult r = four.closest_point(x, prev);
+    REQUIRE(r.status == ProjectionStatus::interior);
+    CHECK(r.distance == Approx(0.2).epsilon(1e-12));
+    CHECK((r.point - Vector3d(std::cos(a), std::sin(a), x.z())).norm() <= 1e-12);
+    patch_changes += r.patch != prev.patch;
+    prev = r;
+  }
+  CHECK(patch_changes == 10);  // 2.5 turns over 4 sectors
+}
+
+TEST_CASE("RigidSurface: rays on a split cylinder hit as on the single patch",
+          "[contact][multipatch][ray]") {
+  const RigidSurface four = split_cylinder(4, 1.0, 2.0);
+  std::mt19937 g(8);
+  std::uniform_real_distribution<double> ang(0, 2 * kPi), z(0.1, 1.9);
+  for (int k = 0; k < 500; ++k) {
+    const double a = ang(g);
+    const Vector3d foot(std::cos(a), std::sin(a), z(g));
+    const Vector3d x = foot + 0.4 * Vector3d(std::cos(a), std::sin(a), 0.0);
+    const ProjectionResult r = four.ray(x, -Vector3d(std::cos(a), std::sin(a), 0.0));
+    REQUIRE(found(r.status));
+    CHECK((r.point - foot).norm() <= 1e-10);
+    CHECK(r.distance == Approx(0.4).epsilon(1e-10));
+  }
+}
+
+TEST_CASE("RigidSurface: groups of a model file act as one surface", "[contact][multipatch]") {
+  const std::string path = std::string(IGA_SOURCE_DIR) + "/data/cylinder_4patch.json";
+  const GeometryModel m = parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
+  const RigidSurface rs = RigidSurface::from_geometry(m, "cylinder");
+  CHECK(rs.num_patches() == 4);
+  const ProjectionResult r = rs.closest_point(Vector3d(0.0, -3.0, 2.0));
+  CHECK(r.status == ProjectionStatus::interior);
+  CHECK(r.distance == Approx(2.0).epsilon(1e-12));
+  CHECK_THROWS_AS(RigidSurface::from_geometry(m, "nothing"), std::invalid_argument);
+}
