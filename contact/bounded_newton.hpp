@@ -29,6 +29,7 @@ struct LocalModel {
   Vec g = Vec::Zero();
   Mat H = Mat::Zero();
   Vec scale = Vec::Ones();  ///< |rho_i| |x - rho| (> 0)
+  bool has_hessian = true;  ///< false when evaluated with first derivatives only
 };
 
 template <int D>
@@ -77,8 +78,11 @@ double projected_residual(const LocalModel<D>& m, const Eigen::Matrix<double, D,
   return res;
 }
 
-/// Minimizes the model over the box from t0. `eval(t)` returns LocalModel<D>; `wrap_t(t)` maps
-/// a parameter into the box for wrapped directions (identity otherwise).
+/// Minimizes the model over the box from t0. `eval(t, order)` returns LocalModel<D> with the
+/// Hessian when order == 2; with order == 1 only f, g and scale (has_hessian = false). The
+/// solver asks for order 1 where quadratic convergence predicts that the trial point is the
+/// answer (the residual before the step is below sqrt(tol) 10), and completes the Hessian
+/// only if it is not.
 template <int D, class Eval>
 NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, const Box<D>& box,
                                 const ProjectionOptions& opt) {
@@ -105,7 +109,8 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
 
   NewtonOutcome<D> out;
   into_box(t);
-  LocalModel<D> m = eval(t);
+  LocalModel<D> m = eval(t, 2);
+  const double predict_tol = 10.0 * std::sqrt(opt.tol_residual);
   for (int it = 0; it < opt.max_iterations; ++it) {
     // Active set (held at a bound) and the projected-gradient (orthogonality) residual.
     bool active[D];
@@ -118,7 +123,9 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
       out.converged = true;
       break;
     }
+    if (!m.has_hessian) m = eval(t, 2);  // the prediction failed: complete the model
     out.iterations = it + 1;
+    const int trial_order = res <= predict_tol ? 1 : 2;
     // Newton step on the free parameters, with a positive definite (shifted) Hessian.
     Mat H = m.H;
     Vec g = m.g;
@@ -148,7 +155,7 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
           if (box.wrap[i]) taken[i] = alpha * dir[i];
         const double slope = m.g.dot(taken);
         if (slope < 0.0) {
-          m_new = eval(t_new);
+          m_new = eval(t_new, trial_order);
           if (m_new.f <= m.f + 1e-4 * slope) return true;
           // Near the solution the decrease (~ slope) drops below the round-off of f itself
           // and Armijo cannot see it; there the projected gradient is the merit instead.

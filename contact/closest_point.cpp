@@ -33,13 +33,15 @@ constexpr double kTiny = 1e-300;
 // point's tangential error relative to the model size near the surface and the cosine of the
 // angle between r and rho_i far from it (that cosine alone is ill-conditioned as |r| -> 0).
 detail::LocalModel<2> surface_model(const SurfaceDerivs& d, const Vector3d& x,
-                                    const Vector2d& widths) {
+                                    const Vector2d& widths, int order) {
   const Vector3d r = x - d.S;
   detail::LocalModel<2> m;
   m.f = 0.5 * r.squaredNorm();
-  m.g << -d.Su.dot(r), -d.Sv.dot(r);                          // (16)
-  m.H << d.Su.dot(d.Su) - d.Suu.dot(r), d.Su.dot(d.Sv) - d.Suv.dot(r),  // (17)
-      d.Su.dot(d.Sv) - d.Suv.dot(r), d.Sv.dot(d.Sv) - d.Svv.dot(r);
+  m.g << -d.Su.dot(r), -d.Sv.dot(r);  // (16)
+  m.has_hessian = order >= 2;
+  if (m.has_hessian)
+    m.H << d.Su.dot(d.Su) - d.Suu.dot(r), d.Su.dot(d.Sv) - d.Suv.dot(r),  // (17)
+        d.Su.dot(d.Sv) - d.Suv.dot(r), d.Sv.dot(d.Sv) - d.Svv.dot(r);
   const double su = d.Su.norm(), sv = d.Sv.norm();
   const double L = su * widths[0] + sv * widths[1];
   const double rn = std::max(r.norm(), L);
@@ -101,10 +103,10 @@ ProjectionResult closest_point_local(const Surface& s, const Vector3d& x, const 
   SurfaceDerivs last;
   Vector2d last_uv(NAN, NAN);
   const detail::NewtonOutcome<2> o = detail::bounded_newton<2>(
-      [&](const Vector2d& t) {
-        last = s.derivs(t[0], t[1], 2);
+      [&](const Vector2d& t, int order) {
+        last = s.derivs(t[0], t[1], order);
         last_uv = t;
-        return surface_model(last, x, widths);
+        return surface_model(last, x, widths, order);
       },
       start, box, opt);
   return finish(s, x, o.t, o, last, last_uv);
@@ -306,7 +308,7 @@ ProjectionResult curve_local(const NurbsCurve& c, const Vector3d& x, double u0, 
   Eigen::Matrix<double, 1, 1> t0;
   t0[0] = u0;
   const detail::NewtonOutcome<1> o = detail::bounded_newton<1>(
-      [&](const Eigen::Matrix<double, 1, 1>& t) {
+      [&](const Eigen::Matrix<double, 1, 1>& t, int) {
         return curve_model(c, x, t[0], c.domain().hi - c.domain().lo);
       }, t0, box, opt);
   ProjectionResult r;

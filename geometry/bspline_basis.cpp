@@ -49,9 +49,14 @@ void basis_funs(int span, double u, int p, std::span<const double> U, BasisValue
   }
 }
 
-void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> U,
-                     BasisDerivs& ders) {
-  // A2.3 (p. 72). ndu holds basis functions (upper triangle) and knot differences (lower).
+namespace {
+
+// A2.3 (p. 72). ndu holds basis functions (upper triangle) and knot differences (lower).
+// PF = p for the common degrees (the loops unroll), 0 when p is known at run time only.
+template <int PF>
+void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const double> U,
+                          BasisDerivs& ders) {
+  const int p = PF > 0 ? PF : p_rt;
   assert(p <= kMaxDegree && nd <= kMaxDerivOrder);
   constexpr int M = kMaxDegree + 1;
   double ndu[M][M];
@@ -132,6 +137,17 @@ void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> 
   for (int k = 1; k <= n; ++k) {
     for (int j = 0; j <= p; ++j) ders[k][j] *= r;
     r *= (p - k);
+  }
+}
+
+}  // namespace
+
+void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> U,
+                     BasisDerivs& ders) {
+  switch (p) {
+    case 2: return ders_basis_funs_impl<2>(span, u, p, nd, U, ders);
+    case 3: return ders_basis_funs_impl<3>(span, u, p, nd, U, ders);
+    default: return ders_basis_funs_impl<0>(span, u, p, nd, U, ders);
   }
 }
 

@@ -72,10 +72,13 @@ namespace {
 // A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
 // S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
 //           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) / w
-// The order O is a template parameter so that the derivative loops unroll.
-template <int O>
-SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p, int q, int su,
-                          int sv, int nu, const std::vector<Vector4d>& pw) {
+// The order O, and for the common degrees also PF = p and QF = q (0: known at run time only),
+// are template parameters so that the loops unroll.
+template <int O, int PF, int QF>
+SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p_rt, int q_rt,
+                          int su, int sv, int nu, const std::vector<Vector4d>& pw) {
+  const int p = PF > 0 ? PF : p_rt;
+  const int q = QF > 0 ? QF : q_rt;
   // First the u-sums of every row of the element's net, T[k] = sum_r Nu[k][r] Pw[.][.], then
   // the v-sums A[k][l] = sum_s Nv[l][s] T_s[k], k + l <= O.
   Vector4d A[O + 1][O + 1];
@@ -120,6 +123,14 @@ SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p, i
   return d;
 }
 
+template <int O>
+SurfaceDerivs dispatch_degrees(const BasisDerivs& Nu, const BasisDerivs& Nv, int p, int q, int su,
+                               int sv, int nu, const std::vector<Vector4d>& pw) {
+  if (p == 2 && q == 2) return eval_derivs<O, 2, 2>(Nu, Nv, p, q, su, sv, nu, pw);
+  if (p == 3 && q == 3) return eval_derivs<O, 3, 3>(Nu, Nv, p, q, su, sv, nu, pw);
+  return eval_derivs<O, 0, 0>(Nu, Nv, p, q, su, sv, nu, pw);
+}
+
 }  // namespace
 
 SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
@@ -134,9 +145,9 @@ SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
   ders_basis_funs(su, u, p, order, U, Nu);
   ders_basis_funs(sv, v, q, order, V, Nv);
   switch (order) {
-    case 0: return eval_derivs<0>(Nu, Nv, p, q, su, sv, num_u(), pw_);
-    case 1: return eval_derivs<1>(Nu, Nv, p, q, su, sv, num_u(), pw_);
-    default: return eval_derivs<2>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    case 0: return dispatch_degrees<0>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    case 1: return dispatch_degrees<1>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    default: return dispatch_degrees<2>(Nu, Nv, p, q, su, sv, num_u(), pw_);
   }
 }
 
