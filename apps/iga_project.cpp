@@ -21,7 +21,8 @@ namespace {
 
 struct ProjectOptions {
   std::string file, entity, points, rays, out;
-  bool warm = false;
+  bool warm = false, cgal = false;
+  double search_distance = 0.0;
 };
 
 // Rows of three finite numbers; a first line that is not numeric is a header and skipped.
@@ -86,13 +87,18 @@ int run_project(const ProjectOptions& o) {
   }
   *out << "u,v,x,y,z,nx,ny,nz,distance,status,iterations,patch\n" << std::setprecision(15);
   const auto t0 = std::chrono::steady_clock::now();
+  if (o.search_distance > 0.0 && (!dirs.empty() || o.warm))
+    throw std::invalid_argument("--search-distance applies to closest points, not to --ray or --warm");
+  std::vector<ProjectionResult> batch;
+  if (o.search_distance > 0.0) batch = rs.closest_points(pts, o.search_distance, o.cgal);
   ProjectionResult prev;
   prev.patch = -1;
   std::size_t ok = 0;
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    const ProjectionResult r = dirs.empty() ? (o.warm && i > 0 ? rs.closest_point(pts[i], prev)
-                                                               : rs.closest_point(pts[i]))
-                                            : rs.ray(pts[i], dirs[i]);
+    const ProjectionResult r = !batch.empty() ? batch[i]
+                               : !dirs.empty() ? rs.ray(pts[i], dirs[i])
+                               : o.warm && i > 0 ? rs.closest_point(pts[i], prev)
+                                                 : rs.closest_point(pts[i]);
     prev = r;
     ok += found(r.status);
     *out << r.uv[0] << "," << r.uv[1] << "," << r.point.x() << "," << r.point.y() << ","
@@ -122,6 +128,11 @@ Action add_project_command(CLI::App& app) {
   cmd->add_option("--entity,-e", o->entity, "Surface or patch group (default: the first group, else the first surface)");
   cmd->add_option("--out,-o", o->out, "Result CSV (default: standard output)");
   cmd->add_flag("--warm", o->warm, "Warm-start each point from the previous one's foot point");
+  cmd->add_option("--search-distance", o->search_distance,
+                  "Only feet within this distance (others: status far), found through a broad "
+                  "phase over the Bezier elements")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--cgal", o->cgal, "Broad phase with CGAL box_intersection_d instead of the grid");
   return [o]() { return run_project(*o); };
 }
 

@@ -154,16 +154,28 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
 
 ProjectionResult PatchProjector::project_within(const Vector3d& x, double max_distance,
                                                 const ProjectionOptions& opt) const {
-  // Branch and bound over the Bezier elements. Lower bound: distance to the element's box
-  // (convex hull property); upper bound: the best foot point so far. Each visited element is
-  // searched by a Newton restricted to it, seeded at its nearest sample.
+  return search(x, nullptr, boxes_.size(), max_distance, opt);
+}
+
+ProjectionResult PatchProjector::project_among(const Vector3d& x, std::span<const int> ids,
+                                               double max_distance,
+                                               const ProjectionOptions& opt) const {
+  return search(x, ids.data(), ids.size(), max_distance, opt);
+}
+
+ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::size_t n_ids,
+                                        double max_distance, const ProjectionOptions& opt) const {
+  // Branch and bound over the Bezier elements (all, or the ids given). Lower bound: distance to
+  // the element's box (convex hull property); upper bound: the best foot point so far. Each
+  // visited element is searched by Newtons restricted to it, seeded at its sample minima.
   thread_local std::vector<std::pair<double, int>> order;
   order.clear();
   const double limit2 = max_distance < kInf ? max_distance * max_distance : kInf;
   double ub2 = limit2;
-  for (std::size_t e = 0; e < boxes_.size(); ++e) {
-    const double lb2 = box_distance2(boxes_[e], x);
-    if (lb2 <= limit2) order.emplace_back(lb2, static_cast<int>(e));
+  for (std::size_t k = 0; k < n_ids; ++k) {
+    const int e = ids ? ids[k] : static_cast<int>(k);
+    const double lb2 = box_distance2(boxes_[static_cast<std::size_t>(e)], x);
+    if (lb2 <= limit2) order.emplace_back(lb2, e);
   }
   ProjectionResult best;
   best.status = ProjectionStatus::far;

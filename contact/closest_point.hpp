@@ -8,6 +8,7 @@
 // (branch and bound), so the global minimum is found also on edges and corners.
 #pragma once
 
+#include <span>
 #include <vector>
 
 #include "contact/projection.hpp"
@@ -52,12 +53,18 @@ class PatchProjector {
   /// status not_converged with distance = +inf when none does.
   ProjectionResult project_within(const Vector3d& x, double max_distance,
                                   const ProjectionOptions& opt = {}) const;
+  /// The same search among the given elements only (indices into elements(), e.g. the
+  /// candidates of a contact search broad phase).
+  ProjectionResult project_among(const Vector3d& x, std::span<const int> element_ids,
+                                 double max_distance, const ProjectionOptions& opt = {}) const;
 
  private:
   struct Sample {
     Vector2d uv;
     Vector3d x;
   };
+  ProjectionResult search(const Vector3d& x, const int* ids, std::size_t n_ids,
+                          double max_distance, const ProjectionOptions& opt) const;
   static constexpr int kMaxSamples = 64;  // 8 x 8
   NurbsSurface s_;
   std::vector<BezierPatch> elements_;

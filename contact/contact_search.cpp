@@ -405,21 +405,39 @@ std::vector<SearchPair> RigidBoxIndex::query(const std::vector<Box3>& query_boxe
 
 // ---- brute force ------------------------------------------------------------------------
 
+namespace {
+
+/// The rigid boxes of a brute-force reference, enlarged by the distance; valid[e] is 0 for an
+/// empty box.
+struct EnlargedBoxes {
+  std::vector<Box3> box;
+  std::vector<char> valid;
+};
+
+/// The set-up both brute-force references share, in this order: the distance and the counts
+/// checked (`queries` names the query vector in the message), then the rigid boxes enlarged.
+EnlargedBoxes brute_force_setup(const char* where, const char* queries, std::size_t n_queries,
+                                const std::vector<Box3>& boxes, double distance) {
+  check_distance(where, distance);
+  check_count(where, queries, n_queries);
+  check_count(where, "boxes", boxes.size());
+  EnlargedBoxes rigid{std::vector<Box3>(boxes.size()), std::vector<char>(boxes.size())};
+  for (std::size_t e = 0; e < boxes.size(); ++e)
+    rigid.valid[e] = enlarged(where, boxes[e], distance, e, rigid.box[e]);
+  return rigid;
+}
+
+}  // namespace
+
 std::vector<SearchPair> broad_phase_brute_force(const std::vector<Vector3d>& points,
                                                 const std::vector<Box3>& boxes, double distance) {
   constexpr const char* where = "broad_phase_brute_force(points, boxes)";
-  check_distance(where, distance);
-  check_count(where, "points", points.size());
-  check_count(where, "boxes", boxes.size());
-  std::vector<Box3> rigid(boxes.size());
-  std::vector<char> valid(boxes.size());
-  for (std::size_t e = 0; e < boxes.size(); ++e)
-    valid[e] = enlarged(where, boxes[e], distance, e, rigid[e]);
+  const EnlargedBoxes rigid = brute_force_setup(where, "points", points.size(), boxes, distance);
   std::vector<SearchPair> pairs;
   for (std::size_t q = 0; q < points.size(); ++q) {
     check_point(where, points[q], q);
     for (std::size_t e = 0; e < boxes.size(); ++e)
-      if (valid[e] && closed_contains(rigid[e], points[q]))
+      if (rigid.valid[e] && closed_contains(rigid.box[e], points[q]))
         pairs.push_back(SearchPair{static_cast<int>(q), static_cast<int>(e)});
   }
   return pairs;
@@ -428,18 +446,13 @@ std::vector<SearchPair> broad_phase_brute_force(const std::vector<Vector3d>& poi
 std::vector<SearchPair> broad_phase_brute_force(const std::vector<Box3>& query_boxes,
                                                 const std::vector<Box3>& boxes, double distance) {
   constexpr const char* where = "broad_phase_brute_force(query_boxes, boxes)";
-  check_distance(where, distance);
-  check_count(where, "query_boxes", query_boxes.size());
-  check_count(where, "boxes", boxes.size());
-  std::vector<Box3> rigid(boxes.size());
-  std::vector<char> valid(boxes.size());
-  for (std::size_t e = 0; e < boxes.size(); ++e)
-    valid[e] = enlarged(where, boxes[e], distance, e, rigid[e]);
+  const EnlargedBoxes rigid =
+      brute_force_setup(where, "query_boxes", query_boxes.size(), boxes, distance);
   std::vector<SearchPair> pairs;
   for (std::size_t q = 0; q < query_boxes.size(); ++q) {
     if (!query_box(where, query_boxes[q], q)) continue;
     for (std::size_t e = 0; e < boxes.size(); ++e)
-      if (valid[e] && closed_overlap(query_boxes[q], rigid[e]))
+      if (rigid.valid[e] && closed_overlap(query_boxes[q], rigid.box[e]))
         pairs.push_back(SearchPair{static_cast<int>(q), static_cast<int>(e)});
   }
   return pairs;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "contact/analytic_projection.hpp"
+#include "contact/contact_search.hpp"
 #include "contact/ray_projection.hpp"
 
 namespace iga {
@@ -225,6 +226,54 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
     return r;
   }
   return g;
+}
+
+std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vector3d>& points,
+                                                         double search_distance, bool use_cgal,
+                                                         const ProjectionOptions& opt) const {
+  // Broad phase: every Bezier element of every NURBS piece, tagged (piece, element).
+  std::vector<Box3> boxes;
+  std::vector<std::pair<int, int>> tag;
+  for (int i = 0; i < num_patches(); ++i)
+    if (const PatchProjector* P = nurbs(i))
+      for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
+        boxes.push_back(P->element_boxes()[e]);
+        tag.emplace_back(i, static_cast<int>(e));
+      }
+  const std::vector<SearchPair> pairs = use_cgal ? broad_phase(points, boxes, search_distance)
+                                                 : RigidBoxIndex(boxes, search_distance).query(points);
+  // Narrow phase: per point, per piece, the projection among the candidate elements.
+  std::vector<ProjectionResult> out(points.size());
+  std::vector<int> ids;
+  std::size_t k = 0;
+  for (std::size_t q = 0; q < points.size(); ++q) {
+    const Vector3d& x = points[q];
+    ProjectionResult best;
+    best.status = ProjectionStatus::far;
+    best.distance = kInf;
+    double best_d = search_distance;
+    auto consider = [&](ProjectionResult r, int piece) {
+      r.patch = piece;
+      if (r.status == ProjectionStatus::far) return;
+      const double d = (r.point - x).norm();
+      if (d > search_distance) return;
+      if (best.status == ProjectionStatus::far || d < best_d * (1.0 - 1e-12)) best_d = d, best = r;
+    };
+    // pairs are sorted by query, then by box: the boxes of one piece are contiguous
+    while (k < pairs.size() && pairs[k].query == static_cast<int>(q)) {
+      const int piece = tag[static_cast<std::size_t>(pairs[k].box)].first;
+      ids.clear();
+      while (k < pairs.size() && pairs[k].query == static_cast<int>(q) &&
+             tag[static_cast<std::size_t>(pairs[k].box)].first == piece)
+        ids.push_back(tag[static_cast<std::size_t>(pairs[k++].box)].second);
+      consider(nurbs(piece)->project_among(x, ids, best_d, opt), piece);
+    }
+    for (int i = 0; i < num_patches(); ++i)
+      if (!nurbs(i)) consider(project_piece(i, x, best_d, opt), i);
+    union_status(best);
+    out[q] = best;
+  }
+  return out;
 }
 
 ProjectionResult RigidSurface::ray(const Vector3d& x, const Vector3d& N,

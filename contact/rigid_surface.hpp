@@ -43,6 +43,13 @@ class RigidSurface {
   /// the foot point reaches one of the patch's edges, the search continues over all pieces.
   ProjectionResult closest_point(const Vector3d& x, const ProjectionResult& previous,
                                  const ProjectionOptions& opt = {}) const;
+  /// Closest points of many query points within `search_distance` (status far beyond it):
+  /// a broad phase over all Bezier elements of all patches (RigidBoxIndex, the uniform grid
+  /// of contact_search.hpp, or CGAL's box_intersection_d with use_cgal), then the projection
+  /// among each point's candidate elements only. Analytic pieces are always candidates.
+  std::vector<ProjectionResult> closest_points(const std::vector<Vector3d>& points,
+                                               double search_distance, bool use_cgal = false,
+                                               const ProjectionOptions& opt = {}) const;
   /// Ray x + xi3 N: the hit with the smallest |xi3| over all pieces (miss / tangent if none).
   ProjectionResult ray(const Vector3d& x, const Vector3d& N,
                        const ProjectionOptions& opt = {}) const;

@@ -104,3 +104,32 @@ TEST_CASE("RigidSurface: groups of a model file act as one surface", "[contact][
   CHECK(r.distance == Approx(2.0).epsilon(1e-12));
   CHECK_THROWS_AS(RigidSurface::from_geometry(m, "nothing"), std::invalid_argument);
 }
+
+TEST_CASE("RigidSurface::closest_points: broad phase + narrow phase equals the full search",
+          "[contact][multipatch][search]") {
+  RigidSurface rs = split_cylinder(3, 1.0, 2.0);
+  rs.add(make_torus(Vector3d(0, 0, 5), Vector3d::UnitZ(), 2.0, 0.5));
+  std::mt19937 g(9);
+  std::uniform_real_distribution<double> c(-3.0, 3.0), z(-1.0, 7.0);
+  std::vector<Vector3d> pts;
+  for (int k = 0; k < 3000; ++k) pts.emplace_back(c(g), c(g), z(g));
+  const double d = 0.4;
+  for (bool cgal : {false, true}) {
+    const std::vector<ProjectionResult> batch = rs.closest_points(pts, d, cgal);
+    REQUIRE(batch.size() == pts.size());
+    int near = 0;
+    for (std::size_t k = 0; k < pts.size(); ++k) {
+      const ProjectionResult full = rs.closest_point(pts[k]);
+      const double dist = (full.point - pts[k]).norm();
+      if (dist <= d * (1 - 1e-9)) {
+        ++near;
+        REQUIRE(found(batch[k].status));
+        CHECK((batch[k].point - full.point).norm() <= 1e-10);
+        CHECK(batch[k].status == full.status);
+      } else if (dist > d * (1 + 1e-9)) {
+        CHECK(batch[k].status == ProjectionStatus::far);
+      }
+    }
+    CHECK(near > 300);  // the test has teeth: many points are within the search distance
+  }
+}

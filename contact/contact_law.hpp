@@ -1,0 +1,71 @@
+// Penalty contact with Coulomb friction at one point of a deformable curve (a rope's centre
+// line) against a rigid surface that is master: the curves-to-rigid-surface (CTRS) point law
+// of [KS15] (see ../shared/paper/EQUATIONS.md §3-4), with its consistent linearization.
+//
+// Notation ([KS15] -> code): r_s -> r (the deformable point), xi^1, xi^2 -> xi (foot
+// parameters on the rigid surface), rho, rho_i, rho_ij -> the surface point and derivatives at
+// the foot, n -> n, a_ij -> a, h_ij -> h, xi^3 -> gap, R -> radius, eps_N, eps_T -> eps_n,
+// eps_t, mu -> mu, N -> N, T^i (contravariant) -> T.
+//
+//   gap  xi^3 = (r - rho).n - R                                   (52)
+//   N    = eps_N xi^3 if xi^3 <= 0, else 0 (N <= 0: compression)   (34)
+//   T_tr^i = T^i_(n) - eps_T (xi^i - xi^i_(n))                     (66), (54)
+//   |T_tr| = sqrt(T_tr^i a_ij T_tr^j),  Phi = |T_tr| - mu |N|       (35)
+//   T^i = T_tr^i (stick, Phi <= 0),  mu |N| T_tr^i / |T_tr| (slip)  (36)
+//   force on the deformable point  f = -N n + T^i rho_i             (67: R_S = -R_C, with the
+//       sign of T chosen so that f opposes the sliding increment)
+// and its derivative K = df/dr (3x3, not symmetric with friction), from
+//   dxi/dr = A^{-1} [rho_1 rho_2]^T, A_ij = a_ij - rho_ij.(r - rho)   ((17), implicit function)
+//   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten).
+// The history (xi_(n), T_(n)) is committed only at converged load steps.
+#pragma once
+
+#include "contact/projection.hpp"
+#include "geometry/surface.hpp"
+
+namespace iga {
+
+struct ContactParameters {
+  double eps_n = 0.0;   ///< normal penalty eps_N > 0
+  double eps_t = 0.0;   ///< tangential penalty eps_T >= 0 (0: frictionless)
+  double mu = 0.0;      ///< Coulomb friction coefficient >= 0
+  double radius = 0.0;  ///< rope radius R >= 0 (52)
+};
+
+/// Converged state of the previous load step at one contact point.
+struct ContactHistory {
+  bool active = false;               ///< in contact at the last converged step
+  int patch = -1;                    ///< rigid patch of the stored foot
+  Vector2d xi = Vector2d::Zero();    ///< foot parameters xi_(n)
+  Vector3d foot = Vector3d::Zero();  ///< foot point rho(xi_(n)) (to carry T across patches)
+  Vector2d T = Vector2d::Zero();     ///< contravariant tangential force T^i_(n)
+  Vector3d T_vector = Vector3d::Zero();  ///< T^i rho_i at the stored foot (to change patch)
+};
+
+/// The contact state at one point for the current iterate.
+struct ContactPoint {
+  bool active = false;  ///< penetrating (gap <= 0)
+  bool slip = false;    ///< return mapping on the slip surface (36)
+  double gap = 0.0;     ///< xi^3 (52)
+  double N = 0.0;       ///< normal force (34), <= 0
+  double phi = 0.0;     ///< slip function |T_tr| - mu |N| of the trial force (35)
+  Vector2d T = Vector2d::Zero();         ///< contravariant tangential force T^i (36)
+  Vector3d T_vector = Vector3d::Zero();  ///< T^i rho_i
+  Vector2d xi = Vector2d::Zero();        ///< foot parameters
+  Vector3d foot = Vector3d::Zero();
+  Vector3d normal = Vector3d::Zero();
+  Vector3d force = Vector3d::Zero();      ///< f on the deformable point
+  Matrix3d stiffness = Matrix3d::Zero();  ///< df/dr
+};
+
+/// Evaluates the law at the deformable point r whose closest point on `s` is `foot` (computed
+/// by the caller, e.g. RigidSurface warm-started from the history). The foot must be an
+/// interior or seam point of the patch for the linearization to be exact; at edges and
+/// vertices the tangent drops the terms of the held parameters.
+ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
+                              const ContactParameters& p, const ContactHistory& history);
+
+/// The history to store after a converged step.
+ContactHistory commit_contact(const ContactPoint& c, int patch);
+
+}  // namespace iga

@@ -1,0 +1,110 @@
+// Sparse direct solution of K du = -R, behind one interface: CHOLMOD supernodal/simplicial LL^T
+// for symmetric positive definite tangents, UMFPACK LU otherwise (the frictional tangent is not
+// symmetric, [KS15] eqs. 38-39, 76-78) and as the fallback when the Cholesky factorization finds
+// the matrix not positive definite. The symbolic analysis is kept and reused while the sparsity
+// pattern is unchanged. Singular matrices are a status, not an exception.
+// References: [CHOLMOD] Chen, Davis, Hager, Rajamanickam, ACM TOMS 35(3), 2008;
+// [UMFPACK] Davis, ACM TOMS 30(2), 2004; [KS15] see ../shared/paper/EQUATIONS.md.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace iga {
+
+using Eigen::VectorXd;
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column major
+
+/// The factorization that holds the current solution operator.
+enum class LinearBackend {
+  none,     ///< no successful factorization
+  cholmod,  ///< CHOLMOD LL^T (symmetric positive definite)
+  umfpack,  ///< UMFPACK LU (general, or the fallback)
+};
+
+/// How the last factorize()/solve() ended.
+enum class LinearSolveStatus {
+  success,
+  singular,        ///< zero pivot in the LU factorization, or a solution that is not finite
+  invalid_input,   ///< non-finite matrix entries, or the library rejected the matrix
+  not_factorized,  ///< solve() without a successful factorize()
+};
+
+/// Short lower-case names ("cholmod", "singular", ...) for messages and logs.
+const char* to_string(LinearBackend b);
+const char* to_string(LinearSolveStatus s);
+
+/// Counters and wall times (seconds), cumulative since construction or reset().
+struct LinearSolverStats {
+  int analyses = 0;           ///< symbolic analyses (fill-reducing ordering), both backends
+  int factorizations = 0;     ///< numeric factorizations attempted (a fallback counts two)
+  int cholesky_failures = 0;  ///< Cholesky attempts that found the matrix not positive definite
+  int solves = 0;             ///< triangular solves
+  double time_analyze = 0.0;
+  double time_factorize = 0.0;
+  double time_solve = 0.0;
+};
+
+/// A sparse direct solver for square Eigen::SparseMatrix<double>.
+///
+/// symmetric() == true: the matrix is taken as symmetric (the full matrix is passed; CHOLMOD
+/// reads its lower triangle) and factorized by CHOLMOD LL^T; if that fails (not positive
+/// definite: indefinite or singular), the same matrix is factorized by UMFPACK LU. The Cholesky
+/// is tried first again at every factorize(). symmetric() == false: UMFPACK only.
+///
+/// The pattern of the last matrix is kept as its signature; a matrix with the same pattern
+/// (same size, column pointers and row indices; explicit zeros count as entries) reuses each
+/// backend's symbolic analysis. The solver keeps its own copy of the matrix (UMFPACK's
+/// iterative refinement reads it at solve time), so the caller's matrix may change afterwards.
+class LinearSolver {
+ public:
+  explicit LinearSolver(bool symmetric = true);
+  ~LinearSolver();
+  LinearSolver(LinearSolver&&) noexcept;
+  LinearSolver& operator=(LinearSolver&&) noexcept;
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  /// Picks CHOLMOD (with UMFPACK fallback) or UMFPACK for the next factorize().
+  void set_symmetric(bool symmetric);
+  bool symmetric() const;
+
+  /// Analyzes (if the pattern changed) and factorizes A. Throws std::invalid_argument if A is
+  /// not square; every numerical failure is a status, with a message.
+  [[nodiscard]] LinearSolveStatus factorize(const SparseMatrix& A);
+  /// x = A^-1 b with the last successful factorization. Throws std::invalid_argument if the size
+  /// of b does not match. x need not be sized; b and x must not alias.
+  [[nodiscard]] LinearSolveStatus solve(const VectorXd& b, VectorXd& x);
+  /// factorize(A), then solve(b, x).
+  [[nodiscard]] LinearSolveStatus solve(const SparseMatrix& A, const VectorXd& b, VectorXd& x);
+
+  /// Status of the last factorize() or solve().
+  LinearSolveStatus status() const;
+  /// What happened, for logs: empty after a plain success; after a fallback, why the Cholesky
+  /// failed ("not positive definite at column 3 of 10; factorized by UMFPACK"); after a failure,
+  /// the reason.
+  const std::string& message() const;
+  /// The backend of the current factorization (none after a failed factorize()).
+  LinearBackend backend() const;
+  /// Whether the last factorize() fell back from CHOLMOD to UMFPACK.
+  bool fell_back() const;
+  /// Whether the last factorize() reused a symbolic analysis (pattern unchanged).
+  bool reused_analysis() const;
+  /// A cheap estimate of the reciprocal condition number of the current factorization
+  /// (CHOLMOD: (min L_ii / max L_ii)^2; UMFPACK: min |U_ii| / max |U_ii|); 0 if none. A value
+  /// near machine epsilon warns of a (nearly) singular matrix that the pivots did not catch.
+  double rcond() const;
+  const LinearSolverStats& stats() const;
+
+  /// Forgets the pattern, the analyses, the factorization and the statistics.
+  void reset();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace iga

@@ -1,0 +1,35 @@
+// The interface between discretized models (rods, shells, contact) and the nonlinear solver.
+// A problem assembles, for a state u of the unknowns (control point displacements, free DOFs
+// only) at a pseudo-time t, the residual R(u, t) = f_int(u) - f_ext(t) (+ contact) and its
+// consistent tangent K = dR/du. History (friction, [KS15] eqs. 35-36, 66) is committed only at
+// converged steps.
+#pragma once
+
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+namespace iga {
+
+using Eigen::VectorXd;
+using SparseMatrix = Eigen::SparseMatrix<double>;  // column major
+
+class NonlinearProblem {
+ public:
+  virtual ~NonlinearProblem() = default;
+
+  /// Number of unknowns.
+  virtual int num_dofs() const = 0;
+  /// Residual and (if K != nullptr) tangent at state u and pseudo-time t. Prescribed values
+  /// (displacements along load curves) are part of the problem, not of u.
+  virtual void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) = 0;
+  /// Whether the tangent is symmetric (e.g. false with friction): picks CHOLMOD or UMFPACK.
+  virtual bool symmetric() const { return true; }
+  /// Called after a converged step at time t with state u: commit history variables.
+  virtual void commit(const VectorXd& u, double t) { (void)u, (void)t; }
+  /// A short status for the progress line (e.g. "contact 24 (stick 10, slip 14)").
+  virtual std::string status() const { return {}; }
+};
+
+}  // namespace iga
