@@ -7,6 +7,7 @@
 #include <numbers>
 #include <random>
 
+#include "contact/analytic_projection.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/ray_projection.hpp"
 #include "geometry/constructions.hpp"
@@ -124,7 +125,7 @@ TEST_CASE("PatchProjector: points beyond an edge or a corner land on it", "[cont
 TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
           "[contact][closest][closed-form]") {
   // (B.10) cylinder, (B.4) sphere, (B.16) torus, (B.23) cone: |p| from the formulas, 10,000
-  // random points on both sides within the proximity domain.
+  // random points per surface on both sides within the proximity domain.
   std::mt19937 g(4);
   std::uniform_real_distribution<double> ang(0.0, 2 * kPi), unit(0.0, 1.0);
   const double R = 1.5, r = 0.6, H = 3.0, alpha = 0.5;
@@ -133,7 +134,7 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
   const PatchProjector tor(make_torus(Vector3d::Zero(), Vector3d::UnitZ(), 3.0, r));
   const PatchProjector con(make_cone(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), alpha, 1.0, 3.0));
   int n = 0;
-  for (int k = 0; k < 2500; ++k) {
+  for (int k = 0; k < 10000; ++k) {
     const double phi = ang(g), t = unit(g);
     {  // cylinder: p = |d| - R (B.10), outward normal, foot height unchanged
       const double rho = R * (0.2 + 1.6 * t), z = 0.05 * H + 0.9 * H * unit(g);
@@ -171,7 +172,7 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
       CHECK(c.distance == Approx(p).margin(1e-10));
       CHECK((c.point - foot).norm() <= 1e-10);
     }
-    n += 4;
+    ++n;
   }
   CHECK(n == 10000);
 }
@@ -242,4 +243,24 @@ TEST_CASE("closest_point on curves: circle, helix, and the ends as vertices",
   CHECK(hr.status == ProjectionStatus::interior);
   const CurveDerivs d = h.curve.derivs(hr.uv[0], 1);
   CHECK(std::abs((Vector3d(0.0, 1.5, 0.25) - hr.point).dot(d.d[1].normalized())) <= 1e-12);
+}
+
+TEST_CASE("PatchProjector: the bilinear NURBS hyperboloid agrees with the paper's Newton (16)-(22)",
+          "[contact][closest][closed-form]") {
+  // z = a x y over [-10, 10]^2 is exactly a bilinear patch with (u, v) = (x, y) (eq. 11).
+  const double a = 0.025;
+  const PatchProjector P(make_bilinear_hyperboloid(a, -10.0, 10.0, -10.0, 10.0));
+  std::mt19937 g(10);
+  std::uniform_real_distribution<double> c(-8.0, 8.0), off(-2.0, 2.0);
+  for (int k = 0; k < 10000; ++k) {
+    const double x = c(g), y = c(g);
+    const Vector3d n = Vector3d(-a * y, -a * x, 1.0).normalized();  // (22)
+    const Vector3d pt = Vector3d(x, y, a * x * y) + off(g) * n;
+    const ProjectionResult ks = hyperboloid_closest_point_ks(a, pt);
+    const ProjectionResult r = P.project(pt);
+    REQUIRE(found(ks.status));
+    REQUIRE(r.status == ProjectionStatus::interior);
+    CHECK((r.uv - ks.uv).norm() <= 1e-10);  // the same parametrization (alpha^1, alpha^2)
+    CHECK(r.distance == Approx(ks.distance).margin(1e-10));  // (21)
+  }
 }

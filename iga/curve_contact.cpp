@@ -1,0 +1,136 @@
+// CTRS contact integral ([KS15] Sects. 4-5, eqs. (52), (66)-(70), (77)-(78)).
+#include "iga/curve_contact.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "geometry/differential_geometry.hpp"
+
+namespace iga {
+
+namespace {
+// Gauss-Legendre points and weights on [-1, 1] (Golub-Welsch would be overkill: n <= 8).
+void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(static_cast<std::size_t>(n), 0.0);
+  w.assign(static_cast<std::size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    // Newton on the Legendre polynomial from the Chebyshev-like initial guess
+    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = 0.0;
+      for (int k = 1; k <= n; ++k) {
+        const double p2 = p1;
+        p1 = p0;
+        p0 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p2) / k;
+      }
+      dp = n * (z * p0 - p1) / (z * z - 1.0);
+      const double dz = p0 / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-16) break;
+    }
+    x[static_cast<std::size_t>(i)] = -z;
+    w[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - z * z) * dp * dp);
+  }
+}
+}  // namespace
+
+CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
+                           const ContactParameters& params, int points_per_element)
+    : ref_(reference), rigid_(&rigid), params_(params) {
+  if (points_per_element < 1 || points_per_element > 16)
+    throw std::invalid_argument("contact points per element must be in 1..16, got " +
+                                std::to_string(points_per_element));
+  std::vector<double> gx, gw;
+  gauss_legendre(points_per_element, gx, gw);
+  const std::vector<double> br = ref_.knots().breaks();
+  for (std::size_t e = 0; e + 1 < br.size(); ++e)
+    for (int k = 0; k < points_per_element; ++k) {
+      CurveContactPoint cp;
+      const double half = 0.5 * (br[e + 1] - br[e]);
+      cp.eta = br[e] + half * (1.0 + gx[static_cast<std::size_t>(k)]);
+      cp.weight = gw[static_cast<std::size_t>(k)] * half * ref_.derivs(cp.eta, 1).d[1].norm();
+      cp.foot.patch = -1;
+      points_.push_back(cp);
+    }
+}
+
+void CurveContact::rational_basis(double eta, BasisValues& R, int& first) const {
+  const int p = ref_.degree();
+  const int span = ref_.knots().find_span(eta);
+  basis_funs(span, eta, p, ref_.knots().span(), R);
+  first = span - p;
+  double W = 0.0;
+  for (int j = 0; j <= p; ++j) W += R[j] * ref_.weight(first + j);
+  for (int j = 0; j <= p; ++j) R[j] *= ref_.weight(first + j) / W;
+}
+
+void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                            std::vector<Eigen::Triplet<double>>* K) {
+  const int p = ref_.degree();
+  for (CurveContactPoint& cp : points_) {
+    BasisValues Rb;
+    int first = 0;
+    rational_basis(cp.eta, Rb, first);
+    cp.x.setZero();
+    for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];  // (77)
+    // Closest point, warm-started from the last foot of this point.
+    cp.foot = cp.foot.patch >= 0 ? rigid_->closest_point(cp.x, cp.foot) : rigid_->closest_point(cp.x);
+    cp.law = ContactPoint();
+    cp.N = cp.T = cp.B = 0.0;
+    if (!found(cp.foot.status)) continue;
+    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history);
+    if (!cp.law.active) continue;
+    // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
+    for (int a = 0; a <= p; ++a) {
+      const int A = first + a;
+      R.segment<3>(3 * A) -= cp.weight * Rb[a] * cp.law.force;
+      if (!K) continue;
+      for (int b = 0; b <= p; ++b) {
+        const int B = first + b;
+        const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j) K->emplace_back(3 * A + i, 3 * B + j, k(i, j));
+      }
+    }
+    // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
+    Vector3d tangent = Vector3d::Zero();
+    {
+      BasisDerivs D;
+      const int span = ref_.knots().find_span(cp.eta);
+      ders_basis_funs(span, cp.eta, p, 1, ref_.knots().span(), D);
+      double W = 0.0, dW = 0.0;
+      Vector3d A0 = Vector3d::Zero(), A1 = Vector3d::Zero();
+      for (int j = 0; j <= p; ++j) {
+        const double w = ref_.weight(span - p + j);
+        W += D[0][j] * w;
+        dW += D[1][j] * w;
+        A0 += D[0][j] * w * x[static_cast<std::size_t>(span - p + j)];
+        A1 += D[1][j] * w * x[static_cast<std::size_t>(span - p + j)];
+      }
+      tangent = ((A1 - dW * A0 / W) / W).normalized();
+    }
+    const Vector3d e = -cp.law.normal;
+    const Vector3d g = tangent.cross(e);
+    // [KS15]'s T^i rho_i acts on the surface, -f_T: T = -T^i (rho_i.tau) = f_T.tau.
+    cp.N = cp.law.N;                      // (68)
+    cp.T = cp.law.T_vector.dot(tangent);  // (69)
+    cp.B = cp.law.T_vector.dot(g);        // (70)
+  }
+}
+
+void CurveContact::commit() {
+  for (CurveContactPoint& cp : points_)
+    if (found(cp.foot.status)) cp.history = commit_contact(cp.law, cp.foot.patch);
+}
+
+CurveContactCounts CurveContact::counts() const {
+  CurveContactCounts c;
+  for (const CurveContactPoint& cp : points_)
+    if (cp.law.active) {
+      ++c.active;
+      (cp.law.slip ? c.slip : c.stick)++;
+    }
+  return c;
+}
+
+}  // namespace iga

@@ -1,0 +1,67 @@
+// Contact of a deformable curve (a rope's or rod's centre line) with a rigid surface: the
+// CTRS contact integral of [KS15] Sects. 4-5 (see ../shared/paper/EQUATIONS.md §4).
+// Contact points are Gauss points along the curve (a number per element); each is projected
+// onto the rigid surface (closest point, warm-started from its last foot), the point law of
+// contact/contact_law.hpp gives the force f and df/dr, and with r_s = sum_a R_a(eta) x_a (77)
+//   residual    R_a  -= int R_a f ds,      tangent  K_ab -= int R_a R_b (df/dr) ds,
+// ds the reference arc length (the residual convention of iga/nonlinear_problem.hpp:
+// R = f_int - f_ext, contact forces are external). The forces are kept for output in the
+// curve's Serret-Frenet frame: N (68), pulling T (69), dragging B (70).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "contact/contact_law.hpp"
+#include "contact/rigid_surface.hpp"
+#include "geometry/nurbs_curve.hpp"
+
+namespace iga {
+
+/// One contact point's state for output.
+struct CurveContactPoint {
+  double eta = 0.0;      ///< curve parameter
+  double weight = 0.0;   ///< quadrature weight times reference ds/deta
+  Vector3d x = Vector3d::Zero();  ///< current position r_s
+  ProjectionResult foot;          ///< its projection (warm start of the next evaluation)
+  ContactPoint law;               ///< the point law's state
+  ContactHistory history;         ///< committed state of the last converged step
+  double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
+};
+
+struct CurveContactCounts {
+  int active = 0, stick = 0, slip = 0;
+};
+
+class CurveContact {
+ public:
+  /// `reference`: the curve in its reference configuration (knots, degree, weights are those
+  /// of the current configuration too); `points_per_element` Gauss points per element.
+  CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
+               const ContactParameters& params, int points_per_element);
+
+  /// Adds the contact contributions at the current control points x (3 unknowns per control
+  /// point, dof 3 a + k) to R and, if K is not null, to the triplets of the tangent.
+  void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                std::vector<Eigen::Triplet<double>>* K);
+  /// Stores the current state of every point as history (after a converged step).
+  void commit();
+
+  const std::vector<CurveContactPoint>& points() const { return points_; }
+  CurveContactCounts counts() const;
+  const ContactParameters& parameters() const { return params_; }
+  void set_parameters(const ContactParameters& p) { params_ = p; }
+
+ private:
+  // rational basis functions R_a at eta (first index of the non-zero ones in `first`)
+  void rational_basis(double eta, BasisValues& R, int& first) const;
+
+  NurbsCurve ref_;
+  const RigidSurface* rigid_;
+  ContactParameters params_;
+  std::vector<CurveContactPoint> points_;
+};
+
+}  // namespace iga
