@@ -14,6 +14,7 @@
 
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
+#include "geometry/fitting.hpp"
 #include "geometry/knot_vector.hpp"
 #include "tests/support/geometry_checks.hpp"
 
@@ -427,4 +428,39 @@ TEST_CASE("make_helix_cubic: deviation decreases like h^4 (observed order >= 3.5
       prev = dev;
     }
   }
+}
+
+TEST_CASE("fit_curve: reproduces a spline exactly and approximates a circle arc with O(h^4)",
+          "[geometry][fitting]") {
+  // a cubic B-spline sampled densely is recovered exactly (it lies in the space)
+  const std::vector<double> U = {0, 0, 0, 0, 0.3, 0.5, 0.8, 1, 1, 1, 1};
+  const std::vector<Vector3d> P = {{0, 0, 0}, {1, 2, 0}, {2, -1, 1}, {3, 0, 2}, {4, 1, 0}, {5, 3, 1}, {6, 0, 0}};
+  const NurbsCurve c(3, U, P);
+  std::vector<Vector3d> Q;
+  std::vector<double> t;
+  for (int k = 0; k <= 200; ++k) {
+    t.push_back(k / 200.0);
+    Q.push_back(c.point(k / 200.0));
+  }
+  const CurveFit f = fit_curve(Q, t, 3, U);
+  CHECK(f.max_deviation <= 1e-12);
+  for (int i = 0; i < 7; ++i) CHECK((f.curve.control_point(i) - P[i]).norm() <= 1e-10);
+  // a quarter circle: the error falls ~ h^4 for cubics under uniform refinement
+  double prev = 0.0;
+  for (int ne : {4, 8, 16}) {
+    std::vector<double> K(4, 0.0);
+    for (int e = 1; e < ne; ++e) K.push_back(static_cast<double>(e) / ne);
+    K.insert(K.end(), 4, 1.0);
+    std::vector<Vector3d> arc;
+    std::vector<double> s;
+    for (int k = 0; k <= 40 * ne; ++k) {
+      const double a = 0.5 * std::numbers::pi * k / (40.0 * ne);
+      arc.emplace_back(std::cos(a), std::sin(a), 0.0);
+      s.push_back(static_cast<double>(k) / (40 * ne));
+    }
+    const double dev = fit_curve(arc, s, 3, K).max_deviation;
+    if (prev > 0) CHECK(prev / dev >= 10.0);  // 2^4 = 16 in the limit
+    prev = dev;
+  }
+  CHECK(prev <= 1e-6);
 }
