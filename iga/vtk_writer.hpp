@@ -1,0 +1,40 @@
+// ParaView output: legacy VTK POLYDATA files (polylines and point clouds with point data) and
+// a .pvd collection tying the files of a run to their pseudo-times.
+// Reference: VTK User's Guide, "VTK File Formats" (legacy format, POLYDATA; ParaView's PVD).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace iga {
+
+/// Point data of one VTK file: named scalar or 3-vector fields, one value per point.
+struct VtkPointData {
+  std::vector<std::pair<std::string, std::vector<double>>> scalars;
+  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> vectors;
+};
+
+/// Writes points as a polyline (`connect` = true: a curve such as a rope's centre line) or as
+/// independent vertices (contact points). Throws std::runtime_error if the file cannot be
+/// written or a field's length differs from the number of points.
+void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                        bool connect, const VtkPointData& data = {},
+                        const std::string& title = "iga");
+
+/// A ParaView collection (.pvd): (time, file) pairs, files relative to the .pvd's folder.
+class VtkCollection {
+ public:
+  explicit VtkCollection(std::string path) : path_(std::move(path)) {}
+  /// Adds an entry and rewrites the .pvd at once, so that a run that stops midway leaves a
+  /// valid collection of what it wrote.
+  void add(double time, const std::string& file);
+
+ private:
+  std::string path_;
+  std::vector<std::pair<double, std::string>> entries_;
+};
+
+}  // namespace iga

@@ -1,0 +1,49 @@
+// The VTK writers produce files ParaView reads: structure and values checked by parsing back.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "iga/vtk_writer.hpp"
+
+using namespace iga;
+namespace fs = std::filesystem;
+
+namespace {
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+}  // namespace
+
+TEST_CASE("write_vtk_polydata: polyline with scalar and vector point data", "[iga][output]") {
+  const fs::path dir = fs::temp_directory_path() / ("iga_vtk_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}};
+  VtkPointData d;
+  d.scalars.push_back({"tension", {1.5, 2.5, 3.5}});
+  d.vectors.push_back({"force", {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});
+  write_vtk_polydata((dir / "rope.vtk").string(), pts, true, d);
+  const std::string s = slurp(dir / "rope.vtk");
+  CHECK_THAT(s, Catch::StartsWith("# vtk DataFile Version 3.0"));
+  CHECK_THAT(s, Catch::Contains("POINTS 3 double\n0 0 0\n1 0 0\n1 2 0\n"));
+  CHECK_THAT(s, Catch::Contains("LINES 1 4\n3 0 1 2\n"));
+  CHECK_THAT(s, Catch::Contains("SCALARS tension double 1\nLOOKUP_TABLE default\n1.5\n2.5\n3.5\n"));
+  CHECK_THAT(s, Catch::Contains("VECTORS force double\n1 0 0\n0 1 0\n0 0 1\n"));
+  write_vtk_polydata((dir / "cloud.vtk").string(), pts, false);
+  CHECK_THAT(slurp(dir / "cloud.vtk"), Catch::Contains("VERTICES 3 6\n1 0\n1 1\n1 2\n"));
+  d.scalars.push_back({"bad", {1.0}});
+  CHECK_THROWS_WITH(write_vtk_polydata((dir / "x.vtk").string(), pts, true, d),
+                    Catch::Contains("field 'bad' has 1 values for 3 points"));
+  CHECK_THROWS(write_vtk_polydata("/nonexistent/dir/x.vtk", pts, true));
+  VtkCollection pvd((dir / "run.pvd").string());
+  pvd.add(0.5, "rope_0001.vtk");
+  pvd.add(1.0, "rope_0002.vtk");
+  const std::string c = slurp(dir / "run.pvd");
+  CHECK_THAT(c, Catch::Contains("<DataSet timestep=\"0.5\" part=\"0\" file=\"rope_0001.vtk\"/>"));
+  CHECK_THAT(c, Catch::Contains("<DataSet timestep=\"1\" part=\"0\" file=\"rope_0002.vtk\"/>"));
+  fs::remove_all(dir);
+}
