@@ -10,7 +10,7 @@
 // nearer angular bound and is found there in closed form; the hyperboloid's edges are straight
 // lines (edge / vertex statuses, Sect. 2.2). The cone's apex is a vertex. Angles undefined on
 // the axis are 0 (or the domain's lower bound). Ray directions are normalized, so xi3 is a
-// length. See analytic_projection.cpp for the details.
+// length. See analytic_closest_point.cpp and analytic_ray.cpp for the details.
 #pragma once
 
 #include "contact/projection.hpp"
