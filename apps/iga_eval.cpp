@@ -146,11 +146,7 @@ int run_eval(const EvalOptions& o) {
   std::ostream* csv = &std::cout;
   if (o.grid > 0) {
     if (o.grid < 2) throw std::invalid_argument("--grid needs N >= 2");
-    if (!o.out.empty()) {
-      file_out.open(o.out);
-      if (!file_out) throw std::runtime_error("cannot write " + o.out);
-      csv = &file_out;
-    }
+    csv = &output_stream(o.out, file_out);
     *csv << std::setprecision(15);
   }
   bool surface_header = false, curve_header = false;

@@ -79,12 +79,7 @@ int run_project(const ProjectOptions& o) {
   }
   // 3. Project and write.
   std::ofstream file_out;
-  std::ostream* out = &std::cout;
-  if (!o.out.empty()) {
-    file_out.open(o.out);
-    if (!file_out) throw std::runtime_error("cannot write " + o.out);
-    out = &file_out;
-  }
+  std::ostream* out = &output_stream(o.out, file_out);
   *out << "u,v,x,y,z,nx,ny,nz,distance,status,iterations,patch\n" << std::setprecision(15);
   const auto t0 = std::chrono::steady_clock::now();
   if (o.search_distance > 0.0 && (!dirs.empty() || o.warm))
