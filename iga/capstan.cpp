@@ -1,0 +1,221 @@
+// The capstan problem of [KS15] Sect. 6.3 (Euler-Eytelwein (82)); set-up and parameter choices
+// are explained in capstan.hpp.
+#include "iga/capstan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include "geometry/analytic_surfaces.hpp"
+#include "geometry/constructions.hpp"
+#include "geometry/fitting.hpp"
+
+namespace iga {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+void require(bool ok, const char* field, const char* expected, double value) {
+  if (!ok)
+    throw std::invalid_argument(std::string("CapstanParameters.") + field + ": must be " +
+                                expected + ", got " + num(value));
+}
+
+// Unit travel direction of the clockwise arc at polar angle theta.
+Vector3d travel(double theta) {
+  return Vector3d(std::sin(theta), -std::cos(theta), 0.0);
+}
+
+// The reference centre line: line + arc + line (arc-length parameter s) fitted by a cubic with
+// double knots at the tangent points [PT97] 9.4.1.
+CurveFit fit_rope(const CapstanParameters& p) {
+  const double rho = p.radius + p.rope_radius;  // gap (52) zero in the reference
+  const double thA = 0.5 * kPi + 0.5 * p.phi, thB = 0.5 * kPi - 0.5 * p.phi;
+  const double L = p.span_length, La = rho * p.phi;
+  const double s1 = L, s2 = L + La, s3 = 2.0 * L + La;
+  const Vector3d PA = rho * Vector3d(std::cos(thA), std::sin(thA), 0.0);
+  const Vector3d PB = rho * Vector3d(std::cos(thB), std::sin(thB), 0.0);
+  const Vector3d tA = travel(thA), tB = travel(thB);
+  // Exact point of the reference path at arc length s.
+  auto path = [&](double s) -> Vector3d {
+    if (s <= s1) return PA - (s1 - s) * tA;
+    if (s >= s2) return PB + (s - s2) * tB;
+    const double th = thA - (s - s1) / rho;
+    return rho * Vector3d(std::cos(th), std::sin(th), 0.0);
+  };
+
+  std::vector<double> knots(4, 0.0);
+  for (int k = 1; k < p.span_elements; ++k) knots.push_back(L * k / p.span_elements);
+  knots.insert(knots.end(), 2, s1);  // C1: the curvature jumps at the tangent point
+  for (int k = 1; k < p.arc_elements; ++k) knots.push_back(s1 + La * k / p.arc_elements);
+  knots.insert(knots.end(), 2, s2);
+  for (int k = 1; k < p.span_elements; ++k) knots.push_back(s2 + L * k / p.span_elements);
+  knots.insert(knots.end(), 4, s3);
+
+  // 16 samples per element, every element's ends included.
+  std::vector<double> t;
+  std::vector<Vector3d> Q;
+  constexpr int kSamples = 16;
+  for (std::size_t k = 3; k + 4 < knots.size(); ++k) {
+    const double a = knots[k], b = knots[k + 1];
+    if (!(b > a)) continue;
+    for (int j = 0; j < kSamples; ++j) t.push_back(a + (b - a) * j / kSamples);
+  }
+  t.push_back(s3);
+  for (double s : t) Q.push_back(path(s));
+  return fit_curve(Q, t, 3, knots);
+}
+
+// Signed clockwise angle (about +z) from a to b, unwrapped to lie nearest to `near`.
+double clockwise_angle(const Vector3d& a, const Vector3d& b, double near) {
+  double w = std::atan2(-a.cross(b).z(), a.dot(b));
+  while (w < near - kPi) w += 2.0 * kPi;
+  while (w > near + kPi) w -= 2.0 * kPi;
+  return w;
+}
+
+}  // namespace
+
+void CapstanParameters::validate() const {
+  require(radius > 0.0, "radius", "> 0", radius);
+  require(rope_radius >= 0.0, "rope_radius", ">= 0", rope_radius);
+  require(phi > 0.0 && phi <= 2.0 * kPi * (1.0 + 1e-12), "phi", "in (0, 2 pi]", phi);
+  require(mu >= 0.0, "mu", ">= 0", mu);
+  require(T0 > 0.0, "T0", "> 0", T0);
+  require(EA > 0.0, "EA", "> 0", EA);
+  require(EI > 0.0, "EI", "> 0 (the free spans have no other lateral stiffness at t = 0)", EI);
+  require(eps_N > 0.0, "eps_N", "> 0", eps_N);
+  require(eps_T >= 0.0, "eps_T", ">= 0", eps_T);
+  require(span_length > 0.0, "span_length", "> 0", span_length);
+  require(arc_elements >= 1, "arc_elements", ">= 1", arc_elements);
+  require(span_elements >= 1, "span_elements", ">= 1", span_elements);
+  require(contact_points >= 1 && contact_points <= 16, "contact_points", "in 1..16",
+          contact_points);
+  require(pull >= 0.0, "pull", ">= 0", pull);
+}
+
+double CapstanParameters::exact_ratio() const {
+  return std::exp(mu * phi);
+}  // (82)
+
+CapstanModel make_capstan(const CapstanParameters& p) {
+  p.validate();
+  const CurveFit fit = fit_rope(p);
+
+  auto rigid = std::make_shared<RigidSurface>();
+  // Cylinder about e_z; its seam (u = 0, ref_dir -e_y) lies opposite the middle of the arc.
+  if (p.nurbs_cylinder)
+    rigid->add(
+        make_cylinder(Vector3d(0, 0, -0.5), Vector3d::UnitZ(), -Vector3d::UnitY(), p.radius, 1.0));
+  else
+    rigid->add(
+        Cylinder(Placement{Vector3d::Zero(), Vector3d::UnitZ(), -Vector3d::UnitY()}, p.radius));
+
+  RodSection section;
+  section.EA = p.EA;
+  section.EI1 = section.EI2 = p.EI;
+  KirchhoffRod rod(fit.curve, section);
+  const ContactParameters cp{p.eps_N, p.eps_T, p.mu, p.rope_radius};
+  CapstanModel m{p,
+                 RodContactProblem(std::move(rod), rigid, cp, p.contact_points),
+                 fit.max_deviation,
+                 0,
+                 0,
+                 Vector3d::Zero(),
+                 Vector3d::Zero()};
+  RodContactProblem& prob = m.problem;
+  const int n = prob.num_control_points();
+  m.end_a = 0;
+  m.end_b = n - 1;
+  m.out_a = -travel(0.5 * kPi + 0.5 * p.phi);
+  m.out_b = travel(0.5 * kPi - 0.5 * p.phi);
+
+  for (int i = 0; i < n; ++i) prob.fix(i, 2);  // planar problem
+  // End A: dead load T0 along its outgoing direction, ramped over t in [0, 1].
+  prob.add_point_load(fit.curve.domain().lo, p.T0 * m.out_a,
+                      [](double t) { return std::min(t, 1.0); });
+  // End B: pinned for t <= 1, then pulled along its outgoing direction.
+  prob.prescribe(m.end_b, Vector3d(p.pull * m.out_b),
+                 [](double t) { return std::clamp(t - 1.0, 0.0, 1.0); });
+  return m;
+}
+
+NonlinearSolverSettings capstan_solver_settings() {
+  NonlinearSolverSettings s;
+  s.t0 = 0.0;
+  s.t1 = 2.0;
+  s.initial_step = 0.1;
+  s.max_step = 0.1;
+  s.min_step = 1e-5;
+  s.max_iterations = 25;
+  return s;
+}
+
+CapstanResult run_capstan(CapstanModel& model, NonlinearSolverSettings settings, std::ostream* log,
+                          CapstanStop stop) {
+  settings.t0 = 0.0;
+  settings.t1 = 2.0;
+  RodContactProblem& prob = model.problem;
+  const CapstanParameters& p = model.parameters;
+  CapstanResult res;
+  res.exact = p.exact_ratio();
+  NonlinearSolver solver(settings);
+  solver.set_log(log);
+  if (log) {
+    char line[200];
+    std::snprintf(line, sizeof line,
+                  "capstan: mu = %g, phi = %.6g, %d control points, fitted centre line within "
+                  "%.3e of line + arc + line, EI / (T0 R^2) = %.3g\n",
+                  p.mu, p.phi, prob.num_control_points(), model.fit_deviation,
+                  p.EI / (p.T0 * p.radius * p.radius));
+    *log << line;
+  }
+  VectorXd u = VectorXd::Zero(prob.num_dofs());
+  Vector3d reaction = Vector3d::Zero();
+  std::vector<Vector3d> x;
+  const KirchhoffRod& rod = prob.rod();
+
+  auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& a) {
+    const CurveContactCounts c = prob.contact().counts();
+    reaction = prob.reactions(uc, t)[static_cast<std::size_t>(model.end_b)];
+    const CapstanStep st{t, reaction.norm() / p.T0, c.active, c.stick, c.slip, a.iterations};
+    res.steps.push_back(st);
+    const bool sliding = p.mu == 0.0 || (c.active > 0 && c.slip == c.active);
+    if (t > 1.0 + 1e-12 && sliding && res.full_slip_t < 0.0) res.full_slip_t = t;
+    res.full_slip = t > 1.0 + 1e-12 && sliding;
+    prob.current_points(uc, t, x);
+    for (int e = 0; e < rod.num_elements(); ++e)
+      for (int q = 0; q < rod.num_quadrature_points(e); ++q)
+        res.max_axial_strain = std::max(
+            res.max_axial_strain, std::abs(rod.strains(rod.quadrature_point(e, q).xi, x).eps));
+    if (log) {
+      char line[160];
+      std::snprintf(line, sizeof line,
+                    "capstan t = %.6f  T/T0 = %.6f  active %d  stick %d  slip %d\n", st.t,
+                    st.T_ratio, st.active, st.stick, st.slip);
+      *log << line;
+    }
+    return !(stop == CapstanStop::kFullSlip && res.full_slip);
+  };
+  res.solver = solver.solve(prob, u, on_step);
+  res.u = u;
+  res.reaction = reaction;
+  if (!res.steps.empty()) {
+    res.T_ratio = res.steps.back().T_ratio;
+    res.wrap_angle = clockwise_angle(-model.out_a, reaction.normalized(), p.phi);
+  }
+  return res;
+}
+
+}  // namespace iga
