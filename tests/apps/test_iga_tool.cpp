@@ -45,10 +45,13 @@ Run iga(const std::string& args) {
   return r;
 }
 
+// The geometry models of data/ (app models such as capstan.json have a format of their own).
 std::vector<fs::path> data_models() {
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(fs::path(IGA_SOURCE_DIR) / "data"))
-    if (e.path().extension() == ".json") files.push_back(e.path());
+    if (e.path().extension() == ".json" &&
+        slurp(e.path()).find("\"format\": \"iga-contact-model\"") != std::string::npos)
+      files.push_back(e.path());
   std::sort(files.begin(), files.end());
   return files;
 }
