@@ -5,34 +5,10 @@
 #include <stdexcept>
 
 #include "geometry/differential_geometry.hpp"
+#include "iga/quadrature.hpp"
 
 namespace iga {
 
-namespace {
-// Gauss-Legendre points and weights on [-1, 1] (Golub-Welsch would be overkill: n <= 8).
-void gauss_legendre(int n, std::vector<double>& x, std::vector<double>& w) {
-  x.assign(static_cast<std::size_t>(n), 0.0);
-  w.assign(static_cast<std::size_t>(n), 0.0);
-  for (int i = 0; i < n; ++i) {
-    // Newton on the Legendre polynomial from the Chebyshev-like initial guess
-    double z = std::cos(M_PI * (i + 0.75) / (n + 0.5)), dp = 0.0;
-    for (int it = 0; it < 100; ++it) {
-      double p0 = 1.0, p1 = 0.0;
-      for (int k = 1; k <= n; ++k) {
-        const double p2 = p1;
-        p1 = p0;
-        p0 = ((2.0 * k - 1.0) * z * p1 - (k - 1.0) * p2) / k;
-      }
-      dp = n * (z * p0 - p1) / (z * z - 1.0);
-      const double dz = p0 / dp;
-      z -= dz;
-      if (std::abs(dz) < 1e-16) break;
-    }
-    x[static_cast<std::size_t>(i)] = -z;
-    w[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - z * z) * dp * dp);
-  }
-}
-}  // namespace
 
 CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
                            const ContactParameters& params, int points_per_element)
@@ -40,7 +16,7 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
   if (points_per_element < 1 || points_per_element > 16)
     throw std::invalid_argument("contact points per element must be in 1..16, got " +
                                 std::to_string(points_per_element));
-  std::vector<double> gx, gw;
+  std::array<double, kMaxGaussPoints> gx{}, gw{};
   gauss_legendre(points_per_element, gx, gw);
   const std::vector<double> br = ref_.knots().breaks();
   for (std::size_t e = 0; e + 1 < br.size(); ++e)
