@@ -8,6 +8,7 @@
 //   capstan --mu 0,0.5,1 --phi-deg 180         one sweep over the given lists
 //   capstan --set /cylinder/representation=\"analytic\" --set /rope/arc_elements=20
 //   capstan MODEL.json --out DIR --max-error 0.005
+//   capstan --profile                          time shares: assembly, contact, linear solves
 //
 // Writes to --out (default out/capstan): capstan.csv (case,mu,phi,T_ratio,exact,rel_error),
 // capstan_steps.csv (every converged step), model_used.json, capstan.png (plot), and for each
@@ -152,7 +153,7 @@ int run(int argc, char** argv) {
   std::vector<double> mu_list, phi_list;
   std::vector<std::string> sets;
   std::string out = "out/capstan";
-  bool quick = false;
+  bool quick = false, profile = false;
   double max_error = -1.0;
   app.add_option("model", model_file, "Model file (JSON)")->capture_default_str();
   app.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.5,1)")->delimiter(',');
@@ -161,6 +162,7 @@ int run(int argc, char** argv) {
   app.add_option("--out,-o", out, "Output folder")->capture_default_str();
   app.add_flag("--quick", quick, "Run the model's reduced sweep (\"quick\")");
   app.add_option("--max-error", max_error, "Exit with status 3 if some |rel_error| exceeds this");
+  app.add_flag("--profile", profile, "Report the time shares: assembly (rod, contact), linear solves");
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -199,6 +201,7 @@ int run(int argc, char** argv) {
   // 4. Solve each case; rows are written as they finish (a failure keeps what is done).
   const auto t0 = std::chrono::steady_clock::now();
   double worst = 0.0, max_strain = 0.0;
+  double t_solver = 0.0, t_assembly = 0.0, t_contact = 0.0, t_linear = 0.0;
   int failed = 0, steps_total = 0, iterations_total = 0;
   std::cout << "capstan: " << cases.size() << " cases from " << model_file << "\n";
   for (const Case& c : cases) {
@@ -209,6 +212,10 @@ int run(int argc, char** argv) {
     const CapstanResult r = run_capstan(model);
     steps_total += r.solver.steps;
     iterations_total += r.solver.total_iterations;
+    t_solver += r.solver.time_total;
+    t_assembly += r.solver.time_assembly;
+    t_contact += model.problem.contact_time();
+    t_linear += r.solver.time_linear_solve;
     for (const CapstanStep& s : r.steps)
       steps << c.name << "," << c.mu << "," << c.phi << "," << s.t << "," << s.T_ratio << ","
             << s.active << "," << s.stick << "," << s.slip << "," << s.iterations << "\n";
@@ -241,6 +248,12 @@ int run(int argc, char** argv) {
             << worst << ", largest axial strain " << max_strain << ", " << steps_total << " steps, "
             << static_cast<double>(iterations_total) / std::max(steps_total, 1) << " Newton iterations per step, "
             << secs << " s; results in " << dir.string() << "\n";
+  if (profile && t_solver > 0.0)
+    std::cout << "capstan: profile: solver " << t_solver << " s = assembly " << 100 * t_assembly / t_solver
+              << " % (of which contact " << 100 * t_contact / t_solver << " %, rod and loads "
+              << 100 * (t_assembly - t_contact) / t_solver << " %), linear solves "
+              << 100 * t_linear / t_solver << " %, other " << 100 * (t_solver - t_assembly - t_linear) / t_solver
+              << " %\n";
   if (failed > 0) return 2;
   if (max_error >= 0.0 && worst > max_error) {
     std::cout << "capstan: max |rel_error| " << worst << " exceeds --max-error " << max_error << "\n";

@@ -1,6 +1,8 @@
 // Rod plus CTRS contact ([KS15] Sects. 4-5; eqs. (77)-(78) in iga/curve_contact.cpp).
 #include "iga/rod_contact_problem.hpp"
 
+#include <chrono>
+
 #include <utility>
 
 namespace iga {
@@ -45,8 +47,10 @@ std::vector<Vector3d> RodContactProblem::reactions(const VectorXd& u, double t) 
 void RodContactProblem::add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
                                           std::vector<Triplet>* K) {
   RodProblem::add_contributions(x, t, g, K);
+  const auto start = std::chrono::steady_clock::now();
   x_.assign(x.begin(), x.end());  // no reallocation after the first call
   contact_.assemble(x_, g, K);    // g_a -= int R_a f ds, K_ab -= int R_a R_b df/dr ds
+  contact_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace iga

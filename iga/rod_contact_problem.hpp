@@ -48,6 +48,10 @@ class RodContactProblem : public RodProblem {
   /// the slip surface (Phi = 0 up to round-off) and their stick/slip flags become arbitrary.
   std::vector<Vector3d> reactions(const VectorXd& u, double t);
 
+  /// Wall time spent in the contact integral (projections, point law, its assembly) since
+  /// construction, seconds; part of the solver's assembly time.
+  double contact_time() const { return contact_time_; }
+
  protected:
   void add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
                          std::vector<Triplet>* K) override;
@@ -56,6 +60,7 @@ class RodContactProblem : public RodProblem {
   std::shared_ptr<const RigidSurface> rigid_;
   CurveContact contact_;
   std::vector<Vector3d> x_;  ///< work copy of the control points (CurveContact takes a vector)
+  double contact_time_ = 0.0;
 };
 
 }  // namespace iga
