@@ -16,6 +16,7 @@
 
 #include "geometry/analytic_surfaces.hpp"  // Placement::frame
 #include "geometry/bspline_basis.hpp"
+#include "geometry/fitting.hpp"
 #include "geometry/knot_vector.hpp"
 
 namespace iga {
@@ -318,6 +319,62 @@ HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_
     }
   }
   return out;
+}
+
+WrapPath make_wrap_path(const WrapPathSpec& w) {
+  check_positive("make_wrap_path: radius", w.radius);
+  check_positive("make_wrap_path: angle", w.angle);
+  check_positive("make_wrap_path: span_length", w.span_length);
+  if (!std::isfinite(w.pitch)) fail("make_wrap_path: pitch must be finite, got " + num(w.pitch));
+  if (w.arc_elements < 1 || w.span_elements < 1)
+    fail("make_wrap_path: element counts must be >= 1, got arc " + std::to_string(w.arc_elements) +
+         ", span " + std::to_string(w.span_elements));
+  check_positive("make_wrap_path: |axis|", w.axis.norm());
+  const Vector3d ez = w.axis.normalized();
+  const Vector3d ey_raw = w.mid_dir - w.mid_dir.dot(ez) * ez;
+  if (!(ey_raw.norm() > 1e-12 * std::max(1.0, w.mid_dir.norm())))
+    fail("make_wrap_path: mid_dir must not be parallel to the axis");
+  const Vector3d ey = ey_raw.normalized(), ex = ey.cross(ez);
+
+  const double rho = w.radius, c = w.pitch / kTwoPi, speed = std::sqrt(rho * rho + c * c);
+  const double thA = 0.5 * std::numbers::pi + 0.5 * w.angle;
+  const double L = w.span_length, La = w.angle * speed;
+  const double s1 = L, s2 = L + La, s3 = 2.0 * L + La;
+  // Arc point and unit travel direction at the polar angle theta (clockwise travel).
+  auto arc = [&](double th) -> Vector3d {
+    return w.center + rho * (std::cos(th) * ex + std::sin(th) * ey) + c * (thA - th - 0.5 * w.angle) * ez;
+  };
+  auto travel = [&](double th) -> Vector3d {
+    return (rho * (std::sin(th) * ex - std::cos(th) * ey) + c * ez) / speed;
+  };
+  const double thB = thA - w.angle;
+  const Vector3d PA = arc(thA), PB = arc(thB), tA = travel(thA), tB = travel(thB);
+  auto path = [&](double s) -> Vector3d {
+    if (s <= s1) return PA - (s1 - s) * tA;
+    if (s >= s2) return PB + (s - s2) * tB;
+    return arc(thA - (s - s1) / speed);
+  };
+
+  std::vector<double> knots(4, 0.0);
+  for (int k = 1; k < w.span_elements; ++k) knots.push_back(L * k / w.span_elements);
+  knots.insert(knots.end(), 2, s1);  // C1: the curvature jumps at the tangent point
+  for (int k = 1; k < w.arc_elements; ++k) knots.push_back(s1 + La * k / w.arc_elements);
+  knots.insert(knots.end(), 2, s2);
+  for (int k = 1; k < w.span_elements; ++k) knots.push_back(s2 + L * k / w.span_elements);
+  knots.insert(knots.end(), 4, s3);
+
+  std::vector<double> t;
+  std::vector<Vector3d> Q;
+  constexpr int kSamples = 16;
+  for (std::size_t k = 3; k + 4 < knots.size(); ++k) {
+    const double a = knots[k], b = knots[k + 1];
+    if (!(b > a)) continue;
+    for (int j = 0; j < kSamples; ++j) t.push_back(a + (b - a) * j / kSamples);
+  }
+  t.push_back(s3);
+  for (double s : t) Q.push_back(path(s));
+  CurveFit fit = fit_curve(Q, t, 3, knots);
+  return WrapPath{std::move(fit.curve), fit.max_deviation, La, tA, tB};
 }
 
 }  // namespace iga

@@ -67,4 +67,39 @@ struct HelixApproximation {
 };
 HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_points);
 
+/// The centre line of a rope wrapped around a cylinder ([KS15] Sects. 6.3-6.4): a straight span,
+/// a helical arc of radius `radius` (the centre line's distance from the axis) over the polar
+/// angle `angle` with rise `pitch` per turn (0: a circular arc), and a straight span, each span
+/// tangent to the arc and of length `span_length`. Frame: e_z = axis, e_y = mid_dir (made
+/// normal to the axis: the direction from the axis to the middle of the arc), e_x = e_y x e_z;
+/// the arc runs clockwise about e_z from the polar angle (from e_x) pi/2 + angle/2 to
+/// pi/2 - angle/2, rising along e_z by pitch * angle / (2 pi), centred on the plane through
+/// `center` normal to the axis. Unit travel direction at polar angle theta:
+///   tau = (radius (sin theta e_x - cos theta e_y) + c e_z) / sqrt(radius^2 + c^2),  c = pitch/2pi.
+/// The curve is the least-squares fit ([PT97] 9.4.1) of a cubic B-spline with arc-length
+/// parameter, `span_elements` equal elements on each span, `arc_elements` on the arc, and
+/// double knots (C1) at the two tangent points, where the curvature jumps; 16 samples per
+/// element, ends interpolated.
+struct WrapPathSpec {
+  Vector3d center = Vector3d::Zero();
+  Vector3d axis = Vector3d::UnitZ();
+  Vector3d mid_dir = Vector3d::UnitY();
+  double radius = 1.0;
+  double angle = std::numbers::pi;
+  double pitch = 0.0;
+  double span_length = 1.0;
+  int arc_elements = 10;
+  int span_elements = 3;
+};
+struct WrapPath {
+  NurbsCurve curve;
+  double max_deviation = 0.0;  ///< largest distance of the fit from line + arc + line (samples)
+  double arc_length = 0.0;     ///< angle sqrt(radius^2 + c^2)
+  Vector3d tangent_start = Vector3d::Zero();  ///< unit travel direction at the start (span A)
+  Vector3d tangent_end = Vector3d::Zero();    ///< ... at the end (span B)
+};
+/// Throws GeometryError for radius, angle, span_length <= 0, a non-finite pitch, element counts
+/// < 1, or an axis parallel to mid_dir.
+WrapPath make_wrap_path(const WrapPathSpec& spec);
+
 }  // namespace iga

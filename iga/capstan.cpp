@@ -12,7 +12,6 @@
 
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
-#include "geometry/fitting.hpp"
 
 namespace iga {
 
@@ -32,49 +31,17 @@ void require(bool ok, const char* field, const char* expected, double value) {
                                 expected + ", got " + num(value));
 }
 
-// Unit travel direction of the clockwise arc at polar angle theta.
-Vector3d travel(double theta) {
-  return Vector3d(std::sin(theta), -std::cos(theta), 0.0);
-}
-
-// The reference centre line: line + arc + line (arc-length parameter s) fitted by a cubic with
-// double knots at the tangent points [PT97] 9.4.1.
-CurveFit fit_rope(const CapstanParameters& p) {
-  const double rho = p.radius + p.rope_radius;  // gap (52) zero in the reference
-  const double thA = 0.5 * kPi + 0.5 * p.phi, thB = 0.5 * kPi - 0.5 * p.phi;
-  const double L = p.span_length, La = rho * p.phi;
-  const double s1 = L, s2 = L + La, s3 = 2.0 * L + La;
-  const Vector3d PA = rho * Vector3d(std::cos(thA), std::sin(thA), 0.0);
-  const Vector3d PB = rho * Vector3d(std::cos(thB), std::sin(thB), 0.0);
-  const Vector3d tA = travel(thA), tB = travel(thB);
-  // Exact point of the reference path at arc length s.
-  auto path = [&](double s) -> Vector3d {
-    if (s <= s1) return PA - (s1 - s) * tA;
-    if (s >= s2) return PB + (s - s2) * tB;
-    const double th = thA - (s - s1) / rho;
-    return rho * Vector3d(std::cos(th), std::sin(th), 0.0);
-  };
-
-  std::vector<double> knots(4, 0.0);
-  for (int k = 1; k < p.span_elements; ++k) knots.push_back(L * k / p.span_elements);
-  knots.insert(knots.end(), 2, s1);  // C1: the curvature jumps at the tangent point
-  for (int k = 1; k < p.arc_elements; ++k) knots.push_back(s1 + La * k / p.arc_elements);
-  knots.insert(knots.end(), 2, s2);
-  for (int k = 1; k < p.span_elements; ++k) knots.push_back(s2 + L * k / p.span_elements);
-  knots.insert(knots.end(), 4, s3);
-
-  // 16 samples per element, every element's ends included.
-  std::vector<double> t;
-  std::vector<Vector3d> Q;
-  constexpr int kSamples = 16;
-  for (std::size_t k = 3; k + 4 < knots.size(); ++k) {
-    const double a = knots[k], b = knots[k + 1];
-    if (!(b > a)) continue;
-    for (int j = 0; j < kSamples; ++j) t.push_back(a + (b - a) * j / kSamples);
-  }
-  t.push_back(s3);
-  for (double s : t) Q.push_back(path(s));
-  return fit_curve(Q, t, 3, knots);
+// The reference centre line: line + arc (helix) + line, fitted by a cubic with double knots at
+// the tangent points (geometry/constructions.hpp, make_wrap_path).
+WrapPath rope_path(const CapstanParameters& p) {
+  WrapPathSpec w;
+  w.radius = p.radius + p.rope_radius;  // gap (52) zero in the reference
+  w.angle = p.phi;
+  w.pitch = p.pitch;
+  w.span_length = p.span_length;
+  w.arc_elements = p.arc_elements;
+  w.span_elements = p.span_elements;
+  return make_wrap_path(w);
 }
 
 // Signed clockwise angle (about +z) from a to b, unwrapped to lie nearest to `near`.
@@ -103,21 +70,25 @@ void CapstanParameters::validate() const {
   require(contact_points >= 1 && contact_points <= 16, "contact_points", "in 1..16",
           contact_points);
   require(pull >= 0.0, "pull", ">= 0", pull);
+  require(std::isfinite(pitch), "pitch", "finite", pitch);
 }
 
 double CapstanParameters::exact_ratio() const {
-  return std::exp(mu * phi);
-}  // (82)
+  const double rho = radius + rope_radius, c = pitch / (2.0 * kPi);
+  return std::exp(mu * phi * rho / std::sqrt(rho * rho + c * c));
+}  // (83); (82) for pitch 0
 
 CapstanModel make_capstan(const CapstanParameters& p) {
   p.validate();
-  const CurveFit fit = fit_rope(p);
+  const WrapPath fit = rope_path(p);
 
   auto rigid = std::make_shared<RigidSurface>();
   // Cylinder about e_z; its seam (u = 0, ref_dir -e_y) lies opposite the middle of the arc.
+  // Long enough for the helix and its spans: rise pitch phi / 2 pi plus the spans' rise.
+  const double height = std::abs(p.pitch) * p.phi / (2.0 * kPi) + 2.0 * p.span_length + 1.0;
   if (p.nurbs_cylinder)
-    rigid->add(
-        make_cylinder(Vector3d(0, 0, -0.5), Vector3d::UnitZ(), -Vector3d::UnitY(), p.radius, 1.0));
+    rigid->add(make_cylinder(Vector3d(0, 0, -0.5 * height), Vector3d::UnitZ(), -Vector3d::UnitY(),
+                             p.radius, height));
   else
     rigid->add(
         Cylinder(Placement{Vector3d::Zero(), Vector3d::UnitZ(), -Vector3d::UnitY()}, p.radius));
@@ -138,10 +109,11 @@ CapstanModel make_capstan(const CapstanParameters& p) {
   const int n = prob.num_control_points();
   m.end_a = 0;
   m.end_b = n - 1;
-  m.out_a = -travel(0.5 * kPi + 0.5 * p.phi);
-  m.out_b = travel(0.5 * kPi - 0.5 * p.phi);
+  m.out_a = -fit.tangent_start;
+  m.out_b = fit.tangent_end;
 
-  for (int i = 0; i < n; ++i) prob.fix(i, 2);  // planar problem
+  if (p.pitch == 0.0)
+    for (int i = 0; i < n; ++i) prob.fix(i, 2);  // planar problem
   // End A: dead load T0 along its outgoing direction, ramped over t in [0, 1].
   prob.add_point_load(fit.curve.domain().lo, p.T0 * m.out_a,
                       [](double t) { return std::min(t, 1.0); });

@@ -14,7 +14,11 @@
 //   span B: the tangent line of length L from the arc end, end B = P_B + L tau_B.
 // The reference centre line is that line + arc + line, least-squares fitted by a cubic B-spline
 // with arc-length parameter, simple knots inside each piece and double knots (C1) at the
-// tangent points, where the curvature jumps. All z components are fixed (planar problem).
+// tangent points, where the curvature jumps (geometry/constructions.hpp, make_wrap_path). All z
+// components are fixed (planar problem).
+// The helix of [KS15] Sect. 6.4 is the same model with pitch H != 0: the arc becomes a helix
+// of rise H per turn (a geodesic of the cylinder), the spans its tangent lines, the problem is
+// 3-D (no component fixed) and the reference is (83).
 // Loads: F_A = lambda_A(t) T0 (-tau_A) at end A, lambda_A = min(t, 1) (dead load along the
 // outgoing direction); end B pinned, displaced by min(max(t - 1, 0), 1) * pull * tau_B.
 // T = |reaction at end B| = |g_B| (RodContactProblem::reactions, i.e. RodProblem::nodal_residual):
@@ -52,6 +56,7 @@ struct CapstanParameters {
   double radius = 1.0;            ///< cylinder radius R
   double rope_radius = 0.02;      ///< rope radius r in the gap (52)
   double phi = std::numbers::pi;  ///< wrap angle, in (0, 2 pi]
+  double pitch = 0.0;             ///< helix pitch H ([KS15] Sect. 6.4); 0: planar capstan
   double mu = 0.3;                ///< Coulomb friction coefficient
   double T0 = 10.0;               ///< dead load at end A
   double EA = 2.1e4;              ///< axial stiffness ([KS15] Sect. 6.3)
@@ -66,7 +71,8 @@ struct CapstanParameters {
   bool nurbs_cylinder = true;     ///< exact NURBS patch (make_cylinder), else analytic
 
   void validate() const;
-  /// exp(mu phi)  (82)
+  /// exp(mu phi rho / sqrt(rho^2 + (H / 2 pi)^2)) (83), rho = radius + rope_radius the centre
+  /// line's radius; exp(mu phi) (82) for H = 0.
   double exact_ratio() const;
 };
 

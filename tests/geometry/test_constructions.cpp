@@ -464,3 +464,52 @@ TEST_CASE("fit_curve: reproduces a spline exactly and approximates a circle arc 
   }
   CHECK(prev <= 1e-6);
 }
+
+TEST_CASE("make_wrap_path: spans tangent to a helix of the given radius and pitch, C1 fit",
+          "[geometry][constructions]") {
+  WrapPathSpec w;
+  w.center = Vector3d(0.3, -0.2, 0.5);
+  w.axis = Vector3d(0.0, 0.0, 2.0);  // normalized inside
+  w.mid_dir = Vector3d(0.1, 1.0, 0.3);
+  w.radius = 1.5;
+  w.angle = 0.8 * kPi;
+  w.pitch = 2.0;
+  w.span_length = 0.7;
+  w.arc_elements = 24;
+  w.span_elements = 2;
+  const WrapPath r = make_wrap_path(w);
+  const double c = w.pitch / (2.0 * kPi), speed = std::sqrt(w.radius * w.radius + c * c);
+  CHECK(r.arc_length == Approx(w.angle * speed).epsilon(1e-14));
+  CHECK(r.max_deviation < 1e-6);
+  const NurbsCurve& C = r.curve;
+  const Interval D = C.domain();
+  // Arc-length parameter: the domain is the path length, the speed is 1 to the fit accuracy.
+  CHECK(D.hi - D.lo == Approx(2.0 * w.span_length + r.arc_length).epsilon(1e-14));
+  // End tangents, the travel directions reported, and the spans straight.
+  CHECK((C.derivs(D.lo, 1).d[1].normalized() - r.tangent_start).norm() < 1e-6);
+  CHECK((C.derivs(D.hi, 1).d[1].normalized() - r.tangent_end).norm() < 1e-6);
+  CHECK((C.point(D.hi) - C.point(D.hi - w.span_length) - w.span_length * r.tangent_end).norm() <
+        1e-6);
+  // Arc points: distance radius from the axis, rise c per radian of polar angle, mid-point on
+  // the side of mid_dir, half-way up.
+  const Vector3d ez = Vector3d::UnitZ();
+  for (int k = 0; k <= 10; ++k) {
+    const double s = D.lo + w.span_length + r.arc_length * k / 10.0;
+    const Vector3d d = C.point(s) - w.center;
+    CHECK((d - d.dot(ez) * ez).norm() == Approx(w.radius).epsilon(1e-6));
+    CHECK(d.dot(ez) == Approx(c * w.angle * (k / 10.0 - 0.5)).margin(1e-6));
+  }
+  const Vector3d mid = C.point(0.5 * (D.lo + D.hi)) - w.center;
+  const Vector3d ey = (w.mid_dir - w.mid_dir.dot(ez) * ez).normalized();
+  CHECK((mid - mid.dot(ez) * ez).normalized().dot(ey) == Approx(1.0).epsilon(1e-9));
+  // C1 at the double knots (tangent points): the derivative is continuous.
+  const double s1 = D.lo + w.span_length;
+  CHECK((C.derivs(s1 - 1e-9, 1).d[1] - C.derivs(s1 + 1e-9, 1).d[1]).norm() < 1e-6);
+
+  WrapPathSpec bad = w;
+  bad.mid_dir = w.axis;
+  CHECK_THROWS_AS(make_wrap_path(bad), GeometryError);
+  bad = w;
+  bad.arc_elements = 0;
+  CHECK_THROWS_AS(make_wrap_path(bad), GeometryError);
+}
