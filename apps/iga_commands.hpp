@@ -27,5 +27,6 @@ Action add_info_command(CLI::App& app);
 Action add_eval_command(CLI::App& app);
 Action add_make_command(CLI::App& app);
 Action add_project_command(CLI::App& app);
+Action add_run_command(CLI::App& app);
 
 }  // namespace iga::app

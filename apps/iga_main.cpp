@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   const iga::app::Action eval = iga::app::add_eval_command(app);
   const iga::app::Action make = iga::app::add_make_command(app);
   const iga::app::Action project = iga::app::add_project_command(app);
+  const iga::app::Action run = iga::app::add_run_command(app);
   CLI11_PARSE(app, argc, argv);
 
   // 2. Run the chosen subcommand; every library error ends here with a message.
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
     if (name == "eval") return eval();
     if (name == "make") return make();
     if (name == "project") return project();
+    if (name == "run") return run();
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "iga: error: " << e.what() << "\n";

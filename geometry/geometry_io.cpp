@@ -4,6 +4,9 @@
 // anything, so that each error names the JSON element at fault, not just the entity.
 #include "geometry/geometry_io.hpp"
 
+#include "geometry/constructions.hpp"
+#include "geometry/refinement.hpp"
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -274,9 +277,115 @@ PatchGroup parse_patch_group(const JsonCursor& e) {
   return g;  // the names are checked once the whole section is read
 }
 
+// ---- constructions: exact NURBS built at load time ([PT97] Ch. 7-8; constructions.hpp) ----
+
+double optional_number(const JsonCursor& e, const char* key, double fallback) {
+  return e.has(key) ? e[key].as_number() : fallback;
+}
+int parse_count(const JsonCursor& c, int lo, int hi) {
+  const int n = c.as_int();
+  if (n < lo || n > hi) c.fail("must be in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return n;
+}
+Vector3d parse_direction(const JsonCursor& c) {
+  const Vector3d d = parse_vec3(c);
+  if (!(d.norm() > 0.0)) c.fail("must be a non-zero vector");
+  return d;
+}
+
+/// "refine": {"elevate": k, "subdivide": n} of a constructed surface, then "normal".
+NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
+  if (e.has("refine")) {
+    const JsonCursor r = e["refine"];
+    r.expect_object({"elevate", "subdivide"});
+    const int k = r.has("elevate") ? parse_count(r["elevate"], 0, 5) : 0;
+    const int n = r.has("subdivide") ? parse_count(r["subdivide"], 1, 64) : 1;
+    s = build(e, [&] {
+      NurbsSurface t = k > 0 ? elevate_degree(s, k, k) : s;
+      return n > 1 ? subdivide(t, n, n) : t;
+    });
+  }
+  parse_normal(e, s);
+  return s;
+}
+
+GeometryEntity parse_construction(const JsonCursor& e) {
+  constexpr double kDeg = std::numbers::pi / 180.0;
+  const JsonCursor sc = e["shape"];
+  const std::string shape = sc.as_string();
+  if (shape == "cylinder") {
+    e.expect_object({"type", "shape", "center", "axis", "ref_dir", "radius", "height", "start_deg",
+                     "end_deg", "refine", "normal"});
+    const Vector3d base = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
+    const Vector3d ref = e.has("ref_dir") ? parse_direction(e["ref_dir"]) : Vector3d::UnitX();
+    const double r = parse_positive(e["radius"]), h = parse_positive(e["height"]);
+    const double a = optional_number(e, "start_deg", 0.0), b = optional_number(e, "end_deg", 360.0);
+    return finish_surface(e, build(e, [&] {
+                            return make_cylinder(base, axis.normalized(), ref, r, h, a * kDeg, b * kDeg);
+                          }));
+  }
+  if (shape == "sphere") {
+    e.expect_object({"type", "shape", "center", "radius", "refine", "normal"});
+    const Vector3d c = parse_vec3(e["center"]);
+    const double r = parse_positive(e["radius"]);
+    return finish_surface(e, build(e, [&] { return make_sphere(c, r); }));
+  }
+  if (shape == "torus") {
+    e.expect_object({"type", "shape", "center", "axis", "major_radius", "minor_radius", "refine",
+                     "normal"});
+    const Vector3d c = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
+    const double R = parse_positive(e["major_radius"]), r = parse_positive(e["minor_radius"]);
+    return finish_surface(e, build(e, [&] { return make_torus(c, axis.normalized(), R, r); }));
+  }
+  if (shape == "plane") {
+    e.expect_object({"type", "shape", "origin", "du", "dv", "refine", "normal"});
+    const Vector3d o = parse_vec3(e["origin"]), du = parse_direction(e["du"]),
+                   dv = parse_direction(e["dv"]);
+    return finish_surface(e, build(e, [&] { return make_plane_patch(o, du, dv); }));
+  }
+  if (shape == "hyperboloid") {  // [KS15] (11)
+    e.expect_object({"type", "shape", "a", "x_range", "y_range", "refine", "normal"});
+    const double a = e["a"].as_number();
+    const Interval x = parse_interval(e["x_range"]), y = parse_interval(e["y_range"]);
+    if (!std::isfinite(x.lo) || !std::isfinite(x.hi)) e["x_range"].fail("must be finite");
+    if (!std::isfinite(y.lo) || !std::isfinite(y.hi)) e["y_range"].fail("must be finite");
+    return finish_surface(e, build(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
+  }
+  if (shape == "line") {  // a straight rod: degree-1 segment elevated and split into elements
+    e.expect_object({"type", "shape", "start", "end", "degree", "elements"});
+    const Vector3d a = parse_vec3(e["start"]), b = parse_vec3(e["end"]);
+    if (!((b - a).norm() > 0.0)) e["end"].fail("must differ from start");
+    const int p = e.has("degree") ? parse_count(e["degree"], 1, kMaxDegree) : 1;
+    const int n = e.has("elements") ? parse_count(e["elements"], 1, 100000) : 1;
+    return build(e, [&] {
+      NurbsCurve c = make_line(a, b);
+      if (p > 1) c = elevate_degree(c, p - 1);
+      return n > 1 ? subdivide(c, n) : c;
+    });
+  }
+  if (shape == "wrap_path") {
+    e.expect_object({"type", "shape", "center", "axis", "mid_dir", "radius", "angle_deg", "pitch",
+                     "span_length", "arc_elements", "span_elements"});
+    WrapPathSpec w;
+    if (e.has("center")) w.center = parse_vec3(e["center"]);
+    if (e.has("axis")) w.axis = parse_direction(e["axis"]);
+    if (e.has("mid_dir")) w.mid_dir = parse_direction(e["mid_dir"]);
+    w.radius = parse_positive(e["radius"]);
+    const JsonCursor ac = e["angle_deg"];
+    w.angle = ac.as_number() * kDeg;
+    if (!(w.angle > 0.0 && w.angle <= 4.0 * std::numbers::pi)) ac.fail("must be in (0, 720]");
+    w.pitch = optional_number(e, "pitch", 0.0);
+    w.span_length = parse_positive(e["span_length"]);
+    w.arc_elements = parse_count(e["arc_elements"], 1, 100000);
+    w.span_elements = parse_count(e["span_elements"], 1, 100000);
+    return build(e, [&] { return make_wrap_path(w).curve; });
+  }
+  sc.fail("unknown shape (expected one of cylinder, sphere, torus, plane, hyperboloid, line, wrap_path)");
+}
+
 constexpr const char* kEntityTypes[] = {"nurbs_curve", "nurbs_surface", "plane", "sphere",
                                         "cylinder",    "torus",         "cone",  "hyperboloid",
-                                        "revolution",  "patch_group"};
+                                        "revolution",  "patch_group", "construction"};
 
 GeometryEntity parse_entity(const JsonCursor& e) {
   if (!e.json().is_object()) e.fail_type("an object with a \"type\" key");
@@ -285,6 +394,7 @@ GeometryEntity parse_entity(const JsonCursor& e) {
   if (type == "nurbs_curve") return parse_nurbs_curve(e);
   if (type == "nurbs_surface") return parse_nurbs_surface(e);
   if (type == "patch_group") return parse_patch_group(e);
+  if (type == "construction") return parse_construction(e);
   for (const char* t : kEntityTypes)
     if (type == t) return parse_analytic(e, type);
   std::string list;

@@ -109,8 +109,11 @@ CapstanModel make_capstan(const CapstanParameters& p) {
   const int n = prob.num_control_points();
   m.end_a = 0;
   m.end_b = n - 1;
-  m.out_a = -fit.tangent_start;
-  m.out_b = fit.tangent_end;
+  // Along the fitted centre line's end tangents (within 2e-5 rad of the exact travel directions
+  // fit.tangent_start / end), as the model files' "outward_tangent" (iga/analysis.hpp).
+  const Interval D = fit.curve.domain();
+  m.out_a = -fit.curve.derivs(D.lo, 1).d[1].normalized();
+  m.out_b = fit.curve.derivs(D.hi, 1).d[1].normalized();
 
   if (p.pitch == 0.0)
     for (int i = 0; i < n; ++i) prob.fix(i, 2);  // planar problem

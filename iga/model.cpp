@@ -1,5 +1,5 @@
-// The analysis model file: top-level keys, format/version checks, sections reserved for later
-// versions (docs/model_format.md, "Planned sections").
+// The analysis model file: top-level keys, format/version checks, the geometry section, the
+// analysis sections kept as written (docs/model_format.md).
 #include "iga/model.hpp"
 
 #include <cerrno>
@@ -9,25 +9,12 @@
 
 namespace iga {
 
-namespace {
-
-/// Sections of the planned format that this version does not read yet. Rejecting them (rather
-/// than ignoring them) keeps a newer model from being run silently without its loads.
-constexpr const char* kReservedSections[] = {"materials", "bodies",      "boundary_conditions",
-                                             "loads",     "load_curves", "contact",
-                                             "solver",    "output"};
-
-}  // namespace
-
 Model parse_model(const Json& j, const std::string& file) {
   const JsonCursor root(j, file);
   if (!j.is_object()) root.fail_type("an object (the model)");
-  for (const char* section : kReservedSections)
-    if (root.has(section))
-      root[section].fail_plain(std::string("section \"") + section +
-                               "\" is not supported yet by this version (format version " +
-                               std::to_string(kModelFormatVersion) + " reads \"geometry\" only)");
-  root.expect_object({"format", "version", "name", "description", "geometry"});
+  root.expect_object({"format", "version", "name", "description", "geometry", "materials",
+                      "bodies", "load_curves", "boundary_conditions", "loads", "contact",
+                      "solver", "output", "app"});
 
   if (root.has("format")) {
     const JsonCursor c = root["format"];
@@ -45,6 +32,15 @@ Model parse_model(const Json& j, const std::string& file) {
   if (root.has("description")) m.description = root["description"].as_string();
   const JsonCursor g = root["geometry"];
   m.geometry = parse_geometry(g.json(), file, g.path());
+  for (const std::string& k : root.keys())
+    for (const char* section : kAnalysisSections)
+      if (k == section) {
+        const JsonCursor c = root[k];
+        const bool list = k == "boundary_conditions" || k == "loads" || k == "contact";
+        if (list ? !c.json().is_array() : !c.json().is_object())
+          c.fail_type(list ? "an array" : "an object");
+        m.sections[k] = c.json();
+      }
   return m;
 }
 
@@ -59,6 +55,7 @@ Json model_to_json(const Model& m) {
   j["name"] = m.name;
   j["description"] = m.description;
   j["geometry"] = geometry_to_json(m.geometry);
+  for (const auto& [k, v] : m.sections.items()) j[k] = v;
   return j;
 }
 

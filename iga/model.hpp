@@ -14,11 +14,21 @@ namespace iga {
 inline constexpr const char* kModelFormat = "iga-contact-model";
 inline constexpr int kModelFormatVersion = 1;
 
-/// A whole model. Version 1 carries the geometry only.
+/// The analysis sections (docs/model_format.md), in file order; iga/analysis.hpp reads them.
+/// "app" is free-form input of the example programs (capstan, helix, saddle): ignored by the
+/// generic loader.
+inline constexpr const char* kAnalysisSections[] = {
+    "materials", "bodies", "load_curves", "boundary_conditions", "loads", "contact", "solver",
+    "output",    "app"};
+
+/// A whole model: the geometry, parsed, and the analysis sections as written (Analysis
+/// validates and builds them).
 struct Model {
   std::string name;
   std::string description;
   GeometryModel geometry;
+  Json sections = Json::object();  ///< the analysis sections present, in file order
+  bool has_analysis() const { return sections.contains("bodies"); }
   bool operator==(const Model&) const = default;
 };
 
@@ -26,7 +36,8 @@ struct Model {
 Model load_model(const std::string& path);
 /// Validates a parsed document; `file` is used in messages. Throws ModelError.
 Model parse_model(const Json& j, const std::string& file);
-/// The document save_model writes: "format", "version", "name", "description", "geometry".
+/// The document save_model writes: "format", "version", "name", "description", "geometry",
+/// then the analysis sections as read.
 Json model_to_json(const Model& m);
 /// Writes model_to_json(m) readably (format_json). Throws std::runtime_error on I/O failure.
 /// load_model(path) == m afterwards, exactly.

@@ -229,3 +229,61 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
   CHECK_THAT(b.err, Catch::Contains("bad.csv:3"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("iga info validates and summarizes the analysis sections", "[apps][iga][run]") {
+  const Run r = iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\"");
+  INFO(r.out << r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("analysis: rod of 16 elements (degree 3, 21 control points)") != std::string::npos);
+  CHECK(r.out.find("48 contact points") != std::string::npos);
+}
+
+TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
+          "[apps][iga][run]") {
+  const fs::path out = fs::temp_directory_path() / ("iga_run_test_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const Run r = iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\" --out \"" +
+                    out.string() + "\" --set /contact/0/mu=0.2");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("full slip at t = ") != std::string::npos);
+  for (const char* f : {"steps.csv", "summary.json", "model_used.json", "rod.pvd", "contact.pvd",
+                        "last_rod.vtk", "last_contact.vtk"})
+    CHECK(fs::exists(out / f));
+  // The last row's reaction at the pulled end over T0 = 10 is the capstan ratio exp(0.2 pi).
+  const auto rows = csv_rows(slurp(out / "steps.csv"));
+  REQUIRE(rows.size() >= 12);
+  CHECK(rows[0].back() == "R20_norm");
+  const double T_ratio = std::stod(rows.back().back()) / 10.0;
+  CHECK(std::abs(T_ratio / std::exp(0.2 * M_PI) - 1.0) < 0.005);
+  CHECK(slurp(out / "model_used.json").find("\"mu\": 0.2") != std::string::npos);
+  CHECK(slurp(out / "summary.json").find("\"full_slip\": true") != std::string::npos);
+}
+
+TEST_CASE("iga run: bad analysis input exits 1 naming the file, JSON path and value",
+          "[apps][iga][run][errors]") {
+  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/capstan.json";
+  struct Case {
+    std::string set, message;
+  };
+  const std::vector<Case> cases = {
+      {"/materials/rope/EA=0", "/materials/rope/EA: must be > 0, got 0"},
+      {"/contact/0/rigid=\\\"rope\\\"", "/contact/0/rigid: not a rigid surface"},
+      {"/bodies/rope/material=\\\"steel\\\"", "/bodies/rope/material: names no entry of \\\"materials\\\""},
+      {"/loads/0/curve=\\\"hold2\\\"", "/loads/0/curve: names no entry of \\\"load_curves\\\", got \\\"hold2\\\""},
+      {"/loads/0/at=0.5", "/loads/0/direction: \\\"outward_tangent\\\" needs the point \\\"start\\\" or \\\"end\\\""},
+      {"/boundary_conditions/0/components=[3]", "/boundary_conditions/0/components/0: component must be 0, 1 or 2, got 3"},
+      {"/load_curves/pull/points=[[1,0],[1,1]]", "/load_curves/pull/points/1/0: times must increase, got 1"},
+      {"/solver/max_step=-1", "/solver/max_step: must be > 0, got -1"},
+      {"/geometry/rope/arc_elements=0", "/geometry/rope/arc_elements: must be in 1..100000, got 0"},
+      {"/output/vtk=\\\"some\\\"", "/output/vtk: expected one of \\\"none\\\", \\\"last\\\", \\\"all\\\", got \\\"some\\\""},
+  };
+  for (const Case& c : cases) {
+    const Run r = iga("run \"" + model + "\" --quiet --out /tmp/iga_bad_run --set \"" + c.set + "\"");
+    INFO(c.set << "\n" << r.out << r.err);
+    CHECK(r.status == 1);
+    std::string msg = c.message;
+    for (std::size_t k; (k = msg.find("\\\"")) != std::string::npos;) msg.replace(k, 2, "\"");
+    CHECK(r.err.find("capstan.json: " + msg) != std::string::npos);
+  }
+}

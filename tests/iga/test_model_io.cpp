@@ -1,5 +1,5 @@
 // Tests of the model file (iga/model.hpp): load -> save -> load is exact and the saved text
-// is stable; top-level keys, format/version and reserved sections are checked with errors that
+// is stable; top-level keys, format/version and the types of the analysis sections are checked with errors that
 // name the file, the JSON path and the value.
 #include <catch2/catch.hpp>
 
@@ -90,20 +90,22 @@ TEST_CASE("model: a plain nlohmann::json document is accepted", "[iga][io][model
   CHECK(m.geometry.surface("floor") != nullptr);
 }
 
-TEST_CASE("model: reserved sections are rejected as not supported yet", "[iga][io][model]") {
-  for (const char* section : {"materials", "bodies", "boundary_conditions", "loads", "load_curves",
-                              "contact", "solver", "output"}) {
-    INFO(section);
-    Json j = {{"geometry", Json::object()}};
-    j[section] = Json::object();
-    try {
-      parse_model(j, "future.json");
-      FAIL("accepted section " << section);
-    } catch (const ModelError& e) {
-      CHECK(e.pointer() == std::string("/") + section);
-      CHECK(std::string(e.what()).find("not supported yet by this version") != std::string::npos);
-    }
-  }
+TEST_CASE("model: analysis sections are kept in file order and saved back unchanged",
+          "[iga][io][model]") {
+  Json j = parse_json_text(R"({"format": "iga-contact-model", "geometry": {},
+    "solver": {"t_end": 2}, "bodies": {"b": {"type": "rod"}}, "app": {"x": [1, 2]},
+    "loads": [{"type": "point_force"}]})", "sections.json");
+  const Model m = parse_model(j, "sections.json");
+  CHECK(m.has_analysis());
+  REQUIRE(m.sections.size() == 4);
+  CHECK(m.sections.items().begin().key() == "solver");  // file order
+  const Json back = model_to_json(m);
+  for (const char* k : {"solver", "bodies", "app", "loads"}) CHECK(back[k] == j[k]);
+  CHECK(parse_model(back, "back.json") == m);
+  // A list section given as an object, and an object section given as a list, are errors.
+  Json bad = j;
+  bad["loads"] = Json::object();
+  CHECK_THROWS_WITH(parse_model(bad, "b.json"), Catch::Contains("/loads: expected an array"));
 }
 
 TEST_CASE("model: bad model files name the file and the JSON path and the value",
@@ -114,7 +116,7 @@ TEST_CASE("model: bad model files name the file and the JSON path and the value"
     std::vector<std::string> fragments;
   };
   const std::vector<Case> cases = {
-      {"reserved_section.json", "/materials", {"section \"materials\"", "not supported yet"}},
+      {"section_wrong_type.json", "/materials", {"expected an object", "got array"}},
       {"unknown_top_level_key.json", "/solvr", {"unknown key \"solvr\"", "geometry"}},
       {"wrong_version.json", "/version", {"unsupported format version", "got 2"}},
       {"wrong_format.json", "/format", {"iga-contact-model", "got \"stl\""}},

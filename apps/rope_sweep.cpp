@@ -1,0 +1,198 @@
+// Sweeps of the rope models over mu, phi and the pitch H; see rope_sweep.hpp.
+#include "apps/rope_sweep.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <numbers>
+
+#include <CLI/CLI.hpp>
+
+#include "iga/analysis.hpp"
+
+namespace iga::app {
+
+namespace {
+
+namespace fs = std::filesystem;
+constexpr double kPi = std::numbers::pi;
+
+struct Case {
+  std::string sweep;  ///< the CSV's case column: the model's sweep name or "c" (command line)
+  std::string name;   ///< file stem: sweep + index
+  double mu = 0.0, phi_deg = 0.0, pitch = 0.0;
+};
+
+/// Where the app finds its quantities in the model (the "app" section's pointers).
+struct Pointers {
+  JsonPointer T0, mu, phi_deg, pitch, rho;
+  Json reaction_point;
+};
+
+JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
+  const JsonCursor c = app[key];
+  const std::string s = c.as_string();
+  if (s.empty() || s[0] != '/') c.fail("expected a JSON pointer (\"/section/key\")");
+  const JsonPointer p(s);
+  if (!doc.contains(p)) c.fail("names no entry of the model");
+  if (!doc.at(p).is_number()) c.fail("must name a number of the model");
+  return p;
+}
+
+std::vector<Case> sweeps_from(const JsonCursor& s, const Json& doc, const Pointers& ptr) {
+  std::vector<Case> cases;
+  if (!s.json().is_object()) s.fail_type("an object of named sweeps");
+  for (const std::string& name : s.keys()) {
+    const JsonCursor c = s[name];
+    c.expect_object({"mu", "phi_deg", "pitch"});
+    auto list = [&](const char* key, const JsonPointer& p) {
+      if (!c.has(key)) return std::vector<double>{doc.at(p).get<double>()};
+      const JsonCursor l = c[key];
+      l.expect_array(1);
+      return l.as_numbers();
+    };
+    int k = 0;
+    for (double mu : list("mu", ptr.mu))
+      for (double phi : list("phi_deg", ptr.phi_deg))
+        for (double H : list("pitch", ptr.pitch))
+          cases.push_back({name, name + std::to_string(++k), mu, phi, H});
+  }
+  return cases;
+}
+
+}  // namespace
+
+int run_rope_app(const RopeApp& ra, int argc, char** argv) {
+  // 1. Arguments.
+  CLI::App cli{ra.title};
+  std::string model_file = ra.default_model;
+  std::vector<double> mu_list, phi_list, pitch_list;
+  std::vector<std::string> sets;
+  std::string out = std::string("out/").append(ra.name);
+  bool quick = false, profile = false, verbose = false;
+  double max_error = -1.0;
+  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")->capture_default_str();
+  cli.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.5,1)")->delimiter(',');
+  cli.add_option("--phi-deg", phi_list, "Wrap angles in degrees (a list)")->delimiter(',');
+  cli.add_option("--pitch", pitch_list, "Helix pitches H, rise per turn (a list)")->delimiter(',');
+  cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
+  cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
+  cli.add_flag("--quick", quick, "Run the model's reduced sweep (app/quick)");
+  cli.add_option("--max-error", max_error, "Exit with status 3 if some |rel_error| exceeds this");
+  cli.add_flag("--profile", profile, "Report the time shares: assembly (rod, contact), linear solves");
+  cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e);
+  }
+
+  // 2. Model: read, override, validate once (an error names the file and the JSON path).
+  Json doc = read_json_file(model_file);
+  for (const std::string& s : sets) apply_override(doc, model_file, s);
+  const JsonCursor root(doc, model_file);
+  if (!root.has("app")) root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");
+  const JsonCursor app = root["app"];
+  app.expect_object({"T0", "mu", "phi_deg", "pitch", "centre_radius", "reaction_point", "sweeps", "quick"});
+  Pointers ptr{pointer(app, "T0", doc), pointer(app, "mu", doc), pointer(app, "phi_deg", doc),
+               pointer(app, "pitch", doc), pointer(app, "centre_radius", doc),
+               app["reaction_point"].json()};
+  doc["output"]["reactions"] = Json::array({ptr.reaction_point});
+  (void)Analysis::from_json(doc, model_file);  // validates the whole model before any case runs
+
+  std::vector<Case> cases;
+  if (!mu_list.empty() || !phi_list.empty() || !pitch_list.empty()) {
+    if (mu_list.empty()) mu_list = {doc.at(ptr.mu).get<double>()};
+    if (phi_list.empty()) phi_list = {doc.at(ptr.phi_deg).get<double>()};
+    if (pitch_list.empty()) pitch_list = {doc.at(ptr.pitch).get<double>()};
+    int k = 0;
+    for (double mu : mu_list)
+      for (double phi : phi_list)
+        for (double H : pitch_list) cases.push_back({"c", std::string("c").append(std::to_string(++k)), mu, phi, H});
+  } else {
+    cases = sweeps_from(quick ? app["quick"] : app["sweeps"], doc, ptr);
+  }
+  if (cases.empty()) throw std::invalid_argument("no cases to run");
+
+  // 3. Output folder and the model used.
+  const fs::path dir(out);
+  fs::create_directories(dir);
+  std::ofstream(dir / "model_used.json") << format_json(doc) << "\n";
+  std::ofstream csv(dir / (ra.name + ".csv")), steps(dir / (ra.name + "_steps.csv"));
+  if (!csv || !steps) throw std::runtime_error("cannot write to " + out);
+  csv << (ra.pitch_column ? "case,mu,phi,pitch,T_ratio,exact,rel_error\n" : "case,mu,phi,T_ratio,exact,rel_error\n")
+      << std::setprecision(10);
+  steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n" << std::setprecision(10);
+
+  // 4. Each case; rows are written as they finish (a failure keeps what is done).
+  const auto t_start = std::chrono::steady_clock::now();
+  double worst = 0.0, t_solver = 0.0, t_assembly = 0.0, t_contact = 0.0, t_linear = 0.0;
+  int failed = 0, steps_total = 0, iterations_total = 0;
+  std::cout << ra.name << ": " << cases.size() << " cases from " << model_file << "\n";
+  for (const Case& c : cases) {
+    Json d = doc;
+    d[ptr.mu] = c.mu;
+    d[ptr.phi_deg] = c.phi_deg;
+    d[ptr.pitch] = c.pitch;
+    Analysis a = Analysis::from_json(d, model_file);
+    const double T0 = d.at(ptr.T0).get<double>(), rho = d.at(ptr.rho).get<double>();
+    const double phi = c.phi_deg * kPi / 180.0, cH = c.pitch / (2.0 * kPi);
+    const double exact = std::exp(c.mu * phi * rho / std::sqrt(rho * rho + cH * cH));  // (83)
+    const AnalysisResult r = a.run(verbose ? &std::cout : nullptr);
+    steps_total += r.solver.steps;
+    iterations_total += r.solver.total_iterations;
+    t_solver += r.solver.time_total;
+    t_assembly += r.solver.time_assembly;
+    t_contact += r.contact_time;
+    t_linear += r.solver.time_linear_solve;
+    for (const AnalysisStep& s : r.steps)
+      steps << c.name << "," << c.mu << "," << phi << "," << c.pitch << "," << s.t << ","
+            << s.reactions[0].norm() / T0 << "," << s.contact.active << "," << s.contact.stick << ","
+            << s.contact.slip << "," << s.iterations << "\n";
+    steps.flush();
+    if (!r.full_slip || r.steps.empty()) {
+      ++failed;
+      std::cout << "  " << c.name << ": mu " << c.mu << " phi " << c.phi_deg << " deg pitch " << c.pitch
+                << ": no full slip reached (" << to_string(r.solver.status) << ": " << r.solver.message << ")\n";
+      continue;
+    }
+    const double T_ratio = r.steps.back().reactions[0].norm() / T0, rel = T_ratio / exact - 1.0;
+    csv << c.sweep << "," << c.mu << "," << phi << ",";
+    if (ra.pitch_column) csv << c.pitch << ",";
+    csv << T_ratio << "," << exact << "," << rel << std::endl;
+    worst = std::max(worst, std::abs(rel));
+    a.write_vtk(dir.string(), c.name, r.u, r.solver.t);
+    std::cout << "  " << std::left << std::setw(4) << c.name << " mu " << std::setw(5) << c.mu << " phi "
+              << std::setw(5) << c.phi_deg << " deg";
+    if (ra.pitch_column) std::cout << " pitch " << std::setw(5) << c.pitch;
+    std::cout << "   T/T0 " << std::setw(10) << T_ratio << " exact " << std::setw(10) << exact
+              << " rel_error " << std::showpos << rel << std::noshowpos << "   steps " << r.solver.steps
+              << ", Newton " << r.solver.total_iterations << "\n";
+  }
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+
+  // 5. Plot and summary.
+  const std::string cmd = "/usr/bin/python3 \"" + ra.plot_script + "\" \"" + (dir / (ra.name + ".csv")).string() +
+                          "\" \"" + (dir / (ra.name + ".png")).string() + "\" 2>&1";
+  if (std::system(cmd.c_str()) != 0) std::cout << ra.name << ": warning: the plot failed (" << cmd << ")\n";
+  std::cout << ra.name << ": " << cases.size() - failed << "/" << cases.size() << " cases, max |rel_error| "
+            << worst << ", " << steps_total << " steps, "
+            << static_cast<double>(iterations_total) / std::max(steps_total, 1)
+            << " Newton iterations per step, " << secs << " s; results in " << dir.string() << "\n";
+  if (profile && t_solver > 0.0)
+    std::cout << ra.name << ": profile: solver " << t_solver << " s = assembly " << 100 * t_assembly / t_solver
+              << " % (of which contact " << 100 * t_contact / t_solver << " %, rod and loads "
+              << 100 * (t_assembly - t_contact) / t_solver << " %), linear solves " << 100 * t_linear / t_solver
+              << " %, other " << 100 * (t_solver - t_assembly - t_linear) / t_solver << " %\n";
+  if (failed > 0) return 2;
+  if (max_error >= 0.0 && worst > max_error) {
+    std::cout << ra.name << ": max |rel_error| " << worst << " exceeds --max-error " << max_error << "\n";
+    return 3;
+  }
+  return 0;
+}
+
+}  // namespace iga::app
