@@ -1,6 +1,7 @@
 // CTRS contact integral ([KS15] Sects. 4-5, eqs. (52), (66)-(70), (77)-(78)).
 #include "iga/curve_contact.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -28,6 +29,10 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
       cp.foot.patch = -1;
       points_.push_back(cp);
     }
+  double chord = 0.0;
+  for (std::size_t e = 0; e + 1 < br.size(); ++e)
+    chord = std::max(chord, (ref_.point(br[e + 1]) - ref_.point(br[e])).norm());
+  search_distance_ = params_.radius + chord;
 }
 
 void CurveContact::rational_basis(double eta, BasisValues& R, int& first) const {
@@ -43,17 +48,53 @@ void CurveContact::rational_basis(double eta, BasisValues& R, int& first) const 
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
-  for (CurveContactPoint& cp : points_) {
+  // Current positions (77); the points without a warm start go through the broad phase.
+  cold_.clear();
+  cold_x_.clear();
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    CurveContactPoint& cp = points_[i];
     BasisValues Rb;
     int first = 0;
     rational_basis(cp.eta, Rb, first);
     cp.x.setZero();
-    for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];  // (77)
-    // Closest point, warm-started from the last foot of this point.
-    cp.foot = cp.foot.patch >= 0 ? rigid_->closest_point(cp.x, cp.foot) : rigid_->closest_point(cp.x);
+    for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
+    if (cp.foot.patch < 0 || !found(cp.foot.status)) {
+      cold_.push_back(static_cast<int>(i));
+      cold_x_.push_back(cp.x);
+    }
+  }
+  broad_phase_points_ = static_cast<int>(cold_.size());
+  if (!cold_.empty()) {
+    const std::vector<ProjectionResult> feet =
+        rigid_->closest_points(cold_x_, search_distance_, /*use_cgal=*/true);
+    for (std::size_t k = 0; k < cold_.size(); ++k) {
+      CurveContactPoint& cp = points_[static_cast<std::size_t>(cold_[k])];
+      cp.foot = feet[k];
+      if (!found(cp.foot.status)) cp.foot.patch = -1;  // stays cold
+    }
+  }
+  std::size_t next_cold = 0;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    CurveContactPoint& cp = points_[i];
+    BasisValues Rb;
+    int first = 0;
+    rational_basis(cp.eta, Rb, first);
+    // Closest point, warm-started from the last foot of this point (cold ones: done above).
+    if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
+      ++next_cold;
+    else
+      cp.foot = rigid_->closest_point(cp.x, cp.foot);
     cp.law = ContactPoint();
     cp.N = cp.T = cp.B = 0.0;
     if (!found(cp.foot.status)) continue;
+    // A foot on an open edge or corner of the rigid body with the point off the surface normal
+    // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
+    // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
+    if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
+      const Vector3d d = cp.x - cp.foot.point;
+      const Vector3d& nrm = cp.foot.normal;
+      if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
+    }
     cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history);
     if (!cp.law.active) continue;
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
@@ -64,8 +105,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       for (int b = 0; b <= p; ++b) {
         const int B = first + b;
         const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
-        for (int i = 0; i < 3; ++i)
-          for (int j = 0; j < 3; ++j) K->emplace_back(3 * A + i, 3 * B + j, k(i, j));
+        for (int r = 0; r < 3; ++r)
+          for (int j = 0; j < 3; ++j) K->emplace_back(3 * A + r, 3 * B + j, k(r, j));
       }
     }
     // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).

@@ -1,7 +1,8 @@
 // Contact of a deformable curve (a rope's or rod's centre line) with a rigid surface: the
 // CTRS contact integral of [KS15] Sects. 4-5 (see ../shared/paper/EQUATIONS.md §4).
 // Contact points are Gauss points along the curve (a number per element); each is projected
-// onto the rigid surface (closest point, warm-started from its last foot), the point law of
+// onto the rigid surface (closest point, warm-started from its last foot; points without one go
+// through a CGAL broad phase against the rigid patches' elements first), the point law of
 // contact/contact_law.hpp gives the force f and df/dr, and with r_s = sum_a R_a(eta) x_a (77)
 //   residual    R_a  -= int R_a f ds,      tangent  K_ab -= int R_a R_b (df/dr) ds,
 // ds the reference arc length (the residual convention of iga/nonlinear_problem.hpp:
@@ -53,6 +54,15 @@ class CurveContact {
   CurveContactCounts counts() const;
   const ContactParameters& parameters() const { return params_; }
   void set_parameters(const ContactParameters& p) { params_ = p; }
+  /// Points without a warm start (first assembly, or no foot last time) are projected in one
+  /// batch: a CGAL box-intersection broad phase (RigidSurface::closest_points) between the
+  /// points and the Bezier elements of the rigid patches, inflated by this distance, then the
+  /// projection among each point's candidates; farther points are inactive (status far).
+  /// Default: rope radius + the longest reference element chord.
+  double search_distance() const { return search_distance_; }
+  void set_search_distance(double d) { search_distance_ = d; }
+  /// Points projected through the broad phase in the last assembly (the others warm-started).
+  int broad_phase_points() const { return broad_phase_points_; }
 
  private:
   // rational basis functions R_a at eta (first index of the non-zero ones in `first`)
@@ -62,6 +72,10 @@ class CurveContact {
   const RigidSurface* rigid_;
   ContactParameters params_;
   std::vector<CurveContactPoint> points_;
+  double search_distance_ = 0.0;
+  int broad_phase_points_ = 0;
+  std::vector<int> cold_;                 ///< work: points without a warm start
+  std::vector<Vector3d> cold_x_;
 };
 
 }  // namespace iga

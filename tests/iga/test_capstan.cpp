@@ -63,6 +63,7 @@ void kink_margins(const RodContactProblem& prob, double& gap, double& phi) {
   gap = phi = std::numeric_limits<double>::infinity();
   const bool friction = prob.contact().parameters().mu > 0.0;
   for (const CurveContactPoint& c : prob.contact().points()) {
+    if (!found(c.foot.status)) continue;  // beyond the search distance: inactive, no law
     gap = std::min(gap, std::abs(c.law.gap));
     if (c.law.active && friction) phi = std::min(phi, std::abs(c.law.phi));
   }

@@ -107,3 +107,38 @@ TEST_CASE("CurveContact: a uniformly penetrating half wrap has the resultant of 
   CHECK(resultant.x() == Approx(0.0).margin(1e-6));
   CHECK(cc.counts().active == static_cast<int>(cc.points().size()));
 }
+
+TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch; far points inactive",
+          "[iga][contact][ctrs]") {
+  // The same penetrating half wrap on one exact cylinder patch and on four 90-degree patches
+  // (a multi-patch rigid body): the first assembly projects every point through the CGAL broad
+  // phase, the second warm-starts all of them; residuals agree to round-off.
+  RigidSurface one, four;
+  one.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  for (int k = 0; k < 4; ++k)
+    four.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
+                           0.5 * kPi * k, 0.5 * kPi * (k + 1)));
+  const NurbsCurve ref = rope(1.04, 0.1, kPi - 0.1, 0.2);
+  const ContactParameters cp{1e3, 0.0, 0.0, 0.05};
+  CurveContact c1(ref, one, cp, 4), c4(ref, four, cp, 4);
+  const Eigen::VectorXd R1 = residual(c1, ref.control_points());
+  const Eigen::VectorXd R4 = residual(c4, ref.control_points());
+  CHECK(c4.broad_phase_points() == static_cast<int>(c4.points().size()));
+  CHECK((R1 - R4).norm() <= 1e-10 * R1.norm());
+  CHECK(c4.counts().active == static_cast<int>(c4.points().size()));
+  // Every point has a foot: the second assembly warm-starts all of them.
+  const Eigen::VectorXd R4b = residual(c4, ref.control_points());
+  CHECK(c4.broad_phase_points() == 0);
+  CHECK((R4b - R4).norm() <= 1e-12 * R4.norm());
+  // Moved far above the cylinder's top: the warm start ends on the top edge with the points off
+  // its normal (beyond the edge): inactive, no force, although the radial offset alone would
+  // give a negative gap (52). A cold start finds no surface within the search distance.
+  std::vector<Vector3d> away = ref.control_points();
+  for (Vector3d& p : away) p.z() += 10.0;
+  const Eigen::VectorXd R_away = residual(c4, away);
+  CHECK(c4.counts().active == 0);
+  CHECK(R_away.norm() == 0.0);
+  CurveContact cold(ref, four, cp, 4);
+  CHECK(residual(cold, away).norm() == 0.0);
+  for (const CurveContactPoint& p : cold.points()) CHECK(p.foot.status == ProjectionStatus::far);
+}
