@@ -173,9 +173,9 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
         rigid_boxes_.push_back(P->element_boxes()[e]);
         rigid_tags_.emplace_back(i, static_cast<int>(e));
       }
-  for (auto& row : Ke_)
-    for (Eigen::MatrixXd& m : row) m.setZero(nen_, nen_);
-  tmp_.setZero(nen_, 3);
+  Ke_.setZero(9 * nen_, nen_);
+  Z_.setZero(9 * nen_, 3 * np * np);
+  Nall_.setZero(nen_, 3 * np * np);
   dofs_.resize(static_cast<std::size_t>(nen_));
   cold_.reserve(points_.size());
   cold_x_.reserve(points_.size());
@@ -341,6 +341,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     element_dofs(static_cast<int>(e));
     bool any = false;
+    int n_active = 0;  // points of this element with a tangent contribution
     for (std::size_t i = e * static_cast<std::size_t>(per_element); i < (e + 1) * static_cast<std::size_t>(per_element); ++i) {
       SurfaceContactPoint& cp = points_[i];
       cp.active = cp.slip = false;
@@ -441,24 +442,29 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
       M.noalias() = g.Xg.transpose() * df;
       if (c != 0.0) M.bottomRightCorner<6, 6>() += c * normal_hessian(g, f);
       M *= -cp.weight;
+      // Collected per element: Nall = [.. Nm_p ..] (nen x 3 n_active), Z_kl = [.. Nm_p M_p^kl ..],
+      // M_p^kl(I, J) = M(3 I + k, 3 J + l), the Z_kl stacked; then K_e^kl = Z_kl Nall^T, one
+      // product per element for all nine component pairs (k, l).
       const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> Nm(B, nen_, 3);
+      Nall_.middleCols<3>(3 * n_active) = Nm;
       for (int k = 0; k < 3; ++k)
         for (int l = 0; l < 3; ++l) {
           Matrix3d Mkl;
           for (int I = 0; I < 3; ++I)
             for (int Jj = 0; Jj < 3; ++Jj) Mkl(I, Jj) = M(3 * I + k, 3 * Jj + l);
-          tmp_.noalias() = Nm * Mkl;
-          Ke_[k][l].noalias() += tmp_ * Nm.transpose();
+          Z_.block(nen_ * (3 * k + l), 3 * n_active, nen_, 3).noalias() = Nm.lazyProduct(Mkl);
         }
+      ++n_active;
     }
     if (!K || !any) continue;
+    Ke_.noalias() = Z_.leftCols(3 * n_active) * Nall_.leftCols(3 * n_active).transpose();
     for (int k = 0; k < 3; ++k)
       for (int l = 0; l < 3; ++l) {
-        Eigen::MatrixXd& Kkl = Ke_[k][l];
+        const int row0 = nen_ * (3 * k + l);
         for (int bb = 0; bb < nen_; ++bb)
           for (int aa = 0; aa < nen_; ++aa)
-            K->emplace_back(3 * dofs_[static_cast<std::size_t>(aa)] + k, 3 * dofs_[static_cast<std::size_t>(bb)] + l, Kkl(aa, bb));
-        Kkl.setZero();
+            K->emplace_back(3 * dofs_[static_cast<std::size_t>(aa)] + k, 3 * dofs_[static_cast<std::size_t>(bb)] + l,
+                            Ke_(row0 + aa, bb));
       }
   }
 }

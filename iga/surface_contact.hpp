@@ -80,7 +80,8 @@
 // Performance: basis functions at the Gauss points are computed once (the reference knots and
 // weights are those of the current configuration); the per-point kernel works on the 9
 // quantities G = (rho, a1, a2) with fixed-size Eigen types and no heap allocation; tangents are
-// summed into an element matrix (workspace allocated once) and emitted as triplets per element.
+// collected per element and multiplied out in one product per component pair (workspace
+// allocated once), then emitted as triplets per element.
 #pragma once
 
 #include <limits>
@@ -192,8 +193,9 @@ class SurfaceContact {
   // Workspace (allocated once).
   std::vector<int> cold_;                 ///< points needing a search in this assemble
   std::vector<Vector3d> cold_x_;
-  Eigen::MatrixXd Ke_[3][3];              ///< element tangent, (k, l) component blocks nen x nen
-  Eigen::MatrixXd tmp_;                   ///< nen x 3
+  Eigen::MatrixXd Ke_;  ///< element tangent: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
+  Eigen::MatrixXd Z_;   ///< per element: rows nen (3 k + l) + a: [.. N_p M_p^kl ..], 3 n^2 columns
+  Eigen::MatrixXd Nall_;                  ///< per element: [.. N_p ..], N_p = (R, R_,1, R_,2)
   std::vector<int> dofs_;
 };
 
