@@ -12,6 +12,7 @@
 #include "contact/analytic_projection.hpp"
 #include "contact/contact_search.hpp"
 #include "contact/ray_projection.hpp"
+#include "geometry/differential_geometry.hpp"
 #include "iga/quadrature.hpp"
 
 namespace iga {
@@ -23,12 +24,6 @@ using Matrix29 = Eigen::Matrix<double, 2, 9>;
 using Matrix99 = Eigen::Matrix<double, 9, 9>;
 using Matrix32 = Eigen::Matrix<double, 3, 2>;
 using RowVector9 = Eigen::Matrix<double, 1, 9>;
-
-Matrix3d skew(const Vector3d& v) {
-  Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
 
 // Rational basis functions of a NURBS surface and their first derivatives at (u, v)
 // ([PT97] A2.3 in each direction, eq. 4.20 in basis form: R = N M w / W and the quotient rule).

@@ -18,8 +18,11 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/surface_contact.hpp"
+#include "fd_tangent.hpp"
 
 using namespace iga;
+using iga::test::residual;
+using iga::test::tangent_error;
 
 namespace {
 
@@ -41,36 +44,10 @@ NurbsSurface plate(double x0, double x1, double y0, double y1, int n_el, bool fl
   return NurbsSurface(3, s.knots_u().knots(), 3, s.knots_v().knots(), X);
 }
 
-Eigen::VectorXd residual(SurfaceContact& c, const std::vector<Vector3d>& x) {
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
-  c.assemble(x, R, nullptr);
-  return R;
-}
-
 Vector3d resultant(const Eigen::VectorXd& R) {
   Vector3d s = Vector3d::Zero();
   for (Eigen::Index a = 0; a < R.size() / 3; ++a) s += R.segment<3>(3 * a);
   return s;
-}
-
-// max |K - dR/dx (central differences, step h)| / max |K|.
-double tangent_error(SurfaceContact& sc, const std::vector<Vector3d>& x, double h) {
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
-  std::vector<Eigen::Triplet<double>> trip;
-  sc.assemble(x, R, &trip);
-  Eigen::SparseMatrix<double> K(R.size(), R.size());
-  K.setFromTriplets(trip.begin(), trip.end());
-  const Eigen::MatrixXd Kd(K);
-  double err = 0.0;
-  for (Eigen::Index j = 0; j < R.size(); ++j) {
-    std::vector<Vector3d> xp = x, xm = x;
-    xp[static_cast<std::size_t>(j / 3)][j % 3] += h;
-    xm[static_cast<std::size_t>(j / 3)][j % 3] -= h;
-    const Eigen::VectorXd fd = (residual(sc, xp) - residual(sc, xm)) / (2 * h);
-    err = std::max(err, (fd - Kd.col(j)).cwiseAbs().maxCoeff());
-  }
-  sc.assemble(x, R, nullptr);  // leave the state of x
-  return err / std::max(Kd.cwiseAbs().maxCoeff(), 1e-300);
 }
 
 const char* name(Strategy s) { return s == Strategy::kRigidMaster ? "master" : "slave"; }
@@ -275,4 +252,34 @@ TEST_CASE("SurfaceContact: a uniformly sheared plate has T = eps_T slip in stick
       }
       CHECK(resultant(R).x() == Approx(T * L * L).epsilon(1e-10));  // R -= int f dA
     }
+}
+
+TEST_CASE("SurfaceContact: points beyond the search distance are failed and inactive; bad "
+          "parameters throw",
+          "[iga][contact][surface_contact]") {
+  RigidSurface body;
+  body.add(make_bilinear_hyperboloid(0.2, -2.0, 2.0, -2.0, 2.0));
+  // 0.3 above the surface, search distance 0.2: nothing found; then pressed in: all active
+  const NurbsSurface ref = plate(0.0, 1.0, 0.0, 1.0, 2, false, [](double x, double y) { return 0.2 * x * y + 0.3; });
+  for (const Strategy strategy : {Strategy::kRigidMaster, Strategy::kRigidSlave}) {
+    SurfaceContact sc(ref, body, {1e3, 0.0, 0.0, strategy, ShellFace::kMid, 0.0, 3, 0.2});
+    const Eigen::VectorXd R = residual(sc, ref.control_points());
+    CHECK(R.cwiseAbs().maxCoeff() == 0.0);
+    CHECK(sc.counts().failed == static_cast<int>(sc.points().size()));
+    CHECK(sc.counts().active == 0);
+    std::vector<Vector3d> x = ref.control_points();
+    for (Vector3d& q : x) q.z() -= 0.31;
+    residual(sc, x);
+    CHECK(sc.counts().failed == 0);
+    CHECK(sc.counts().active == static_cast<int>(sc.points().size()));
+  }
+  SurfaceContactParameters bad;
+  bad.eps_n = -1.0;
+  CHECK_THROWS_WITH(SurfaceContact(ref, body, bad), Catch::Contains("eps_n must be > 0"));
+  SurfaceContact sc(ref, body, {1e3, 0.0, 0.0, Strategy::kRigidMaster, ShellFace::kMid, 0.0, 3, 0.2});
+  SurfaceContactParameters p = sc.parameters();
+  p.points_per_direction = 4;
+  CHECK_THROWS_AS(sc.set_parameters(p), std::invalid_argument);
+  Eigen::VectorXd R = Eigen::VectorXd::Zero(3);
+  CHECK_THROWS_AS(sc.assemble(ref.control_points(), R, nullptr), std::invalid_argument);
 }
