@@ -14,6 +14,13 @@
 
 namespace iga {
 
+/// The cross product matrix [v]x: [v]x w = v x w (skew-symmetric).
+inline Matrix3d skew(const Vector3d& v) {
+  Matrix3d S;
+  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return S;
+}
+
 struct SurfaceFrame {
   Vector3d a1 = Vector3d::Zero(), a2 = Vector3d::Zero();  ///< rho_1, rho_2
   Vector3d n = Vector3d::Zero();                          ///< unit normal (oriented)

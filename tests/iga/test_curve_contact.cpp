@@ -14,18 +14,15 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/curve_contact.hpp"
+#include "fd_tangent.hpp"
 
 using namespace iga;
+using iga::test::residual;
+using iga::test::tangent_error;
 
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-Eigen::VectorXd residual(CurveContact& c, const std::vector<Vector3d>& x) {
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
-  c.assemble(x, R, nullptr);
-  return R;
-}
 
 // A rope: an arc of radius rho around the z axis from angle a0 to a1 at height z, as a
 // cubic NURBS with a few elements.
@@ -33,25 +30,6 @@ NurbsCurve rope(double rho, double a0, double a1, double z) {
   NurbsCurve c = make_circular_arc(Vector3d(0, 0, z), Vector3d::UnitX(), Vector3d::UnitY(), rho, a0, a1);
   c = elevate_degree(c, 1);
   return subdivide(c, 3);
-}
-
-double tangent_error(CurveContact& cc, const std::vector<Vector3d>& x) {
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
-  std::vector<Eigen::Triplet<double>> trip;
-  cc.assemble(x, R, &trip);
-  Eigen::SparseMatrix<double> K(R.size(), R.size());
-  K.setFromTriplets(trip.begin(), trip.end());
-  const Eigen::MatrixXd Kd(K);
-  const double h = 1e-7;
-  double err = 0.0;
-  for (Eigen::Index j = 0; j < R.size(); ++j) {
-    std::vector<Vector3d> xp = x, xm = x;
-    xp[static_cast<std::size_t>(j / 3)][j % 3] += h;
-    xm[static_cast<std::size_t>(j / 3)][j % 3] -= h;
-    const Eigen::VectorXd fd = (residual(cc, xp) - residual(cc, xm)) / (2 * h);
-    err = std::max(err, (fd - Kd.col(j)).cwiseAbs().maxCoeff());
-  }
-  return err / std::max(Kd.cwiseAbs().maxCoeff(), 1e-300);
 }
 
 }  // namespace
@@ -79,7 +57,7 @@ TEST_CASE("CurveContact: tangent = d(residual)/dx, frictionless and frictional",
     cc.assemble(x0, R0, nullptr);
     cc.commit();
     for (Vector3d& q : x) q += 0.003 * Vector3d(U(g), U(g), U(g));
-    const double err = tangent_error(cc, x);
+    const double err = tangent_error(cc, x, 1e-7);
     const CurveContactCounts n = cc.counts();
     INFO("variant " << variant << " active " << n.active << " stick " << n.stick << " slip " << n.slip);
     CHECK(n.active > 0);
