@@ -539,70 +539,32 @@ RodStrains KirchhoffRod::strains(double xi, std::span<const Vector3d> x) const {
 // ---------------------------------------------------------------------------------------------
 // RodProblem
 
-RodProblem::RodProblem(KirchhoffRod rod) : rod_(std::move(rod)) {
-  points_.resize(static_cast<std::size_t>(rod_.num_control_points()));
-  renumber();
+namespace {
+[[noreturn]] void rod_fail(const std::string& msg) {
+  throw RodError(msg);
 }
+}  // namespace
 
-void RodProblem::check_point(int point, const char* what) const {
-  if (point < 0 || point >= num_control_points())
-    throw RodError(std::string("RodProblem::") + what + ": control point " + std::to_string(point) +
-                   " out of range [0, " + std::to_string(num_control_points() - 1) + "]");
-}
-
-void RodProblem::renumber() {
-  num_free_ = 0;
-  for (PointDofs& P : points_)
-    for (int c = 0; c < 3; ++c)
-      P.free[static_cast<std::size_t>(c)] =
-          P.prescribed[static_cast<std::size_t>(c)] < 0 ? num_free_++ : -1;
-}
-
-void RodProblem::constrain(int point, int component, Prescribed p) {
-  check_point(point, "constrain");
-  if (component < 0 || component > 2)
-    throw RodError("RodProblem: component must be 0, 1 or 2, got " + std::to_string(component));
-  int& idx =
-      points_[static_cast<std::size_t>(point)].prescribed[static_cast<std::size_t>(component)];
-  if (idx >= 0) {
-    prescribed_[static_cast<std::size_t>(idx)] = std::move(p);
-  } else {
-    idx = static_cast<int>(prescribed_.size());
-    prescribed_.push_back(std::move(p));
-  }
-  renumber();
-}
+RodProblem::RodProblem(KirchhoffRod rod)
+    : rod_(std::move(rod)),
+      dofs_(rod_.num_control_points(), "RodProblem", &rod_fail),
+      X_(rod_.reference().control_points()) {}
 
 void RodProblem::set_local_basis(int point, const Matrix3d& Q) {
-  check_point(point, "set_local_basis");
-  PointDofs& P = points_[static_cast<std::size_t>(point)];
-  for (int c = 0; c < 3; ++c)
-    if (P.prescribed[static_cast<std::size_t>(c)] >= 0)
-      throw RodError("RodProblem::set_local_basis: control point " + std::to_string(point) +
-                     " already has constrained components; set the basis first");
-  if (!((Q.transpose() * Q - Matrix3d::Identity()).norm() <= 1e-10))
-    throw RodError("RodProblem::set_local_basis: the basis of control point " +
-                   std::to_string(point) + " is not orthonormal");
-  P.Q = Q;
-  P.rotated = !Q.isIdentity(0.0);
+  dofs_.set_local_basis(point, Q);
 }
-
 const Matrix3d& RodProblem::local_basis(int point) const {
-  check_point(point, "local_basis");
-  return points_[static_cast<std::size_t>(point)].Q;
+  return dofs_.local_basis(point);
 }
-
 void RodProblem::fix(int point) {
-  for (int c = 0; c < 3; ++c) fix(point, c);
+  dofs_.fix(point);
 }
 void RodProblem::fix(int point, int component) {
-  constrain(point, component, Prescribed{});
+  dofs_.fix(point, component);
 }
-
 void RodProblem::prescribe(int point, int component, double value, LoadCurve curve) {
-  constrain(point, component, Prescribed{value, std::move(curve)});
+  dofs_.prescribe(point, component, value, std::move(curve));
 }
-
 void RodProblem::prescribe(int point, const Vector3d& d, LoadCurve curve) {
   for (int c = 0; c < 3; ++c) prescribe(point, c, d[c], curve);
 }
@@ -611,8 +573,8 @@ void RodProblem::clamp(RodEnd end) {
   const int n = num_control_points();
   const int i0 = end == RodEnd::kStart ? 0 : n - 1;
   const int i1 = end == RodEnd::kStart ? 1 : n - 2;
-  const PointDofs& P1 = points_[static_cast<std::size_t>(i1)];
-  if (P1.rotated || P1.prescribed[0] >= 0 || P1.prescribed[1] >= 0 || P1.prescribed[2] >= 0)
+  if (dofs_.rotated(i1) || dofs_.constrained(i1, 0) || dofs_.constrained(i1, 1) ||
+      dofs_.constrained(i1, 2))
     throw RodError("RodProblem::clamp: control point " + std::to_string(i1) +
                    " (neighbour of the clamped end) already has a local basis or constraints");
   // Open knots: r'(end) = (p / knot span) (w_1 / w_0) (x_1 - x_0), so holding x_0 and the
@@ -634,14 +596,11 @@ void RodProblem::clamp(RodEnd end) {
 }
 
 bool RodProblem::constrained(int point, int component) const {
-  check_point(point, "constrained");
-  return points_[static_cast<std::size_t>(point)].prescribed.at(
-             static_cast<std::size_t>(component)) >= 0;
+  return dofs_.constrained(point, component);
 }
 
 int RodProblem::dof(int point, int component) const {
-  check_point(point, "dof");
-  return points_[static_cast<std::size_t>(point)].free.at(static_cast<std::size_t>(component));
+  return dofs_.dof(point, component);
 }
 
 void RodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve curve) {
@@ -695,26 +654,7 @@ void RodProblem::add_moment(double xi, const Vector3d& M, LoadCurve curve) {
 }
 
 void RodProblem::current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const {
-  if (u.size() != num_free_)
-    throw std::invalid_argument("RodProblem: state has " + std::to_string(u.size()) +
-                                " entries, expected " + std::to_string(num_free_));
-  const int n = num_control_points();
-  x.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const PointDofs& P = points_[static_cast<std::size_t>(i)];
-    Vector3d d;
-    for (int c = 0; c < 3; ++c) {
-      const std::size_t k = static_cast<std::size_t>(c);
-      if (P.free[k] >= 0) {
-        d[c] = u[P.free[k]];
-      } else {
-        const Prescribed& pr = prescribed_[static_cast<std::size_t>(P.prescribed[k])];
-        d[c] = pr.curve ? pr.value * pr.curve(t) : 0.0;
-      }
-    }
-    x[static_cast<std::size_t>(i)] =
-        rod_.reference().control_point(i) + (P.rotated ? Vector3d(P.Q * d) : d);
-  }
+  dofs_.current_points(X_, u, t, x);
 }
 
 std::vector<Vector3d> RodProblem::current_points(const VectorXd& u, double t) const {
@@ -782,50 +722,18 @@ void RodProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
 
 void RodProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
   assemble_cartesian(u, t, K != nullptr);
-  // R = P^T g with the columns of P the local axes of the free components.
-  R.setZero(num_free_);
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const PointDofs& P = points_[i];
-    const Vector3d gi = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
-    for (int c = 0; c < 3; ++c) {
-      const int k = P.free[static_cast<std::size_t>(c)];
-      if (k >= 0) R[k] = P.rotated ? P.Q.col(c).dot(gi) : gi[c];
-    }
-  }
+  dofs_.reduce(g_, R);  // R = P^T g
   if (!K) return;
-  // K_free = P^T K_cart P, triplet by triplet.
   free_triplets_.clear();
-  free_triplets_.reserve(cart_triplets_.size());
-  for (const Triplet& tr : cart_triplets_) {
-    const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
-    const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
-    const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
-    if (!Pi.rotated && !Pj.rotated) {
-      const int r = Pi.free[static_cast<std::size_t>(a)], c = Pj.free[static_cast<std::size_t>(b)];
-      if (r >= 0 && c >= 0) free_triplets_.emplace_back(r, c, tr.value());
-      continue;
-    }
-    for (int ci = 0; ci < 3; ++ci) {
-      const int r = Pi.free[static_cast<std::size_t>(ci)];
-      if (r < 0) continue;
-      const double qi = Pi.rotated ? Pi.Q(a, ci) : (a == ci ? 1.0 : 0.0);
-      if (qi == 0.0) continue;
-      for (int cj = 0; cj < 3; ++cj) {
-        const int c = Pj.free[static_cast<std::size_t>(cj)];
-        if (c < 0) continue;
-        const double qj = Pj.rotated ? Pj.Q(b, cj) : (b == cj ? 1.0 : 0.0);
-        if (qj != 0.0) free_triplets_.emplace_back(r, c, qi * tr.value() * qj);
-      }
-    }
-  }
-  K->resize(num_free_, num_free_);
+  dofs_.reduce(cart_triplets_, free_triplets_);  // K_free = P^T K_cart P
+  K->resize(dofs_.num_free(), dofs_.num_free());
   K->setFromTriplets(free_triplets_.begin(), free_triplets_.end());
 }
 
 std::vector<Vector3d> RodProblem::nodal_residual(const VectorXd& u, double t) {
   assemble_cartesian(u, t, false);
-  std::vector<Vector3d> r(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i)
+  std::vector<Vector3d> r(static_cast<std::size_t>(num_control_points()));
+  for (std::size_t i = 0; i < r.size(); ++i)
     r[i] = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
   return r;
 }

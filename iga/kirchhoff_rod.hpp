@@ -86,6 +86,7 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/nurbs_curve.hpp"
+#include "iga/dof_map.hpp"
 #include "iga/nonlinear_problem.hpp"
 
 namespace iga {
@@ -131,7 +132,6 @@ inline constexpr int kMaxRodElementDofs = 3 * (kMaxDegree + 1);
 using RodElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRodElementDofs, 1>;
 using RodElementMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
                                        kMaxRodElementDofs, kMaxRodElementDofs>;
-using Triplet = Eigen::Triplet<double>;
 
 /// The p+1 rational basis functions R_j = N_{first+j} w / W and their first two derivatives at xi
 /// ([PT97] A2.3 and the quotient rule, eq. 4.8 in basis form).
@@ -224,17 +224,6 @@ class KirchhoffRod {
   std::vector<QuadraturePoint> qps_;
 };
 
-/// Load curve lambda(t) of pseudo-time t scaling a load or a prescribed displacement.
-using LoadCurve = std::function<double(double)>;
-/// lambda(t) = t.
-inline LoadCurve ramp() {
-  return [](double t) { return t; };
-}
-/// lambda(t) = c.
-inline LoadCurve constant_curve(double c = 1.0) {
-  return [c](double) { return c; };
-}
-
 enum class RodEnd { kStart, kEnd };
 
 /// A rod with boundary conditions and loads as a NonlinearProblem. The unknowns u are the
@@ -291,7 +280,7 @@ class RodProblem : public NonlinearProblem {
   void add_moment(double xi, const Vector3d& M, LoadCurve curve = ramp());
 
   // ---- NonlinearProblem ----------------------------------------------------------------------
-  int num_dofs() const override { return num_free_; }
+  int num_dofs() const override { return dofs_.num_free(); }
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
   bool symmetric() const override { return moments_.empty(); }
 
@@ -316,16 +305,6 @@ class RodProblem : public NonlinearProblem {
   }
 
  private:
-  struct Prescribed {
-    double value = 0.0;
-    LoadCurve curve;  ///< empty: fixed (value 0)
-  };
-  struct PointDofs {
-    Matrix3d Q = Matrix3d::Identity();
-    bool rotated = false;
-    std::array<int, 3> free{-1, -1, -1};        ///< free DOF index or -1
-    std::array<int, 3> prescribed{-1, -1, -1};  ///< index into prescribed_ or -1
-  };
   struct NodalLoad {  ///< dead load, precomputed distribution
     std::vector<std::pair<int, Vector3d>> forces;
     LoadCurve curve;
@@ -336,20 +315,16 @@ class RodProblem : public NonlinearProblem {
     LoadCurve curve;
   };
 
-  void check_point(int point, const char* what) const;
-  void constrain(int point, int component, Prescribed p);
-  void renumber();
   void add_moment_terms(std::span<const Vector3d> x, double t, VectorXd& g,
                         std::vector<Triplet>* K) const;
   /// Cartesian residual g and (optionally) Cartesian triplets at x.
   void assemble_cartesian(const VectorXd& u, double t, bool tangent);
 
   KirchhoffRod rod_;
-  std::vector<PointDofs> points_;
-  std::vector<Prescribed> prescribed_;
+  DofMap dofs_;
+  std::vector<Vector3d> X_;  ///< reference control points
   std::vector<NodalLoad> dead_loads_;
   std::vector<Moment> moments_;
-  int num_free_ = 0;
   // Work storage reused between assemble() calls.
   std::vector<Vector3d> x_;
   VectorXd g_;
