@@ -546,28 +546,8 @@ namespace {
 }  // namespace
 
 RodProblem::RodProblem(KirchhoffRod rod)
-    : rod_(std::move(rod)),
-      dofs_(rod_.num_control_points(), "RodProblem", &rod_fail),
-      X_(rod_.reference().control_points()) {}
-
-void RodProblem::set_local_basis(int point, const Matrix3d& Q) {
-  dofs_.set_local_basis(point, Q);
-}
-const Matrix3d& RodProblem::local_basis(int point) const {
-  return dofs_.local_basis(point);
-}
-void RodProblem::fix(int point) {
-  dofs_.fix(point);
-}
-void RodProblem::fix(int point, int component) {
-  dofs_.fix(point, component);
-}
-void RodProblem::prescribe(int point, int component, double value, LoadCurve curve) {
-  dofs_.prescribe(point, component, value, std::move(curve));
-}
-void RodProblem::prescribe(int point, const Vector3d& d, LoadCurve curve) {
-  for (int c = 0; c < 3; ++c) prescribe(point, c, d[c], curve);
-}
+    : ControlPointProblem(rod.reference().control_points(), "RodProblem", &rod_fail),
+      rod_(std::move(rod)) {}
 
 void RodProblem::clamp(RodEnd end) {
   const int n = num_control_points();
@@ -595,22 +575,13 @@ void RodProblem::clamp(RodEnd end) {
   fix(i1, 2);
 }
 
-bool RodProblem::constrained(int point, int component) const {
-  return dofs_.constrained(point, component);
-}
-
-int RodProblem::dof(int point, int component) const {
-  return dofs_.dof(point, component);
-}
-
 void RodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve curve) {
   const RationalBasis B = rational_basis(rod_.reference(), xi);
-  NodalLoad L;
-  L.curve = std::move(curve);
+  std::vector<std::pair<int, Vector3d>> forces;
   for (int j = 0; j < B.count; ++j)
     if (B.N[static_cast<std::size_t>(j)] != 0.0)
-      L.forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);  // f_i = R_i F
-  dead_loads_.push_back(std::move(L));
+      forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);  // f_i = R_i F
+  add_nodal_load(std::move(forces), std::move(curve));
 }
 
 void RodProblem::add_line_load(const Vector3d& q, LoadCurve curve) {
@@ -641,41 +612,17 @@ void RodProblem::add_line_load(const Vector3d& q, Interval range, LoadCurve curv
         f[static_cast<std::size_t>(B.first + j)] += (w * B.N[static_cast<std::size_t>(j)]) * q;
     }
   }
-  NodalLoad L;
-  L.curve = std::move(curve);
-  for (int i = 0; i < n; ++i)
-    if (f[static_cast<std::size_t>(i)].squaredNorm() > 0.0)
-      L.forces.emplace_back(i, f[static_cast<std::size_t>(i)]);
-  dead_loads_.push_back(std::move(L));
+  add_nodal_load(f, std::move(curve));
 }
 
 void RodProblem::add_moment(double xi, const Vector3d& M, LoadCurve curve) {
   moments_.push_back(Moment{rational_basis(rod_.reference(), xi), M, std::move(curve)});
 }
 
-void RodProblem::current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const {
-  dofs_.current_points(X_, u, t, x);
-}
-
-std::vector<Vector3d> RodProblem::current_points(const VectorXd& u, double t) const {
-  std::vector<Vector3d> x;
-  current_points(u, t, x);
-  return x;
-}
-
 NurbsCurve RodProblem::current_curve(const VectorXd& u, double t) const {
   const std::vector<Vector3d> x = current_points(u, t);
   return NurbsCurve(rod_.reference().degree(), rod_.reference().knots().knots(), x,
                     rod_.reference().weights());
-}
-
-VectorXd RodProblem::dead_load(double t) const {
-  VectorXd f = VectorXd::Zero(rod_.num_dofs());
-  for (const NodalLoad& L : dead_loads_) {
-    const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) f.segment<3>(3 * i) += lam * F;
-  }
-  return f;
 }
 
 void RodProblem::add_moment_terms(std::span<const Vector3d> x, double t, VectorXd& g,
@@ -707,35 +654,10 @@ void RodProblem::add_moment_terms(std::span<const Vector3d> x, double t, VectorX
   }
 }
 
-void RodProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
-  current_points(u, t, x_);
-  cart_triplets_.clear();
-  std::vector<Triplet>* K = tangent ? &cart_triplets_ : nullptr;
-  rod_.assemble(x_, g_, K);  // g = f_int
-  for (const NodalLoad& L : dead_loads_) {
-    const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
-  }
-  add_moment_terms(x_, t, g_, K);
-  add_contributions(x_, t, g_, K);
-}
-
-void RodProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
-  assemble_cartesian(u, t, K != nullptr);
-  dofs_.reduce(g_, R);  // R = P^T g
-  if (!K) return;
-  free_triplets_.clear();
-  dofs_.reduce(cart_triplets_, free_triplets_);  // K_free = P^T K_cart P
-  K->resize(dofs_.num_free(), dofs_.num_free());
-  K->setFromTriplets(free_triplets_.begin(), free_triplets_.end());
-}
-
-std::vector<Vector3d> RodProblem::nodal_residual(const VectorXd& u, double t) {
-  assemble_cartesian(u, t, false);
-  std::vector<Vector3d> r(static_cast<std::size_t>(num_control_points()));
-  for (std::size_t i = 0; i < r.size(); ++i)
-    r[i] = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
-  return r;
+void RodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+                                std::vector<Triplet>* K) {
+  rod_.assemble(x, g, K);  // g = f_int
+  add_moment_terms(x, t, g, K);
 }
 
 }  // namespace iga

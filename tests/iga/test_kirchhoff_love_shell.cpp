@@ -14,6 +14,9 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/kirchhoff_love_shell.hpp"
+#include "iga/nonlinear_solver.hpp"
+#include "iga/shell_benchmarks.hpp"
+#include "iga/shell_problem.hpp"
 
 using namespace iga;
 
@@ -107,4 +110,244 @@ TEST_CASE("KirchhoffLoveShell: rigid translation and finite rotation give zero e
   CHECK(shell.energy(x) <= 1e-20 * shell.energy(perturbed(X, rng, 0.01)) + 1e-18);
   CHECK(max_abs(f) <= 1e-10 * max_abs(f_ref));
   CHECK(shell.energy(X) == Approx(0.0).margin(1e-20));
+}
+
+// ---------------------------------------------------------------------------------------------
+// ShellProblem
+
+namespace {
+
+/// Dense tangent of a problem and its central FD.
+void problem_fd(ShellProblem& P, const Eigen::VectorXd& u, double t, double& err, double& asym) {
+  Eigen::VectorXd R, Rp, Rm;
+  SparseMatrix K;
+  P.assemble(u, t, R, &K);
+  const Eigen::MatrixXd Kd(K);
+  Eigen::MatrixXd Kfd(Kd.rows(), Kd.cols());
+  const double eps = 1e-7;
+  for (Eigen::Index j = 0; j < u.size(); ++j) {
+    Eigen::VectorXd up = u, um = u;
+    up[j] += eps;
+    um[j] -= eps;
+    P.assemble(up, t, Rp, nullptr);
+    P.assemble(um, t, Rm, nullptr);
+    Kfd.col(j) = (Rp - Rm) / (2 * eps);
+  }
+  err = (Kfd - Kd).norm() / Kd.norm();
+  asym = (Kd - Kd.transpose()).norm() / Kd.norm();
+}
+
+}  // namespace
+
+TEST_CASE("ShellProblem: tangent = FD of the residual with follower pressure, springs, "
+          "symmetry ties, clamp and local bases",
+          "[iga][shell]") {
+  std::mt19937 rng(3);
+  ShellProblem P(KirchhoffLoveShell(curved_patch(rng, 3, 2), {1000.0, 0.3, 0.05}));
+  P.symmetry(SurfaceEdge::kVMin, Vector3d(0.3, 1.0, 0.2));  // a general plane: rotated bases
+  P.clamp(SurfaceEdge::kVMax);
+  // A clamp on an edge whose corner points already have the symmetry plane's bases: rejected.
+  CHECK_THROWS_AS(P.clamp(SurfaceEdge::kUMin), ShellError);
+  P.add_spring(P.point_index(4, 4), 50.0, [](double t) { return 1.0 - 0.5 * t; });
+  P.add_spring(P.point_index(4, 2), 80.0, constant_curve(), Vector3d(1.0, 1.0, 0.0));
+  P.add_pressure(7.0);
+  P.add_surface_load(Vector3d(0.0, 0.0, -2.0));
+  P.add_edge_load(SurfaceEdge::kUMax, Vector3d(1.0, 0.0, 0.5));
+  P.add_point_load(0.7, 0.6, Vector3d(0.0, 3.0, 0.0));
+  CHECK_FALSE(P.symmetric());
+  std::uniform_real_distribution<double> d(-0.05, 0.05);
+  Eigen::VectorXd u(P.num_dofs());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = d(rng);
+  double err = 0.0, asym = 0.0;
+  problem_fd(P, u, 0.7, err, asym);
+  std::printf("ShellProblem FD (pressure, springs, ties): |K - K_fd|/|K| = %.2e, asymmetry %.2e\n",
+              err, asym);
+  CHECK(err <= 1e-6);
+  CHECK(asym > 1e-8);  // the follower pressure's load stiffness is not symmetric
+  // Without the pressure the tangent is symmetric.
+  ShellProblem P2(KirchhoffLoveShell(curved_patch(rng, 2, 2), {1000.0, 0.3, 0.05}));
+  P2.clamp(SurfaceEdge::kVMax);
+  P2.add_spring(P2.point_index(0, 0), 40.0);
+  CHECK(P2.symmetric());
+  Eigen::VectorXd u2(P2.num_dofs());
+  for (Eigen::Index i = 0; i < u2.size(); ++i) u2[i] = d(rng);
+  problem_fd(P2, u2, 1.0, err, asym);
+  CHECK(err <= 1e-6);
+  CHECK(asym <= 1e-12);
+}
+
+TEST_CASE("ShellProblem: the follower pressure's load stiffness is the FD of its force",
+          "[iga][shell]") {
+  std::mt19937 rng(5);
+  ShellProblem P(KirchhoffLoveShell(curved_patch(rng, 2, 2), {1e-6, 0.0, 1e-3}));  // ~no f_int
+  P.add_pressure(3.0, constant_curve());
+  const std::vector<Vector3d> X = P.shell().reference_points();
+  std::uniform_real_distribution<double> d(-0.1, 0.1);
+  Eigen::VectorXd u(P.num_dofs());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = d(rng);
+  // Pressure alone: residual of a problem with a negligible shell stiffness minus f_int.
+  auto pressure_residual = [&](const Eigen::VectorXd& s, Eigen::VectorXd& g, SparseMatrix* K) {
+    P.assemble(s, 0.0, g, K);
+    Eigen::VectorXd fi;
+    std::vector<Triplet> T;
+    P.shell().assemble(P.current_points(s, 0.0), fi, K ? &T : nullptr);
+    g -= fi;
+    if (K) {
+      SparseMatrix Ki(K->rows(), K->cols());
+      Ki.setFromTriplets(T.begin(), T.end());
+      *K -= Ki;
+    }
+  };
+  Eigen::VectorXd g, gp, gm;
+  SparseMatrix K;
+  pressure_residual(u, g, &K);
+  const Eigen::MatrixXd Kd(K);
+  Eigen::MatrixXd Kfd(Kd.rows(), Kd.cols());
+  for (Eigen::Index j = 0; j < u.size(); ++j) {
+    Eigen::VectorXd up = u, um = u;
+    up[j] += 1e-6;
+    um[j] -= 1e-6;
+    pressure_residual(up, gp, nullptr);
+    pressure_residual(um, gm, nullptr);
+    Kfd.col(j) = (gp - gm) / 2e-6;
+  }
+  const double err = (Kfd - Kd).norm() / Kd.norm();
+  std::printf("follower pressure load stiffness FD: %.2e\n", err);
+  CHECK(err <= 1e-6);
+  // The total pressure force on the reference surface is p int n dA.
+  Eigen::VectorXd g0;
+  pressure_residual(Eigen::VectorXd::Zero(P.num_dofs()), g0, nullptr);
+  Vector3d F = Vector3d::Zero(), Fref = Vector3d::Zero();
+  for (Eigen::Index i = 0; i < g0.size() / 3; ++i) F -= g0.segment<3>(3 * i);
+  for (int e = 0; e < P.shell().num_elements(); ++e)
+    for (int q = 0; q < P.shell().num_quadrature_points(e); ++q) {
+      const auto& qp = P.shell().quadrature_point(e, q);
+      Fref += 3.0 * qp.wJ * P.shell().normal(qp.u, qp.v, X);
+    }
+  CHECK((F - Fref).norm() <= 1e-12 * Fref.norm());
+}
+
+TEST_CASE("ShellProblem: a plate hung by four corner springs that weaken over t carries its "
+          "weight: sum k(t) u_z = -W",
+          "[iga][shell]") {
+  NurbsSurface s = make_plane_patch(Vector3d::Zero(), Vector3d(2, 0, 0), Vector3d(0, 1, 0));
+  s = subdivide(elevate_degree(s, 1, 1), 3, 2);
+  ShellProblem P(KirchhoffLoveShell(s, {1e4, 0.3, 0.1}));
+  const double k = 100.0;
+  const LoadCurve weaken = [](double t) { return 1.0 - 0.5 * t; };
+  const int nu = s.num_u(), nv = s.num_v();
+  const std::vector<int> corners{P.point_index(0, 0), P.point_index(nu - 1, 0),
+                                 P.point_index(0, nv - 1), P.point_index(nu - 1, nv - 1)};
+  for (int c : corners) P.add_spring(c, k, weaken);
+  P.add_surface_load(Vector3d(0.0, 0.0, -0.5), constant_curve());  // W = 0.5 * 2 = 1
+  NonlinearSolverSettings st;
+  st.initial_step = 0.5;
+  NonlinearSolver solver(st);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(P.num_dofs());
+  const NonlinearSolverResult r = solver.solve(P, u);
+  REQUIRE(r.converged());
+  const std::vector<Vector3d> x = P.current_points(u, 1.0);
+  double sum = 0.0;
+  for (int c : corners) sum += k * weaken(1.0) * (x[static_cast<std::size_t>(c)].z() -
+                                                  s.control_point(c % nu, c / nu).z());
+  CHECK(sum == Approx(-1.0).epsilon(1e-8));
+  // The weakened springs (k/2) hang the plate twice as low as k (nearly rigid plate).
+  CHECK(x[static_cast<std::size_t>(corners[0])].z() == Approx(-1.0 / (4 * 0.5 * k)).epsilon(0.05));
+}
+
+TEST_CASE("ShellProblem: membrane patch test: a linear displacement field gives the exact "
+          "uniform membrane force on a distorted rational patch, and no interior forces",
+          "[iga][shell]") {
+  const double E = 1e3, nu = 0.25, h = 0.1, ex = 0.01, ey = -0.004;
+  // Green-Lagrange strains of the stretch, plane stress: N = h E/(1-nu^2) (Exx + nu Eyy), ...
+  const double Exx = ex + 0.5 * ex * ex, Eyy = ey + 0.5 * ey * ey;
+  const double c = h * E / (1 - nu * nu);
+  const double Nxx = c * (Exx + nu * Eyy), Nyy = c * (Eyy + nu * Exx);
+  for (bool distorted : {true, false}) {
+    std::mt19937 rng(9);
+    NurbsSurface s = make_plane_patch(Vector3d::Zero(), Vector3d(2, 0, 0), Vector3d(0, 1.5, 0));
+    s = elevate_degree(s, 2, 2);
+    const std::vector<double> ku{0.2, 0.3, 0.7}, kv{0.45, 0.6};  // non-uniform knots
+    s = refine_knots(s, ku, kv);
+    std::vector<Vector3d> X = s.control_points();
+    std::vector<double> W = s.weights();
+    if (distorted) {  // interior points moved in the plane, random weights (rational)
+      std::uniform_real_distribution<double> d(-0.05, 0.05), w(0.8, 1.2);
+      for (int j = 1; j + 1 < s.num_v(); ++j)
+        for (int i = 1; i + 1 < s.num_u(); ++i)
+          X[static_cast<std::size_t>(s.index(i, j))] += Vector3d(d(rng), d(rng), 0.0);
+      for (double& x : W) x *= w(rng);
+      s = NurbsSurface(3, s.knots_u().knots(), 3, s.knots_v().knots(), X, W);
+    }
+    ShellProblem P(KirchhoffLoveShell(s, {E, nu, h}));
+    for (int i = 0; i < P.num_control_points(); ++i) {
+      const Vector3d& Xi = X[static_cast<std::size_t>(i)];
+      P.prescribe(i, Vector3d(ex * Xi.x(), ey * Xi.y(), 0.0), constant_curve());
+    }
+    REQUIRE(P.num_dofs() == 0);
+    const Eigen::VectorXd u0(0);
+    const std::vector<Vector3d> x = P.current_points(u0, 1.0);
+    for (auto [u, v] : {std::pair{0.13, 0.71}, std::pair{0.5, 0.5}, std::pair{0.91, 0.07}}) {
+      const ShellStresses st = P.shell().stresses(u, v, x);
+      // Expected resultants in the local frame e1 = A1/|A1|, e2 = e_z x e1.
+      const Vector3d e1 = s.derivs(u, v, 1).Su.normalized();
+      const Vector3d e2 = Vector3d::UnitZ().cross(e1);
+      auto N = [&](const Vector3d& a, const Vector3d& b) {
+        return a.x() * b.x() * Nxx + a.y() * b.y() * Nyy;
+      };
+      CHECK(st.membrane_force_local[0] == Approx(N(e1, e1)).epsilon(1e-10));
+      CHECK(st.membrane_force_local[1] == Approx(N(e2, e2)).epsilon(1e-10));
+      CHECK(st.membrane_force_local[2] == Approx(N(e1, e2)).margin(1e-10 * Nxx));
+      CHECK(st.moment_local.norm() == Approx(0.0).margin(1e-10 * Nxx));
+    }
+    if (distorted) continue;  // rational integrands: the nodal forces below hold to quadrature
+    const std::vector<Vector3d> g = P.nodal_residual(u0, 1.0);
+    double gmax = 0.0, gint = 0.0;
+    for (int j = 0; j < s.num_v(); ++j)
+      for (int i = 0; i < s.num_u(); ++i) {
+        const double gn = g[static_cast<std::size_t>(s.index(i, j))].norm();
+        gmax = std::max(gmax, gn);
+        if (i > 0 && j > 0 && i + 1 < s.num_u() && j + 1 < s.num_v()) gint = std::max(gint, gn);
+      }
+    CHECK(gint <= 1e-12 * gmax);
+    // The edge x = 2 carries the first Piola force (1 + ex) Nxx times its length 1.5.
+    Vector3d Fx = Vector3d::Zero();
+    for (int j = 0; j < s.num_v(); ++j)
+      Fx += g[static_cast<std::size_t>(s.index(s.num_u() - 1, j))];
+    CHECK(Fx.x() == Approx((1 + ex) * Nxx * 1.5).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("ShellProblem: simply supported square plate under uniform load vs the Navier "
+          "series (within 0.5 %), clamped edges vs Timoshenko's 0.00126 q a^4 / D",
+          "[iga][shell]") {
+  const double a = 1.0, h = 0.01, E = 1e7, nu = 0.3, q = 1.0;
+  const double D = E * h * h * h / (12 * (1 - nu * nu));
+  // Navier: w(a/2, a/2) = 16 q / (pi^6 D) sum_{m,n odd} (-1)^((m+n)/2-1) / (m n (m^2+n^2)^2 / a^4)
+  double w_navier = 0.0;
+  for (int m = 1; m < 200; m += 2)
+    for (int n = 1; n < 200; n += 2)
+      w_navier += ((((m + n) / 2 - 1) % 2) ? -1.0 : 1.0) /
+                  (m * n * std::pow((m * m + n * n) / (a * a), 2));
+  w_navier *= 16 * q / (std::pow(kPi, 6) * D);
+  CHECK(w_navier == Approx(0.00406235 * q * a * a * a * a / D).epsilon(1e-4));
+  for (bool clamped : {false, true}) {
+    NurbsSurface s = make_plane_patch(Vector3d::Zero(), Vector3d(a, 0, 0), Vector3d(0, a, 0));
+    s = subdivide(elevate_degree(s, 2, 2), 12, 12);
+    ShellProblem P(KirchhoffLoveShell(s, {E, nu, h}));
+    for (SurfaceEdge e : {SurfaceEdge::kUMin, SurfaceEdge::kUMax, SurfaceEdge::kVMin,
+                          SurfaceEdge::kVMax}) {
+      if (clamped)
+        P.clamp(e);
+      else
+        P.simply_support(e, {0, 1, 2});
+    }
+    P.add_surface_load(Vector3d(0, 0, -q));
+    const Eigen::VectorXd u = solve_linear(P, 1.0);
+    const double w = -P.displacement(0.5, 0.5, u, 1.0).z();
+    const double ref = clamped ? 0.00126532 * q * a * a * a * a / D : w_navier;
+    std::printf("square plate, %s, 12x12 p = 3: w = %.6e, reference %.6e, error %.2e\n",
+                clamped ? "clamped" : "simply supported", w, ref, w / ref - 1);
+    CHECK(w == Approx(ref).epsilon(5e-3));
+  }
 }
