@@ -351,3 +351,116 @@ TEST_CASE("ShellProblem: simply supported square plate under uniform load vs the
     CHECK(w == Approx(ref).epsilon(5e-3));
   }
 }
+
+// ---------------------------------------------------------------------------------------------
+// Benchmarks (../shared/BENCHMARKS.md, builders in iga/shell_benchmarks.hpp)
+
+namespace {
+
+struct Row {
+  int n = 0, p = 0;
+  double value = 0.0, error = 0.0;
+};
+
+/// Linear benchmark on meshes n x n, degree p: table of values and relative errors.
+template <class Make>
+std::vector<Row> convergence(const char* name, Make make, std::initializer_list<int> degrees,
+                             std::initializer_list<int> meshes, double ref) {
+  std::vector<Row> rows;
+  std::printf("%s (reference %.6g)\n  elements/side  degree  value         rel. error\n", name,
+              ref);
+  for (int p : degrees)
+    for (int n : meshes) {
+      ShellBenchmark b = make(n, p);
+      const Eigen::VectorXd u = solve_linear(b.problem, 1.0);
+      const double w = b.problem.displacement(b.u, b.v, u, 1.0).dot(b.direction);
+      rows.push_back({n, p, w, w / ref - 1.0});
+      std::printf("  %13d  %6d  %.6e  %+.3e\n", n, p, w, w / ref - 1.0);
+    }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("Scordelis-Lo roof: vertical displacement at the free edge mid-point converges to "
+          "the KL value 0.3006 under h- and p-refinement",
+          "[iga][shell][benchmark]") {
+  const std::vector<Row> rows =
+      convergence("Scordelis-Lo roof, -u_z at the free edge mid-point", make_scordelis_lo,
+                  {2, 3, 4}, {4, 8, 16}, 0.3006);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i].p == rows[i - 1].p)
+      CHECK(std::abs(rows[i].error) < std::abs(rows[i - 1].error));
+  // The finest meshes of p = 3 and 4 are within 0.1 % of the converged KL value 0.3006
+  // (0.3024 is the deep-shell value with transverse shear, ~0.6 % above the KL limit).
+  CHECK(std::abs(rows[rows.size() - 4].error) < 1e-3);
+  CHECK(std::abs(rows.back().error) < 1e-3);
+}
+
+TEST_CASE("Pinched cylinder with rigid diaphragms: displacement under the load converges to "
+          "1.8248e-5 under h- and p-refinement",
+          "[iga][shell][benchmark]") {
+  const std::vector<Row> rows =
+      convergence("Pinched cylinder (1/8), -u_z under the load", make_pinched_cylinder, {3, 4},
+                  {8, 16, 32}, 1.8248e-5);
+  for (std::size_t i = 1; i < rows.size(); ++i)
+    if (rows[i].p == rows[i - 1].p)
+      CHECK(std::abs(rows[i].error) < std::abs(rows[i - 1].error));
+  // 32 x 32, p = 4: within 0.5 % (measured +0.09 %); p = 3 from below, p = 4 crosses over.
+  CHECK(std::abs(rows.back().error) < 5e-3);
+  CHECK(std::abs(rows[2].error) < 5e-3);
+}
+
+TEST_CASE("Slit annular plate (Sze, Liu & Lo 2004): geometrically nonlinear load-deflection "
+          "points within 1 %",
+          "[iga][shell][benchmark]") {
+  const int nr = 4, na = 48, p = 3;
+  SlitAnnularPlate b = make_slit_annular_plate(nr, na, p);
+  std::printf("slit annular plate %d x %d, p = %d: geometric error of the fitted circle %.2e\n",
+              nr, na, p, b.geometric_error);
+  CHECK(b.geometric_error < 1e-3);
+  struct Ref {
+    double lam, WA, WB;
+  };
+  const std::vector<Ref> refs{{0.2, 6.725, 9.160}, {0.4, 9.529, 12.661}, {0.6, 11.257, 14.674},
+                              {1.0, 13.891, 17.528}};
+  NonlinearSolverSettings st;
+  // The flat plate's first Newton iterations are the linear plate solution (huge deflections);
+  // only the geometric stiffening of the membrane brings the residual back: no divergence test.
+  st.initial_step = 0.05;
+  st.max_step = 0.1;
+  st.tol_residual_rel = 1e-8;
+  st.tol_residual_abs = 1e-6;  // the round-off floor of f_int is ~1e-8 (E h = 6.3e5, |x| ~ 10)
+  st.divergence_ratio = 1e12;
+  st.max_residual_increases = 0;
+  NonlinearSolver solver(st);
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(b.problem.num_dofs());
+  double t0 = 0.0;
+  int iterations = 0, steps = 0;
+  for (const Ref& r : refs) {
+    st.t0 = t0;
+    st.t1 = r.lam;
+    solver.set_settings(st);
+    const NonlinearSolverResult res = solver.solve(b.problem, u);
+    if (!res.converged()) {
+      std::printf("  %s\n", res.message.c_str());
+      for (const StepAttempt& a : res.attempts)
+        if (!a.message.empty() || a.outcome != NewtonOutcome::converged) {
+          std::printf("  step %d t %.4f: %s |", a.step, a.t, a.message.c_str());
+          for (double rn : a.residual_norms) std::printf(" %.2e", rn);
+          std::printf("\n");
+        }
+    }
+    REQUIRE(res.converged());
+    iterations += res.total_iterations;
+    steps += res.steps;
+    t0 = r.lam;
+    const double WA = b.problem.displacement(1.0, 0.0, u, r.lam).z();
+    const double WB = b.problem.displacement(1.0, 1.0, u, r.lam).z();
+    std::printf("  P/Pmax = %.1f: W_A = %.4f (ref %.3f, %+.2f %%), W_B = %.4f (ref %.3f, %+.2f %%)\n",
+                r.lam, WA, r.WA, 100 * (WA / r.WA - 1), WB, r.WB, 100 * (WB / r.WB - 1));
+    CHECK(WA == Approx(r.WA).epsilon(0.01));
+    CHECK(WB == Approx(r.WB).epsilon(0.01));
+  }
+  std::printf("  %d steps, %d Newton iterations\n", steps, iterations);
+}
