@@ -9,6 +9,7 @@
 #include <string>
 
 #include "iga/quadrature.hpp"
+#include "iga/skew.hpp"
 
 namespace iga {
 
@@ -20,12 +21,6 @@ using Matrix3x15d = Eigen::Matrix<double, 3, 15>;
 using Matrix3x6d = Eigen::Matrix<double, 3, 6>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
-
-Matrix3d skew(const Vector3d& v) {
-  Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
 
 std::string num(double v) {
   char buf[32];
@@ -250,11 +245,9 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
     if (!(V[jv + 1] > V[jv])) continue;
     for (int iu = p; iu < reference_.num_u(); ++iu) {
       if (!(U[iu + 1] > U[iu])) continue;
-      Element el;
-      el.span_u = iu;
-      el.span_v = jv;
-      el.range = {{U[iu], U[iu + 1]}, {V[jv], V[jv + 1]}};
-      el.qp_begin = static_cast<int>(qps_.size());
+      elements_.push_back({static_cast<int>(qps_.size()), ngu * ngv, iu, jv,
+                           {{U[iu], U[iu + 1]}, {V[jv], V[jv + 1]}}});
+      // Tensor-product Gauss rule mapped to the element (u fastest).
       const double mu = 0.5 * (U[iu] + U[iu + 1]), hu = 0.5 * (U[iu + 1] - U[iu]);
       const double mv = 0.5 * (V[jv] + V[jv + 1]), hv = 0.5 * (V[jv + 1] - V[jv]);
       for (int b = 0; b < ngv; ++b)
@@ -263,8 +256,6 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
           qps_.push_back(
               make_point(mu + hu * xu[ia], mv + hv * xv[ib], hu * wu[ia] * hv * wv[ib]));
         }
-      el.qp_count = static_cast<int>(qps_.size()) - el.qp_begin;
-      elements_.push_back(el);
     }
   }
 }

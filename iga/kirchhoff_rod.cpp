@@ -10,6 +10,7 @@
 #include <string>
 
 #include "iga/quadrature.hpp"
+#include "iga/skew.hpp"
 
 namespace iga {
 
@@ -17,12 +18,6 @@ namespace {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
-Matrix3d skew(const Vector3d& v) {
-  Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
-}
 
 /// Value, gradient and Hessian of the energy density W(a, b), a = r', b = r'' (6 variables:
 /// a first). `order` 0: W only; 1: and g; 2: and H. Also the strains for output.

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "iga/quadrature.hpp"
+#include "iga/skew.hpp"
 
 namespace iga {
 
@@ -14,12 +15,6 @@ namespace {
 
 [[noreturn]] void shell_fail(const std::string& msg) {
   throw ShellError(msg);
-}
-
-Matrix3d skew(const Vector3d& v) {
-  Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
 }
 
 bool along_u(SurfaceEdge e) {  // the edge runs in u (v fixed)
