@@ -534,80 +534,22 @@ RodStrains KirchhoffRod::strains(double xi, std::span<const Vector3d> x) const {
 // ---------------------------------------------------------------------------------------------
 // RodProblem
 
-RodProblem::RodProblem(KirchhoffRod rod) : rod_(std::move(rod)) {
-  points_.resize(static_cast<std::size_t>(rod_.num_control_points()));
-  renumber();
+namespace {
+[[noreturn]] void rod_fail(const std::string& msg) {
+  throw RodError(msg);
 }
+}  // namespace
 
-void RodProblem::check_point(int point, const char* what) const {
-  if (point < 0 || point >= num_control_points())
-    throw RodError(std::string("RodProblem::") + what + ": control point " + std::to_string(point) +
-                   " out of range [0, " + std::to_string(num_control_points() - 1) + "]");
-}
-
-void RodProblem::renumber() {
-  num_free_ = 0;
-  for (PointDofs& P : points_)
-    for (int c = 0; c < 3; ++c)
-      P.free[static_cast<std::size_t>(c)] =
-          P.prescribed[static_cast<std::size_t>(c)] < 0 ? num_free_++ : -1;
-}
-
-void RodProblem::constrain(int point, int component, Prescribed p) {
-  check_point(point, "constrain");
-  if (component < 0 || component > 2)
-    throw RodError("RodProblem: component must be 0, 1 or 2, got " + std::to_string(component));
-  int& idx =
-      points_[static_cast<std::size_t>(point)].prescribed[static_cast<std::size_t>(component)];
-  if (idx >= 0) {
-    prescribed_[static_cast<std::size_t>(idx)] = std::move(p);
-  } else {
-    idx = static_cast<int>(prescribed_.size());
-    prescribed_.push_back(std::move(p));
-  }
-  renumber();
-}
-
-void RodProblem::set_local_basis(int point, const Matrix3d& Q) {
-  check_point(point, "set_local_basis");
-  PointDofs& P = points_[static_cast<std::size_t>(point)];
-  for (int c = 0; c < 3; ++c)
-    if (P.prescribed[static_cast<std::size_t>(c)] >= 0)
-      throw RodError("RodProblem::set_local_basis: control point " + std::to_string(point) +
-                     " already has constrained components; set the basis first");
-  if (!((Q.transpose() * Q - Matrix3d::Identity()).norm() <= 1e-10))
-    throw RodError("RodProblem::set_local_basis: the basis of control point " +
-                   std::to_string(point) + " is not orthonormal");
-  P.Q = Q;
-  P.rotated = !Q.isIdentity(0.0);
-}
-
-const Matrix3d& RodProblem::local_basis(int point) const {
-  check_point(point, "local_basis");
-  return points_[static_cast<std::size_t>(point)].Q;
-}
-
-void RodProblem::fix(int point) {
-  for (int c = 0; c < 3; ++c) fix(point, c);
-}
-void RodProblem::fix(int point, int component) {
-  constrain(point, component, Prescribed{});
-}
-
-void RodProblem::prescribe(int point, int component, double value, LoadCurve curve) {
-  constrain(point, component, Prescribed{value, std::move(curve)});
-}
-
-void RodProblem::prescribe(int point, const Vector3d& d, LoadCurve curve) {
-  for (int c = 0; c < 3; ++c) prescribe(point, c, d[c], curve);
-}
+RodProblem::RodProblem(KirchhoffRod rod)
+    : ControlPointProblem(rod.reference().control_points(), "RodProblem", &rod_fail),
+      rod_(std::move(rod)) {}
 
 void RodProblem::clamp(RodEnd end) {
   const int n = num_control_points();
   const int i0 = end == RodEnd::kStart ? 0 : n - 1;
   const int i1 = end == RodEnd::kStart ? 1 : n - 2;
-  const PointDofs& P1 = points_[static_cast<std::size_t>(i1)];
-  if (P1.rotated || P1.prescribed[0] >= 0 || P1.prescribed[1] >= 0 || P1.prescribed[2] >= 0)
+  if (dofs_.rotated(i1) || dofs_.constrained(i1, 0) || dofs_.constrained(i1, 1) ||
+      dofs_.constrained(i1, 2))
     throw RodError("RodProblem::clamp: control point " + std::to_string(i1) +
                    " (neighbour of the clamped end) already has a local basis or constraints");
   // Open knots: r'(end) = (p / knot span) (w_1 / w_0) (x_1 - x_0), so holding x_0 and the
@@ -628,25 +570,13 @@ void RodProblem::clamp(RodEnd end) {
   fix(i1, 2);
 }
 
-bool RodProblem::constrained(int point, int component) const {
-  check_point(point, "constrained");
-  return points_[static_cast<std::size_t>(point)].prescribed.at(
-             static_cast<std::size_t>(component)) >= 0;
-}
-
-int RodProblem::dof(int point, int component) const {
-  check_point(point, "dof");
-  return points_[static_cast<std::size_t>(point)].free.at(static_cast<std::size_t>(component));
-}
-
 void RodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve curve) {
   const RationalBasis B = rational_basis(rod_.reference(), xi);
-  NodalLoad L;
-  L.curve = std::move(curve);
+  std::vector<std::pair<int, Vector3d>> forces;
   for (int j = 0; j < B.count; ++j)
     if (B.N[static_cast<std::size_t>(j)] != 0.0)
-      L.forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);  // f_i = R_i F
-  dead_loads_.push_back(std::move(L));
+      forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);  // f_i = R_i F
+  add_nodal_load(std::move(forces), std::move(curve));
 }
 
 void RodProblem::add_line_load(const Vector3d& q, LoadCurve curve) {
@@ -677,60 +607,17 @@ void RodProblem::add_line_load(const Vector3d& q, Interval range, LoadCurve curv
         f[static_cast<std::size_t>(B.first + j)] += (w * B.N[static_cast<std::size_t>(j)]) * q;
     }
   }
-  NodalLoad L;
-  L.curve = std::move(curve);
-  for (int i = 0; i < n; ++i)
-    if (f[static_cast<std::size_t>(i)].squaredNorm() > 0.0)
-      L.forces.emplace_back(i, f[static_cast<std::size_t>(i)]);
-  dead_loads_.push_back(std::move(L));
+  add_nodal_load(f, std::move(curve));
 }
 
 void RodProblem::add_moment(double xi, const Vector3d& M, LoadCurve curve) {
   moments_.push_back(Moment{rational_basis(rod_.reference(), xi), M, std::move(curve)});
 }
 
-void RodProblem::current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const {
-  if (u.size() != num_free_)
-    throw std::invalid_argument("RodProblem: state has " + std::to_string(u.size()) +
-                                " entries, expected " + std::to_string(num_free_));
-  const int n = num_control_points();
-  x.resize(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const PointDofs& P = points_[static_cast<std::size_t>(i)];
-    Vector3d d;
-    for (int c = 0; c < 3; ++c) {
-      const std::size_t k = static_cast<std::size_t>(c);
-      if (P.free[k] >= 0) {
-        d[c] = u[P.free[k]];
-      } else {
-        const Prescribed& pr = prescribed_[static_cast<std::size_t>(P.prescribed[k])];
-        d[c] = pr.curve ? pr.value * pr.curve(t) : 0.0;
-      }
-    }
-    x[static_cast<std::size_t>(i)] =
-        rod_.reference().control_point(i) + (P.rotated ? Vector3d(P.Q * d) : d);
-  }
-}
-
-std::vector<Vector3d> RodProblem::current_points(const VectorXd& u, double t) const {
-  std::vector<Vector3d> x;
-  current_points(u, t, x);
-  return x;
-}
-
 NurbsCurve RodProblem::current_curve(const VectorXd& u, double t) const {
   const std::vector<Vector3d> x = current_points(u, t);
   return NurbsCurve(rod_.reference().degree(), rod_.reference().knots().knots(), x,
                     rod_.reference().weights());
-}
-
-VectorXd RodProblem::dead_load(double t) const {
-  VectorXd f = VectorXd::Zero(rod_.num_dofs());
-  for (const NodalLoad& L : dead_loads_) {
-    const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) f.segment<3>(3 * i) += lam * F;
-  }
-  return f;
 }
 
 void RodProblem::add_moment_terms(std::span<const Vector3d> x, double t, VectorXd& g,
@@ -762,67 +649,10 @@ void RodProblem::add_moment_terms(std::span<const Vector3d> x, double t, VectorX
   }
 }
 
-void RodProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
-  current_points(u, t, x_);
-  cart_triplets_.clear();
-  std::vector<Triplet>* K = tangent ? &cart_triplets_ : nullptr;
-  rod_.assemble(x_, g_, K);  // g = f_int
-  for (const NodalLoad& L : dead_loads_) {
-    const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
-  }
-  add_moment_terms(x_, t, g_, K);
-  add_contributions(x_, t, g_, K);
-}
-
-void RodProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
-  assemble_cartesian(u, t, K != nullptr);
-  // R = P^T g with the columns of P the local axes of the free components.
-  R.setZero(num_free_);
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    const PointDofs& P = points_[i];
-    const Vector3d gi = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
-    for (int c = 0; c < 3; ++c) {
-      const int k = P.free[static_cast<std::size_t>(c)];
-      if (k >= 0) R[k] = P.rotated ? P.Q.col(c).dot(gi) : gi[c];
-    }
-  }
-  if (!K) return;
-  // K_free = P^T K_cart P, triplet by triplet.
-  free_triplets_.clear();
-  free_triplets_.reserve(cart_triplets_.size());
-  for (const Triplet& tr : cart_triplets_) {
-    const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
-    const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
-    const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
-    if (!Pi.rotated && !Pj.rotated) {
-      const int r = Pi.free[static_cast<std::size_t>(a)], c = Pj.free[static_cast<std::size_t>(b)];
-      if (r >= 0 && c >= 0) free_triplets_.emplace_back(r, c, tr.value());
-      continue;
-    }
-    for (int ci = 0; ci < 3; ++ci) {
-      const int r = Pi.free[static_cast<std::size_t>(ci)];
-      if (r < 0) continue;
-      const double qi = Pi.rotated ? Pi.Q(a, ci) : (a == ci ? 1.0 : 0.0);
-      if (qi == 0.0) continue;
-      for (int cj = 0; cj < 3; ++cj) {
-        const int c = Pj.free[static_cast<std::size_t>(cj)];
-        if (c < 0) continue;
-        const double qj = Pj.rotated ? Pj.Q(b, cj) : (b == cj ? 1.0 : 0.0);
-        if (qj != 0.0) free_triplets_.emplace_back(r, c, qi * tr.value() * qj);
-      }
-    }
-  }
-  K->resize(num_free_, num_free_);
-  K->setFromTriplets(free_triplets_.begin(), free_triplets_.end());
-}
-
-std::vector<Vector3d> RodProblem::nodal_residual(const VectorXd& u, double t) {
-  assemble_cartesian(u, t, false);
-  std::vector<Vector3d> r(points_.size());
-  for (std::size_t i = 0; i < points_.size(); ++i)
-    r[i] = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
-  return r;
+void RodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+                                std::vector<Triplet>* K) {
+  rod_.assemble(x, g, K);  // g = f_int
+  add_moment_terms(x, t, g, K);
 }
 
 }  // namespace iga

@@ -86,7 +86,7 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/nurbs_curve.hpp"
-#include "iga/nonlinear_problem.hpp"
+#include "iga/control_point_problem.hpp"
 
 namespace iga {
 
@@ -131,7 +131,6 @@ inline constexpr int kMaxRodElementDofs = 3 * (kMaxDegree + 1);
 using RodElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRodElementDofs, 1>;
 using RodElementMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
                                        kMaxRodElementDofs, kMaxRodElementDofs>;
-using Triplet = Eigen::Triplet<double>;
 
 /// The p+1 rational basis functions R_j = N_{first+j} w / W and their first two derivatives at xi
 /// ([PT97] A2.3 and the quotient rule, eq. 4.8 in basis form).
@@ -224,17 +223,6 @@ class KirchhoffRod {
   std::vector<QuadraturePoint> qps_;
 };
 
-/// Load curve lambda(t) of pseudo-time t scaling a load or a prescribed displacement.
-using LoadCurve = std::function<double(double)>;
-/// lambda(t) = t.
-inline LoadCurve ramp() {
-  return [](double t) { return t; };
-}
-/// lambda(t) = c.
-inline LoadCurve constant_curve(double c = 1.0) {
-  return [c](double) { return c; };
-}
-
 enum class RodEnd { kStart, kEnd };
 
 /// A rod with boundary conditions and loads as a NonlinearProblem. The unknowns u are the
@@ -255,31 +243,19 @@ enum class RodEnd { kStart, kEnd };
 /// In a plane normal to M this is the conservative moment of potential -lambda M theta (theta
 /// the tangent angle, unwrapped), so an end moment can roll a rod up into a full circle. Out of
 /// that plane the load stiffness is not symmetric, so symmetric() is false when moments exist.
-class RodProblem : public NonlinearProblem {
+class RodProblem : public ControlPointProblem {
  public:
   explicit RodProblem(KirchhoffRod rod);
 
   const KirchhoffRod& rod() const { return rod_; }
-  int num_control_points() const { return rod_.num_control_points(); }
 
-  // ---- constraints (components along the point's local basis) -----------------------------
-  /// Sets the local basis of `point` (orthonormal columns). Throws RodError if the point already
-  /// has constrained components or Q is not orthonormal.
-  void set_local_basis(int point, const Matrix3d& Q);
-  const Matrix3d& local_basis(int point) const;
-  void fix(int point);
-  void fix(int point, int component);
-  /// Displacement component = value * curve(t).
-  void prescribe(int point, int component, double value, LoadCurve curve = ramp());
-  /// All three components of the displacement = d * curve(t) (d in the local basis).
-  void prescribe(int point, const Vector3d& d, LoadCurve curve = ramp());
+  // Constraints (set_local_basis, fix, prescribe, constrained, dof), current_points,
+  // nodal_residual, dead_load and assemble: see ControlPointProblem.
+
   /// Fixes the end control point and the neighbour's components normal to the reference end
   /// tangent (sets the neighbour's local basis: axis 0 along the tangent). Throws RodError if the
   /// neighbour already has a local basis or constraints.
   void clamp(RodEnd end);
-  /// Whether component c of point i is constrained; its free DOF index otherwise (-1 if not).
-  bool constrained(int point, int component) const;
-  int dof(int point, int component) const;
 
   // ---- loads (all scaled by their load curve) ----------------------------------------------
   /// Dead force F at parameter xi, distributed by the basis functions: f_i = R_i(xi) F.
@@ -290,70 +266,28 @@ class RodProblem : public NonlinearProblem {
   /// Moment M at parameter xi (use the domain ends for end moments); see the class comment.
   void add_moment(double xi, const Vector3d& M, LoadCurve curve = ramp());
 
-  // ---- NonlinearProblem ----------------------------------------------------------------------
-  int num_dofs() const override { return num_free_; }
-  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
   bool symmetric() const override { return moments_.empty(); }
 
-  // ---- state <-> geometry ----------------------------------------------------------------------
-  /// Current control points x_i = X_i + Q_i d_i(u, t).
-  std::vector<Vector3d> current_points(const VectorXd& u, double t) const;
-  void current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const;
   /// The current centre line (reference knots and weights, current control points).
   NurbsCurve current_curve(const VectorXd& u, double t) const;
-  /// f_int - f_ext (+ contributions) per control point, Cartesian: the reactions at the
-  /// constrained points of an equilibrium state, ~0 at free components.
-  std::vector<Vector3d> nodal_residual(const VectorXd& u, double t);
-  /// External work-conjugate force of the dead loads at t (3 n, Cartesian), for tests.
-  VectorXd dead_load(double t) const;
 
  protected:
-  /// Hook for derived problems (e.g. contact): add to the global Cartesian residual g (3 n,
-  /// DOF 3 i + c, g = f_int - f_ext convention) and append tangent triplets d g / d x.
-  virtual void add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
-                                 std::vector<Triplet>* K) {
-    (void)x, (void)t, (void)g, (void)K;
-  }
+  /// g = f_int - (moment loads), tangent triplets.
+  void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+                      std::vector<Triplet>* K) override;
 
  private:
-  struct Prescribed {
-    double value = 0.0;
-    LoadCurve curve;  ///< empty: fixed (value 0)
-  };
-  struct PointDofs {
-    Matrix3d Q = Matrix3d::Identity();
-    bool rotated = false;
-    std::array<int, 3> free{-1, -1, -1};        ///< free DOF index or -1
-    std::array<int, 3> prescribed{-1, -1, -1};  ///< index into prescribed_ or -1
-  };
-  struct NodalLoad {  ///< dead load, precomputed distribution
-    std::vector<std::pair<int, Vector3d>> forces;
-    LoadCurve curve;
-  };
   struct Moment {
     RationalBasis basis;
     Vector3d M = Vector3d::Zero();
     LoadCurve curve;
   };
 
-  void check_point(int point, const char* what) const;
-  void constrain(int point, int component, Prescribed p);
-  void renumber();
   void add_moment_terms(std::span<const Vector3d> x, double t, VectorXd& g,
                         std::vector<Triplet>* K) const;
-  /// Cartesian residual g and (optionally) Cartesian triplets at x.
-  void assemble_cartesian(const VectorXd& u, double t, bool tangent);
 
   KirchhoffRod rod_;
-  std::vector<PointDofs> points_;
-  std::vector<Prescribed> prescribed_;
-  std::vector<NodalLoad> dead_loads_;
   std::vector<Moment> moments_;
-  int num_free_ = 0;
-  // Work storage reused between assemble() calls.
-  std::vector<Vector3d> x_;
-  VectorXd g_;
-  std::vector<Triplet> cart_triplets_, free_triplets_;
 };
 
 }  // namespace iga

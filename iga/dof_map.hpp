@@ -1,0 +1,119 @@
+// The map between control point displacements and the free unknowns of a rotation-free model
+// (rods, shells): local bases per control point, fixed and prescribed components along load
+// curves, tied components (one unknown shared by two points), the reduction of Cartesian
+// residuals and tangent triplets to the free unknowns. Shared by RodProblem and ShellProblem.
+//
+// Notation: d_i displacement of control point i in its local basis Q_i (orthonormal columns),
+// x_i = X_i + Q_i d_i; g Cartesian residual (3 n, DOF 3 i + c); R = P^T g the free residual with
+// P the columns Q_i(:, c) (times the tie sign) of the free components.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "geometry/derivatives.hpp"
+
+namespace iga {
+
+using Eigen::VectorXd;
+using Triplet = Eigen::Triplet<double>;
+
+/// Load curve lambda(t) of pseudo-time t scaling a load or a prescribed displacement.
+using LoadCurve = std::function<double(double)>;
+/// lambda(t) = t.
+inline LoadCurve ramp() {
+  return [](double t) { return t; };
+}
+/// lambda(t) = c.
+inline LoadCurve constant_curve(double c = 1.0) {
+  return [c](double) { return c; };
+}
+
+/// Constraint bookkeeping of n control points. Errors are reported through `fail`, which
+/// throws the owner's exception type (RodError, ShellError) with the message.
+class DofMap {
+ public:
+  using FailFn = void (*)(const std::string& message);
+  /// `owner` prefixes messages ("RodProblem", "ShellProblem").
+  DofMap(int num_points, std::string owner, FailFn fail);
+
+  int num_points() const { return static_cast<int>(points_.size()); }
+  int num_free() const { return num_free_; }
+
+  /// Sets the local basis of `point` (orthonormal columns); fails if the point already has
+  /// constrained or tied components or Q is not orthonormal.
+  void set_local_basis(int point, const Matrix3d& Q);
+  const Matrix3d& local_basis(int point) const;
+  bool rotated(int point) const { return points_[static_cast<std::size_t>(point)].rotated; }
+  void fix(int point);
+  void fix(int point, int component);
+  /// Displacement component = value * curve(t).
+  void prescribe(int point, int component, double value, LoadCurve curve);
+  /// The local component of `point` whose axis is parallel to d (+-, |cos| > 1 - 1e-10), or
+  /// -1; *sign (if given) is +1 or -1.
+  int axis_along(int point, const Vector3d& d, double* sign = nullptr) const;
+  /// Fixes the displacement along d: an existing parallel local axis, else (no constraints or
+  /// ties on the point yet) a new local basis with axis 2 along d; fails otherwise.
+  void fix_along(int point, const Vector3d& d);
+  /// Component `component` of `slave` equals component `master_component` of `master`
+  /// (their axes must be parallel; an antiparallel pair is tied with sign -1). A tied component
+  /// that is also constrained keeps its constraint. Chains of ties are followed.
+  void tie(int slave, int component, int master, int master_component);
+
+  bool constrained(int point, int component) const;
+  /// Free DOF index of a component (-1 if constrained; a tied slave gives its master's index).
+  int dof(int point, int component) const;
+
+  /// Current control points x_i = X_i + Q_i d_i(u, t); u must have num_free() entries.
+  void current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
+                      std::vector<Vector3d>& x) const;
+  /// R = P^T g (resized to num_free()).
+  void reduce(const VectorXd& g, VectorXd& R) const;
+  /// K_free = P^T K_cart P, triplet by triplet (appended to `free`).
+  void reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const;
+
+ private:
+  struct Prescribed {
+    double value = 0.0;
+    LoadCurve curve;  ///< empty: fixed (value 0)
+  };
+  struct Component {
+    int prescribed = -1;  ///< own constraint: index into prescribed_, or -1
+    int tie_point = -1;   ///< tied to (tie_point, tie_component), or -1
+    int tie_component = -1;
+    double tie_sign = 1.0;
+    // Resolved by renumber():
+    int free = -1;      ///< free DOF index, or -1
+    int resolved = -1;  ///< prescribed index after following ties, or -1
+    double sign = 1.0;  ///< d_c = sign * u[free] or sign * prescribed value
+    bool master = false;  ///< another component is tied to this one
+  };
+  struct PointDofs {
+    Matrix3d Q = Matrix3d::Identity();
+    bool rotated = false;
+    std::array<Component, 3> c{};
+  };
+
+  void check_point(int point, const char* what) const;
+  void check_component(int component) const;
+  void constrain(int point, int component, Prescribed p);
+  void renumber();
+  /// Column weight of component (point, c) in Cartesian direction a.
+  double axis(const PointDofs& P, int a, int c) const {
+    return P.rotated ? P.Q(a, c) : (a == c ? 1.0 : 0.0);
+  }
+
+  std::string owner_;
+  FailFn fail_;
+  std::vector<PointDofs> points_;
+  std::vector<Prescribed> prescribed_;
+  int num_free_ = 0;
+};
+
+}  // namespace iga
