@@ -28,6 +28,9 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
       cp.weight = gw[static_cast<std::size_t>(k)] * half * ref_.derivs(cp.eta, 1).d[1].norm();
       cp.foot.patch = -1;
       points_.push_back(cp);
+      PointBasis b;
+      rational_basis(cp.eta, b.R, b.first);  // fixed eta: evaluated once, used every assembly
+      basis_.push_back(b);
     }
   double chord = 0.0;
   for (std::size_t e = 0; e + 1 < br.size(); ++e)
@@ -53,9 +56,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   cold_x_.clear();
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    BasisValues Rb;
-    int first = 0;
-    rational_basis(cp.eta, Rb, first);
+    const BasisValues& Rb = basis_[i].R;
+    const int first = basis_[i].first;
     cp.x.setZero();
     for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
     if (cp.foot.patch < 0 || !found(cp.foot.status)) {
@@ -76,9 +78,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   std::size_t next_cold = 0;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    BasisValues Rb;
-    int first = 0;
-    rational_basis(cp.eta, Rb, first);
+    const BasisValues& Rb = basis_[i].R;
+    const int first = basis_[i].first;
     // Closest point, warm-started from the last foot of this point (cold ones: done above).
     if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
       ++next_cold;

@@ -72,6 +72,11 @@ class CurveContact {
   const RigidSurface* rigid_;
   ContactParameters params_;
   std::vector<CurveContactPoint> points_;
+  struct PointBasis {
+    BasisValues R{};  ///< rational basis functions at the point's eta
+    int first = 0;    ///< index of the first non-zero one
+  };
+  std::vector<PointBasis> basis_;  ///< per point, parallel to points_
   double search_distance_ = 0.0;
   int broad_phase_points_ = 0;
   std::vector<int> cold_;                 ///< work: points without a warm start
