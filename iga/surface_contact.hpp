@@ -12,7 +12,7 @@
 //   h, s                  shell thickness, face (-1 lower, +1 upper, 0 mid)  thickness, face
 //   x_c = rho + s h/2 n   the contact point on the face                 x
 //   alpha^1, alpha^2      rigid surface parameters of the foot          foot.uv
-//   r(alpha), r_j         rigid surface point and basis at the foot     foot.point, r1, r2
+//   r(alpha), r_j         rigid surface point and basis at the foot     foot.point, Su, Sv
 //   xi^3                  penetration (gap), <= 0 in contact            gap
 //   eps_N, eps_T, mu      penalties, Coulomb coefficient                eps_n, eps_t, mu
 //   N                     normal force (34), <= 0                       N
@@ -37,6 +37,12 @@
 //    parametrization and of patch changes), so that with (35)
 //        T_tr_i = T_i^(k) - eps_T Delta xi^j a_ij = T_i^(k) + eps_T d . rho_i,
 //    |T_tr| = sqrt(T_tr_i a^ij T_tr_j), return mapping (36) with |N| = eps_N |gap|.
+//    Master and slave agree where the face is parallel to the rigid surface. Where it is
+//    inclined by theta (a flat face over a plane, depth p along the plane normal): master
+//    gap -p, force eps_N p n_r; slave gap -p/cos(theta) (along the shell normal), force
+//    eps_N p/cos(theta) nu, i.e. the same component along n_r and an extra tangential one,
+//    tan(theta) times it (tested). They differ at first order in the angle between the normals,
+//    which the penalty drives to zero in contact (Sect. 2.4).
 //    The linearization (37)-(39) is derived with the implicit function theorem on F = 0:
 //    d(alpha, xi3)/dG = [r_1 r_2 -n]^{-1} (dx_c/dG + xi3 dn/dG) (the ray direction n depends on
 //    the control points), then all quantities are differentiated exactly (Newton is quadratic).
@@ -75,16 +81,18 @@
 // point's candidates only (RigidSurface::closest_points with use_cgal for the master strategy;
 // ray projection on the candidate patches for the slave strategy). Analytic pieces are always
 // candidates. Points with no foot within the search distance (far), a missing ray (miss,
-// tangent) or a failed projection are inactive and counted as failed.
+// tangent) or a failed projection are inactive and counted as failed. A foot in the interior
+// of a NURBS patch gets one more Newton step before the point law (the projections stop at a
+// scaled residual of 1e-13; the friction force eps_T Delta alpha would see that noise).
 //
 // Performance: basis functions at the Gauss points are computed once (the reference knots and
 // weights are those of the current configuration); the per-point kernel works on the 9
 // quantities G = (rho, a1, a2) with fixed-size Eigen types and no heap allocation; tangents are
-// collected per element and multiplied out in one product per component pair (workspace
+// collected per element and multiplied out in one matrix product per element (workspace
 // allocated once), then emitted as triplets per element.
 #pragma once
 
-#include <limits>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
