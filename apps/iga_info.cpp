@@ -50,15 +50,8 @@ Action add_info_command(CLI::App& app) {
     std::cout << "\n" << m.geometry.entities.size() << " geometric entities:\n";
     for (const auto& [name, e] : m.geometry.entities) describe(name, e);
     if (m.has_analysis()) {  // validate the analysis sections too, and summarize them
-      Analysis a = Analysis::load(*file);
-      RodProblem& p = a.rod_problem();
-      std::cout << "analysis: rod of " << p.rod().num_elements() << " elements (degree "
-                << p.rod().degree() << ", " << p.num_control_points() << " control points), "
-                << p.num_dofs() << " unknowns";
-      if (RodContactProblem* c = a.contact_problem())
-        std::cout << ", contact with a rigid surface of " << c->rigid().num_patches()
-                  << " piece(s), " << c->contact().points().size() << " contact points";
-      std::cout << ", t in [0, " << a.solver_settings().t1 << "]\n";
+      const Analysis a = Analysis::load(*file);
+      std::cout << "analysis: " << a.describe() << "\n";
     }
     return 0;
   };

@@ -1,4 +1,4 @@
-// `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any rod-contact analysis model
+// `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any analysis model (rod or shell, with or without contact)
 // (docs/model_format.md, analysis sections): progress line per step, the solver's summary, and in
 // DIR steps.csv, summary.json, ParaView files, model_used.json.
 // Exit status: 0 converged (or stopped at full slip as asked), 2 the solver stopped early.
@@ -27,12 +27,12 @@ int run_model(const RunOptions& o) {
   const std::string out = o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
   std::filesystem::create_directories(out);
   std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
-  std::cout << "iga run: " << o.file << ": " << a.rod_problem().num_dofs() << " unknowns, "
-            << a.rod_problem().rod().num_elements() << " rod elements"
-            << (a.contact_problem() ? ", contact with a rigid surface" : "") << "\n";
+  std::cout << "iga run: " << o.file << ": " << a.describe() << "\n";
   const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out);
   std::cout << "iga run: results in " << out << " (steps.csv, summary.json"
-            << (a.output().vtk != AnalysisOutput::Vtk::kNone ? ", rod.pvd" : "") << ")\n";
+            << (a.output().vtk == AnalysisOutput::Vtk::kNone ? ""
+                : a.body_kind() == BodyKind::kRod ? ", rod.pvd" : ", shell.pvd")
+            << ")\n";
   const bool ok = r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
   if (!ok) std::cout << "iga run: the run ended early: " << r.solver.message << "\n";
   return ok ? 0 : 2;
@@ -42,7 +42,7 @@ int run_model(const RunOptions& o) {
 
 Action add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Run an analysis model (rod with contact)");
+  CLI::App* cmd = app.add_subcommand("run", "Run an analysis model (rod or shell, with or without contact)");
   cmd->add_option("model", o->file, "Model file (JSON)")->required()->check(CLI::ExistingFile);
   cmd->add_option("--out,-o", o->out, "Output folder (default out/<model name>)");
   cmd->add_option("--set", o->sets, "Override a model value: /json/pointer=value (repeatable)");

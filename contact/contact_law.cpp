@@ -63,19 +63,19 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   c.force = -c.N * n;
   c.stiffness = -p.eps_n * n * n.transpose() - c.N * dn_dr;
 
-  // Tangential part (66), (35)-(36).
-  if (!(p.mu > 0.0 && p.eps_t > 0.0) || history.patch < 0) return c;
+  // Tangential part (66), (35)-(36); none in the step of first contact (see the header).
+  if (!(p.mu > 0.0 && p.eps_t > 0.0) || history.patch < 0 || !history.active) return c;
   Vector2d dxi, T_prev;
   if (history.patch == foot.patch) {
     dxi << increment(foot.uv[0], history.xi[0], s.closed_u(), dom.u),
         increment(foot.uv[1], history.xi[1], s.closed_v(), dom.v);  // (54)
-    T_prev = history.active ? history.T : Vector2d::Zero();
+    T_prev = history.T;
   } else {
     // Another patch: carry the increment and the force through space (contravariant basis
     // rho^i = a^ij rho_j), to first order as in (28).
     const Matrix23 contra = a_inv * J.transpose();
     dxi = contra * (d.S - history.foot);
-    T_prev = history.active ? Vector2d(contra * history.T_vector) : Vector2d::Zero();
+    T_prev = contra * history.T_vector;
   }
   const Vector2d t = T_prev - p.eps_t * dxi;  // (66): trial force
   const Matrix23 dt_dr = -p.eps_t * dxi_dr;

@@ -17,7 +17,12 @@
 // and its derivative K = df/dr (3x3, not symmetric with friction), from
 //   dxi/dr = A^{-1} [rho_1 rho_2]^T, A_ij = a_ij - rho_ij.(r - rho)   ((17), implicit function)
 //   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten).
-// The history (xi_(n), T_(n)) is committed only at converged load steps.
+// The history (xi_(n), T_(n)) is committed only at converged load steps. A point that was not in
+// contact at the last converged step has no xi_(n) to slide from: in the step where it first
+// touches it carries no tangential force (T = 0, frictionless for that step); its foot and
+// T = 0 are committed at the end of the step and friction acts from the next step on. (Using the
+// foot of the last converged step, when the point was still apart, would count its approach as
+// slip: a point falling onto an inclined surface would start with a spurious tangential force.)
 #pragma once
 
 #include "contact/projection.hpp"

@@ -87,8 +87,11 @@ LoadCurve parse_load_curve(const JsonCursor& c) {
 struct Context {
   std::map<std::string, LoadCurve> curves;
   std::string body;  // the one body's name
-  const NurbsCurve* curve = nullptr;
+  BodyKind kind = BodyKind::kRod;
+  const NurbsCurve* curve = nullptr;      // rod
+  const NurbsSurface* surface = nullptr;  // shell
   int n_points = 0;
+  int nu = 0, nv = 0;  // shell: control points in u and v
 };
 
 LoadCurve curve_of(const JsonCursor& o, const Context& ctx) {
@@ -104,16 +107,60 @@ void check_body(const JsonCursor& o, const Context& ctx) {
   if (b.as_string() != ctx.body) b.fail("names no body (the model's body is \"" + ctx.body + "\")");
 }
 
-/// "start", "end" or a control point index.
+/// A control point: rod "start", "end" or an index; shell [i, j] (i along u) or an index
+/// i + n_u j.
 int point_index(const JsonCursor& c, const Context& ctx) {
-  if (c.json().is_string()) {
+  if (ctx.kind == BodyKind::kRod && c.json().is_string()) {
     const std::string s = one_of(c, {"start", "end"});
     return s == "start" ? 0 : ctx.n_points - 1;
+  }
+  if (ctx.kind == BodyKind::kShell && c.json().is_array()) {
+    if (c.size() != 2) c.fail_type("a control point [i, j] or an index");
+    const int i = c[0].as_int(), j = c[1].as_int();
+    if (i < 0 || i >= ctx.nu) c[0].fail("i must be in 0.." + std::to_string(ctx.nu - 1));
+    if (j < 0 || j >= ctx.nv) c[1].fail("j must be in 0.." + std::to_string(ctx.nv - 1));
+    return i + ctx.nu * j;
   }
   const int i = c.as_int();
   if (i < 0 || i >= ctx.n_points)
     c.fail("control point index must be in 0.." + std::to_string(ctx.n_points - 1));
   return i;
+}
+
+/// "all", "corners" (shell: the four corner points; rod: both ends), one point or a list.
+std::vector<int> point_list(const JsonCursor& pc, const Context& ctx) {
+  std::vector<int> points;
+  if (pc.json().is_string() && (pc.as_string() == "all" || pc.as_string() == "corners")) {
+    if (pc.as_string() == "all") {
+      for (int i = 0; i < ctx.n_points; ++i) points.push_back(i);
+    } else if (ctx.kind == BodyKind::kShell) {
+      points = {0, ctx.nu - 1, ctx.nu * (ctx.nv - 1), ctx.nu * ctx.nv - 1};
+    } else {
+      points = {0, ctx.n_points - 1};
+    }
+  } else if (pc.json().is_array() && !(ctx.kind == BodyKind::kShell && pc.size() == 2 &&
+                                       pc[0].json().is_number())) {
+    pc.expect_array(1);
+    for (std::size_t k = 0; k < pc.size(); ++k) points.push_back(point_index(pc[k], ctx));
+  } else {
+    points.push_back(point_index(pc, ctx));
+  }
+  return points;
+}
+
+std::vector<int> components(const JsonCursor& o) {
+  std::vector<int> comps = {0, 1, 2};
+  if (o.has("components")) {
+    const JsonCursor cc = o["components"];
+    cc.expect_array(1);
+    comps.clear();
+    for (std::size_t k = 0; k < cc.size(); ++k) {
+      const int c = cc[k].as_int();
+      if (c < 0 || c > 2) cc[k].fail("component must be 0, 1 or 2");
+      comps.push_back(c);
+    }
+  }
+  return comps;
 }
 
 /// Unit tangent pointing out of the curve at one of its ends.
@@ -133,7 +180,7 @@ Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& c
   }
   const double m = o["magnitude"].as_number();
   const JsonCursor d = o["direction"];
-  if (d.json().is_string()) {
+  if (d.json().is_string() && ctx.kind == BodyKind::kRod) {
     one_of(d, {"outward_tangent"});
     if (where != 0 && where != 1) d.fail("\"outward_tangent\" needs the point \"start\" or \"end\"");
     return m * outward_tangent(*ctx.curve, where == 1);
@@ -142,40 +189,32 @@ Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& c
   if (!(v.norm() > 0.0)) d.fail("must be a non-zero vector");
   return m * v.normalized();
 }
+/// "start", "end" or a parameter in the curve's domain.
+double curve_parameter(const JsonCursor& c, const NurbsCurve& C) {
+  const Interval D = C.domain();
+  if (c.json().is_string()) return one_of(c, {"start", "end"}) == "start" ? D.lo : D.hi;
+  const double xi = c.as_number();
+  if (xi < D.lo || xi > D.hi)
+    c.fail("parameter must lie in the curve's domain [" + std::to_string(D.lo) + ", " +
+           std::to_string(D.hi) + "]");
+  return xi;
+}
+
 /// 0 for "start", 1 for "end", -1 otherwise.
 int end_of(const JsonCursor& c) {
   if (!c.json().is_string()) return -1;
   return c.as_string() == "start" ? 0 : c.as_string() == "end" ? 1 : -1;
 }
 
-void parse_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
   const std::string type = one_of(o["type"], {"fix", "clamp", "displacement"});
   check_body(o, ctx);
   try {
     if (type == "fix") {
       o.expect_object({"type", "body", "points", "components", "description"});
-      std::vector<int> comps = {0, 1, 2};
-      if (o.has("components")) {
-        const JsonCursor cc = o["components"];
-        cc.expect_array(1);
-        comps.clear();
-        for (std::size_t k = 0; k < cc.size(); ++k) {
-          const int c = cc[k].as_int();
-          if (c < 0 || c > 2) cc[k].fail("component must be 0, 1 or 2");
-          comps.push_back(c);
-        }
-      }
-      std::vector<int> points;
-      const JsonCursor pc = o["points"];
-      if (pc.json().is_string() && pc.as_string() == "all") {
-        for (int i = 0; i < ctx.n_points; ++i) points.push_back(i);
-      } else if (pc.json().is_array()) {
-        for (std::size_t k = 0; k < pc.size(); ++k) points.push_back(point_index(pc[k], ctx));
-      } else {
-        points.push_back(point_index(pc, ctx));
-      }
-      for (int i : points)
+      const std::vector<int> comps = components(o);
+      for (int i : point_list(o["points"], ctx))
         for (int c : comps)
           if (!p.constrained(i, c)) p.fix(i, c);
     } else if (type == "clamp") {
@@ -194,19 +233,11 @@ void parse_boundary_condition(const JsonCursor& o, const Context& ctx, RodProble
   }
 }
 
-void parse_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
   const std::string type = one_of(o["type"], {"point_force", "line_load", "moment"});
   check_body(o, ctx);
-  const Interval D = ctx.curve->domain();
-  auto at = [&](const JsonCursor& c) -> double {
-    if (c.json().is_string()) return one_of(c, {"start", "end"}) == "start" ? D.lo : D.hi;
-    const double xi = c.as_number();
-    if (xi < D.lo || xi > D.hi)
-      c.fail("parameter must lie in the curve's domain [" + std::to_string(D.lo) + ", " +
-             std::to_string(D.hi) + "]");
-    return xi;
-  };
+  auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
   if (type == "point_force") {
     o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
                      "description"});
@@ -218,6 +249,116 @@ void parse_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
     o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
     p.add_moment(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
   }
+}
+
+std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const GeometryModel& g) {
+  try {
+    return std::make_shared<RigidSurface>(RigidSurface::from_geometry(g, rc.as_string()));
+  } catch (const std::invalid_argument& e) {
+    rc.fail(std::string("not a rigid surface: ") + e.what());
+  }
+}
+
+// ---- shell bodies -----------------------------------------------------------------------------
+
+SurfaceEdge parse_edge(const JsonCursor& c) {
+  const std::string e = one_of(c, {"u_min", "u_max", "v_min", "v_max"});
+  return e == "u_min" ? SurfaceEdge::kUMin
+         : e == "u_max" ? SurfaceEdge::kUMax
+         : e == "v_min" ? SurfaceEdge::kVMin
+                        : SurfaceEdge::kVMax;
+}
+
+/// A parameter pair (u, v) inside the surface's domain.
+Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S) {
+  const std::vector<double> uv = c.as_numbers();
+  if (uv.size() != 2) c.fail_type("surface parameters [u, v]");
+  const Domain2 D = S.domain();
+  const Interval I[2] = {D.u, D.v};
+  for (int k = 0; k < 2; ++k)
+    if (uv[k] < I[k].lo || uv[k] > I[k].hi)
+      c[static_cast<std::size_t>(k)].fail("parameter must lie in the surface's domain [" +
+                                          std::to_string(I[k].lo) + ", " + std::to_string(I[k].hi) + "]");
+  return {uv[0], uv[1]};
+}
+
+void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type =
+      one_of(o["type"], {"fix", "displacement", "simply_supported", "clamp", "symmetry", "spring"});
+  check_body(o, ctx);
+  try {
+    if (type == "fix") {
+      o.expect_object({"type", "body", "points", "components", "description"});
+      const std::vector<int> comps = components(o);
+      for (int i : point_list(o["points"], ctx))
+        for (int c : comps)
+          if (!p.constrained(i, c)) p.fix(i, c);
+    } else if (type == "displacement") {
+      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
+                       "description"});
+      p.prescribe(point_index(o["point"], ctx), vector_value(o, "value", ctx, -1), curve_of(o, ctx));
+    } else if (type == "simply_supported") {
+      o.expect_object({"type", "body", "edge", "components", "description"});
+      const std::vector<int> c = components(o);
+      const SurfaceEdge e = parse_edge(o["edge"]);
+      for (int k : c) p.simply_support(e, {k});
+    } else if (type == "clamp") {
+      o.expect_object({"type", "body", "edge", "description"});
+      p.clamp(parse_edge(o["edge"]));
+    } else if (type == "symmetry") {
+      o.expect_object({"type", "body", "edge", "normal", "description"});
+      const Vector3d n = vec3(o["normal"]);
+      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
+      p.symmetry(parse_edge(o["edge"]), n.normalized());
+    } else {
+      o.expect_object({"type", "body", "points", "stiffness", "curve", "direction", "description"});
+      const double k = positive(o["stiffness"]);
+      std::optional<Vector3d> d;
+      if (o.has("direction")) {
+        const Vector3d v = vec3(o["direction"]);
+        if (!(v.norm() > 0.0)) o["direction"].fail("must be a non-zero vector");
+        d = v.normalized();
+      }
+      // A spring's stiffness k curve(t); without a curve it is constant.
+      const LoadCurve curve = o.has("curve") ? curve_of(o, ctx) : constant_curve();
+      for (int i : point_list(o["points"], ctx)) p.add_spring(i, k, curve, d);
+    }
+  } catch (const ShellError& e) {
+    o.fail_plain(e.what());
+  }
+}
+
+void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type = one_of(o["type"], {"surface_load", "pressure", "edge_load", "point_force"});
+  check_body(o, ctx);
+  if (type == "surface_load") {  // dead force per reference area
+    o.expect_object({"type", "name", "body", "q", "curve", "description"});
+    p.add_surface_load(vec3(o["q"]), curve_of(o, ctx));
+  } else if (type == "pressure") {  // follower, per current area, along +a_3
+    o.expect_object({"type", "name", "body", "p", "curve", "description"});
+    p.add_pressure(o["p"].as_number(), curve_of(o, ctx));
+  } else if (type == "edge_load") {  // dead force per reference length
+    o.expect_object({"type", "name", "body", "edge", "q", "curve", "description"});
+    p.add_edge_load(parse_edge(o["edge"]), vec3(o["q"]), curve_of(o, ctx));
+  } else {
+    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
+                     "description"});
+    const Vector2d uv = surface_parameters(o["at"], *ctx.surface);
+    p.add_point_load(uv[0], uv[1], vector_value(o, "force", ctx, -1), curve_of(o, ctx));
+  }
+}
+
+ShellMaterial parse_shell_material(const JsonCursor& m) {
+  m.expect_object({"type", "E", "nu", "thickness", "description"});
+  ShellMaterial s;
+  s.E = positive(m["E"]);
+  const JsonCursor n = m["nu"];
+  s.nu = n.as_number();
+  if (!(s.nu > -1.0 && s.nu < 0.5)) n.fail("must be in (-1, 0.5)");
+  s.thickness = positive(m["thickness"]);
+  return s;
 }
 
 RodSection parse_rod_material(const JsonCursor& m) {
@@ -243,7 +384,7 @@ RodSection parse_rod_material(const JsonCursor& m) {
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
                    "tol_residual_rel", "tol_residual_abs", "tol_energy_rel",
-                   "stop_at_full_slip_after", "description"});
+                   "stop_at_full_slip_after", "hit_times", "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
   if (s.has("t_end")) n.t1 = positive(s["t_end"]);
@@ -264,6 +405,10 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
   if (s.has("tol_energy_rel")) n.tol_energy_rel = positive(s["tol_energy_rel"], true);
   if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
+  if (s.has("hit_times")) {  // times the steps land on (snapshots)
+    s["hit_times"].expect_array();
+    n.hit_times = s["hit_times"].as_numbers();
+  }
   try {
     n.validate();
   } catch (const std::invalid_argument& e) {
@@ -273,7 +418,7 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
 }
 
 AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
-  o.expect_object({"vtk", "reactions", "samples_per_element", "description"});
+  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "description"});
   AnalysisOutput out;
   if (o.has("vtk")) {
     const std::string v = one_of(o["vtk"], {"none", "last", "all"});
@@ -285,6 +430,26 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
     const JsonCursor r = o["reactions"];
     r.expect_array();
     for (std::size_t k = 0; k < r.size(); ++k) out.reactions.push_back(point_index(r[k], ctx));
+  }
+  if (o.has("monitors")) {  // [{"name": "centre", "at": xi or [u, v]}]
+    const JsonCursor ml = o["monitors"];
+    ml.expect_array();
+    for (std::size_t k = 0; k < ml.size(); ++k) {
+      const JsonCursor m = ml[k];
+      m.expect_object({"name", "at", "description"});
+      AnalysisMonitor mon;
+      mon.name = m["name"].as_string();
+      if (mon.name.empty() || mon.name.find_first_of(",\"\n") != std::string::npos)
+        m["name"].fail("must be a non-empty name without commas, quotes or line breaks");
+      if (ctx.kind == BodyKind::kShell) {
+        const Vector2d uv = surface_parameters(m["at"], *ctx.surface);
+        mon.u = uv[0];
+        mon.v = uv[1];
+      } else {
+        mon.u = curve_parameter(m["at"], *ctx.curve);
+      }
+      out.monitors.push_back(mon);
+    }
   }
   if (o.has("samples_per_element")) {
     const JsonCursor c = o["samples_per_element"];
@@ -302,41 +467,23 @@ std::string fmt(double v) {
 
 }  // namespace
 
-Analysis Analysis::from_json(const Json& doc, const std::string& file) {
-  const Model model = parse_model(doc, file);  // format, version, geometry, known sections
-  const JsonCursor root(doc, file);
-  Analysis a;
-  a.name_ = model.name;
-  a.geometry_ = model.geometry;
-  if (!root.has("bodies")) root.fail_plain("missing required key \"bodies\" (nothing to analyse)");
+namespace {
 
-  Context ctx;
-  if (root.has("load_curves")) {
-    const JsonCursor lc = root["load_curves"];
-    if (!lc.json().is_object()) lc.fail_type("an object of named load curves");
-    for (const std::string& k : lc.keys()) ctx.curves[k] = parse_load_curve(lc[k]);
-  }
-  std::map<std::string, RodSection> materials;
-  if (root.has("materials")) {
-    const JsonCursor mc = root["materials"];
-    if (!mc.json().is_object()) mc.fail_type("an object of named materials");
-    for (const std::string& k : mc.keys()) materials[k] = parse_rod_material(mc[k]);
-  }
-
-  // The body: one rod in this version.
-  const JsonCursor bodies = root["bodies"];
-  if (!bodies.json().is_object() || bodies.size() != 1)
-    bodies.fail_type("an object with exactly one named body (one deformable body per model)");
-  ctx.body = bodies.keys().front();
-  const JsonCursor b = bodies[ctx.body];
+/// The rod body, its contact pair, boundary conditions and loads.
+std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                      const GeometryModel& geometry, const JsonCursor& materials,
+                                      std::shared_ptr<const RigidSurface>& rigid_out,
+                                      RodContactProblem*& contact_out) {
   b.expect_object({"type", "curve", "material", "quadrature_points", "bending", "description"});
-  one_of(b["type"], {"rod"});
   const JsonCursor cc = b["curve"];
-  ctx.curve = a.geometry_.curve(cc.as_string());
+  ctx.curve = geometry.curve(cc.as_string());
   if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
   const JsonCursor mc = b["material"];
-  const auto mat = materials.find(mc.as_string());
-  if (mat == materials.end()) mc.fail("names no entry of \"materials\"");
+  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
+  const JsonCursor mat = materials[mc.as_string()];
+  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) == "shell")
+    mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
+  const RodSection section = parse_rod_material(mat);
   RodOptions opt;
   if (b.has("quadrature_points")) {
     const JsonCursor q = b["quadrature_points"];
@@ -350,60 +497,190 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
                       : BendingMeasure::kCurvatureMagnitude;
   std::optional<KirchhoffRod> rod;
   try {
-    rod.emplace(*ctx.curve, mat->second, opt);
+    rod.emplace(*ctx.curve, section, opt);
   } catch (const std::invalid_argument& e) {
     b.fail_plain(e.what());
   }
   ctx.n_points = rod->num_control_points();
 
-  // Contact: at most one pair, the body against a rigid surface of the geometry.
-  if (root.has("contact")) {
-    const JsonCursor cl = root["contact"];
-    cl.expect_array();
-    if (cl.size() > 1) cl.fail_plain("one contact pair per model in this version, got " + std::to_string(cl.size()));
-    if (cl.size() == 1) {
-      const JsonCursor c = cl[0];
-      c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
-                       "points_per_element", "description"});
-      one_of(c["type"], {"curve_to_rigid"});
-      check_body(c, ctx);
-      std::shared_ptr<RigidSurface> rigid;
-      const JsonCursor rc = c["rigid"];
-      try {
-        rigid = std::make_shared<RigidSurface>(RigidSurface::from_geometry(a.geometry_, rc.as_string()));
-      } catch (const std::invalid_argument& e) {
-        rc.fail(std::string("not a rigid surface: ") + e.what());
-      }
-      ContactParameters cp;
-      cp.eps_n = positive(c["eps_N"]);
-      cp.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
-      cp.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
-      cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
-      int ppe = 3;
-      if (c.has("points_per_element")) {
-        const JsonCursor pc = c["points_per_element"];
-        ppe = pc.as_int();
-        if (ppe < 1 || ppe > 16) pc.fail("must be in 1..16");
-      }
-      auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid, cp, ppe);
-      a.contact_ = p.get();
-      a.problem_ = std::move(p);
+  std::unique_ptr<RodProblem> problem;
+  if (root.has("contact") && root["contact"].size() == 1) {
+    const JsonCursor c = root["contact"][0];
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
+                     "points_per_element", "description"});
+    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
+      c["type"].fail("a rod's contact is \"curve_to_rigid\"");
+    check_body(c, ctx);
+    rigid_out = rigid_surface(c["rigid"], geometry);
+    ContactParameters cp;
+    cp.eps_n = positive(c["eps_N"]);
+    cp.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
+    cp.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+    cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
+    int ppe = 3;
+    if (c.has("points_per_element")) {
+      const JsonCursor pc = c["points_per_element"];
+      ppe = pc.as_int();
+      if (ppe < 1 || ppe > 16) pc.fail("must be in 1..16");
     }
+    auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid_out, cp, ppe);
+    contact_out = p.get();
+    problem = std::move(p);
+  } else {
+    problem = std::make_unique<RodProblem>(std::move(*rod));
   }
-  if (!a.problem_) a.problem_ = std::make_unique<RodProblem>(std::move(*rod));
-
   if (root.has("boundary_conditions")) {
     const JsonCursor bc = root["boundary_conditions"];
     bc.expect_array();
-    for (std::size_t k = 0; k < bc.size(); ++k) parse_boundary_condition(bc[k], ctx, *a.problem_);
+    for (std::size_t k = 0; k < bc.size(); ++k) parse_rod_boundary_condition(bc[k], ctx, *problem);
   }
   if (root.has("loads")) {
     const JsonCursor lc = root["loads"];
     lc.expect_array();
-    for (std::size_t k = 0; k < lc.size(); ++k) parse_load(lc[k], ctx, *a.problem_);
+    for (std::size_t k = 0; k < lc.size(); ++k) parse_rod_load(lc[k], ctx, *problem);
+  }
+  return problem;
+}
+
+/// The shell body, its contact pair, boundary conditions, springs and loads.
+std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                          const GeometryModel& geometry, const JsonCursor& materials,
+                                          std::shared_ptr<const RigidSurface>& rigid_out,
+                                          ShellContactProblem*& contact_out) {
+  b.expect_object({"type", "surface", "material", "quadrature_points", "description"});
+  const JsonCursor sc = b["surface"];
+  ctx.surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
+  if (ctx.surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
+  const JsonCursor mc = b["material"];
+  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
+  const JsonCursor mat = materials[mc.as_string()];
+  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) != "shell")
+    mc.fail("names a rod material; a shell needs type \"shell\"");
+  ShellOptions opt;
+  if (b.has("quadrature_points")) {
+    const JsonCursor q = b["quadrature_points"];
+    opt.quadrature_points = q.as_int();
+    if (opt.quadrature_points < 0 || opt.quadrature_points > 20) q.fail("must be in 0..20 (0: p + 1)");
+  }
+  std::optional<KirchhoffLoveShell> shell;
+  try {
+    shell.emplace(*ctx.surface, parse_shell_material(mat), opt);
+  } catch (const std::invalid_argument& e) {
+    sc.fail(e.what());
+  }
+  ctx.nu = ctx.surface->num_u();
+  ctx.nv = ctx.surface->num_v();
+  ctx.n_points = ctx.nu * ctx.nv;
+
+  std::unique_ptr<ShellProblem> problem;
+  if (root.has("contact") && root["contact"].size() == 1) {
+    const JsonCursor c = root["contact"][0];
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
+                     "points_per_direction", "search_distance", "description"});
+    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
+      c["type"].fail("a shell's contact is \"surface_to_rigid\"");
+    check_body(c, ctx);
+    rigid_out = rigid_surface(c["rigid"], geometry);
+    SurfaceContactParameters cp;
+    cp.eps_n = positive(c["eps_N"]);
+    cp.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
+    cp.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+    if (c.has("strategy"))
+      cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
+                        ? SurfaceContactStrategy::kRigidMaster
+                        : SurfaceContactStrategy::kRigidSlave;
+    if (c.has("face")) {
+      const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
+      cp.face = f == "lower" ? ShellFace::kLower : f == "upper" ? ShellFace::kUpper : ShellFace::kMid;
+    }
+    if (c.has("points_per_direction")) {
+      const JsonCursor pc = c["points_per_direction"];
+      cp.points_per_direction = pc.as_int();
+      if (cp.points_per_direction < 1 || cp.points_per_direction > 20) pc.fail("must be in 1..20");
+    }
+    if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
+    try {
+      auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
+      contact_out = p.get();
+      problem = std::move(p);
+    } catch (const std::invalid_argument& e) {
+      c.fail_plain(e.what());
+    }
+  } else {
+    problem = std::make_unique<ShellProblem>(std::move(*shell));
+  }
+  if (root.has("boundary_conditions")) {
+    const JsonCursor bc = root["boundary_conditions"];
+    bc.expect_array();
+    for (std::size_t k = 0; k < bc.size(); ++k) parse_shell_boundary_condition(bc[k], ctx, *problem);
+  }
+  if (root.has("loads")) {
+    const JsonCursor lc = root["loads"];
+    lc.expect_array();
+    for (std::size_t k = 0; k < lc.size(); ++k) parse_shell_load(lc[k], ctx, *problem);
+  }
+  return problem;
+}
+
+}  // namespace
+
+Analysis Analysis::from_json(const Json& doc, const std::string& file) {
+  const Model model = parse_model(doc, file);  // format, version, geometry, known sections
+  const JsonCursor root(doc, file);
+  Analysis a;
+  a.name_ = model.name;
+  a.geometry_ = model.geometry;
+  if (!root.has("bodies")) root.fail_plain("missing required key \"bodies\" (nothing to analyse)");
+
+  Context ctx;
+  if (root.has("load_curves")) {
+    const JsonCursor lc = root["load_curves"];
+    if (!lc.json().is_object()) lc.fail_type("an object of named load curves");
+    for (const std::string& k : lc.keys()) {
+      ctx.curves[k] = parse_load_curve(lc[k]);
+      a.curves_.emplace_back(k, ctx.curves[k]);
+    }
+  }
+  const Json no_materials = Json::object();
+  const JsonCursor materials = root.has("materials") ? root["materials"] : JsonCursor(no_materials, file);
+  if (!materials.json().is_object()) materials.fail_type("an object of named materials");
+  for (const std::string& k : materials.keys()) {  // every entry is checked, used or not
+    const JsonCursor m = materials[k];
+    if (one_of(m["type"], {"rod", "rod_circular", "shell"}) == "shell")
+      parse_shell_material(m);
+    else
+      parse_rod_material(m);
+  }
+
+  // The body: one rod or one shell in this version.
+  const JsonCursor bodies = root["bodies"];
+  if (!bodies.json().is_object() || bodies.size() != 1)
+    bodies.fail_type("an object with exactly one named body (one deformable body per model)");
+  ctx.body = bodies.keys().front();
+  a.body_ = ctx.body;
+  const JsonCursor b = bodies[ctx.body];
+  if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
+  ctx.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
+  a.kind_ = ctx.kind;
+  if (root.has("contact")) {  // at most one pair, the body against a rigid surface
+    const JsonCursor cl = root["contact"];
+    cl.expect_array();
+    if (cl.size() > 1)
+      cl.fail_plain("one contact pair per model in this version, got " + std::to_string(cl.size()));
+  }
+  if (ctx.kind == BodyKind::kRod) {
+    auto p = build_rod(root, b, ctx, a.geometry_, materials, a.rigid_, a.rod_contact_);
+    a.rod_ = p.get();
+    a.problem_ = std::move(p);
+  } else {
+    auto p = build_shell(root, b, ctx, a.geometry_, materials, a.rigid_, a.shell_contact_);
+    a.shell_ = p.get();
+    a.problem_ = std::move(p);
   }
   if (root.has("solver")) a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_);
   if (root.has("output")) a.output_ = parse_output(root["output"], ctx);
+  if (a.output_.samples_per_element == 0)
+    a.output_.samples_per_element = ctx.kind == BodyKind::kRod ? 16 : 4;
   if (a.problem_->num_dofs() == 0) root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
 }
@@ -412,24 +689,90 @@ Analysis Analysis::load(const std::string& path) {
   return from_json(read_json_file(path), path);
 }
 
+RodProblem& Analysis::rod_problem() {
+  if (rod_ == nullptr) throw std::logic_error("Analysis::rod_problem: the body is a shell");
+  return *rod_;
+}
+
+ShellProblem& Analysis::shell_problem() {
+  if (shell_ == nullptr) throw std::logic_error("Analysis::shell_problem: the body is a rod");
+  return *shell_;
+}
+
+std::string Analysis::describe() const {
+  std::ostringstream s;
+  if (rod_) {
+    s << "rod of " << rod_->rod().num_elements() << " elements (degree " << rod_->rod().degree() << ", ";
+  } else {
+    const NurbsSurface& S = shell_->shell().reference();
+    s << "shell of " << shell_->shell().num_elements() << " elements (degree " << S.degree_u() << " x "
+      << S.degree_v() << ", ";
+  }
+  s << problem_->num_control_points() << " control points), " << problem_->num_dofs() << " unknowns";
+  if (rod_contact_)
+    s << ", CTRS contact with a rigid surface of " << rigid_->num_patches() << " piece(s), "
+      << rod_contact_->contact().points().size() << " contact points";
+  if (shell_contact_) {
+    const SurfaceContactParameters& p = shell_contact_->contact().parameters();
+    s << ", STAS contact (rigid "
+      << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave") << ", mu = " << p.mu
+      << ") with a rigid surface of " << rigid_->num_patches() << " piece(s), "
+      << shell_contact_->contact().points().size() << " contact points";
+  }
+  s << ", t in [" << settings_.t0 << ", " << settings_.t1 << "]";
+  return s.str();
+}
+
+ContactCounts Analysis::contact_counts() const {
+  if (rod_contact_) {
+    const CurveContactCounts c = rod_contact_->contact().counts();
+    return {c.active, c.stick, c.slip};
+  }
+  if (shell_contact_) {
+    const SurfaceContactCounts c = shell_contact_->contact().counts();
+    return {c.active, c.stick, c.slip};
+  }
+  return {};
+}
+
+double Analysis::contact_mu() const {
+  if (rod_contact_) return rod_contact_->contact().parameters().mu;
+  if (shell_contact_) return shell_contact_->contact().parameters().mu;
+  return 0.0;
+}
+
+double Analysis::contact_time() const {
+  if (rod_contact_) return rod_contact_->contact_time();
+  if (shell_contact_) return shell_contact_->contact_time();
+  return 0.0;
+}
+
+Vector3d Analysis::displacement(const AnalysisMonitor& m, const VectorXd& u, double t) const {
+  if (shell_) return shell_->displacement(m.u, m.v, u, t);
+  const std::vector<Vector3d> x = rod_->current_points(u, t);
+  return rod_->rod().point(m.u, x) - rod_->rod().reference().point(m.u);
+}
+
 std::vector<Vector3d> Analysis::reactions(const VectorXd& u, double t) {
-  const std::vector<Vector3d> all = contact_ ? contact_->reactions(u, t) : problem_->nodal_residual(u, t);
+  const std::vector<Vector3d> all = rod_contact_     ? rod_contact_->reactions(u, t)
+                                    : shell_contact_ ? shell_contact_->reactions(u, t)
+                                                     : problem_->nodal_residual(u, t);
   std::vector<Vector3d> r;
   for (int i : output_.reactions) r.push_back(all[static_cast<std::size_t>(i)]);
   return r;
 }
 
-std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::string& stem,
-                                             const VectorXd& u, double t) {
-  const KirchhoffRod& rod = problem_->rod();
-  const std::vector<Vector3d> x = problem_->current_points(u, t);
+namespace {
+
+/// The rod's centre line sampled per element, with axial force and curvature.
+void write_rod_vtk(const std::string& path, const KirchhoffRod& rod, const std::vector<Vector3d>& x,
+                   int samples, const std::string& title) {
   std::vector<Vector3d> line;
   std::vector<double> force, curvature;
   for (int e = 0; e < rod.num_elements(); ++e) {
     const Interval I = rod.element_range(e);
-    const int n = output_.samples_per_element;
-    for (int k = (e == 0 ? 0 : 1); k <= n; ++k) {
-      const double xi = I.lo + (I.hi - I.lo) * k / n;
+    for (int k = (e == 0 ? 0 : 1); k <= samples; ++k) {
+      const double xi = I.lo + (I.hi - I.lo) * k / samples;
       line.push_back(rod.point(xi, x));
       const RodStrains s = rod.strains(xi, x);
       force.push_back(s.axial_force);
@@ -438,12 +781,65 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   }
   VtkPointData d;
   d.scalars = {{"axial_force", force}, {"curvature", curvature}};
-  std::vector<std::string> files{stem + "_rod.vtk"};
-  write_vtk_polydata((fs::path(dir) / files[0]).string(), line, true, d, name_ + " rod, t = " + fmt(t));
-  if (contact_) {
-    std::vector<Vector3d> pts, normal;
+  write_vtk_polydata(path, line, true, d, title);
+}
+
+/// Parameters of a grid over the element spans: `samples` intervals per span.
+std::vector<double> span_samples(const std::vector<double>& breaks, int samples) {
+  std::vector<double> s;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+    for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
+      s.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / samples);
+  return s;
+}
+
+/// The shell's surface sampled per element, with displacement, normal and stress resultants.
+void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
+                     const std::vector<Vector3d>& x, int samples, const std::string& title) {
+  const NurbsSurface& S = shell.reference();
+  const std::vector<double> us = span_samples(S.knots_u().breaks(), samples);
+  const std::vector<double> vs = span_samples(S.knots_v().breaks(), samples);
+  std::vector<Vector3d> pts, disp, normal, nloc, mloc;
+  std::vector<double> von_mises;
+  for (double v : vs)
+    for (double u : us) {
+      const Vector3d p = shell.point(u, v, x);
+      pts.push_back(p);
+      disp.push_back(p - S.point(u, v));
+      normal.push_back(shell.normal(u, v, x));
+      const ShellStresses st = shell.stresses(u, v, x);
+      nloc.push_back(st.membrane_force_local);
+      mloc.push_back(st.moment_local);
+      von_mises.push_back(st.von_mises);
+    }
+  VtkPointData d;
+  d.scalars = {{"von_mises", von_mises}};
+  d.vectors = {{"displacement", disp}, {"normal", normal},
+               {"membrane_force_N11_N22_N12", nloc}, {"moment_M11_M22_M12", mloc}};
+  write_vtk_grid(path, pts, static_cast<int>(us.size()), static_cast<int>(vs.size()), d, title);
+}
+
+}  // namespace
+
+std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::string& stem,
+                                             const VectorXd& u, double t) {
+  const std::vector<Vector3d> x = problem_->current_points(u, t);
+  const int n = output_.samples_per_element > 0 ? output_.samples_per_element : (rod_ ? 16 : 4);
+  std::vector<std::string> files;
+  if (rod_) {
+    files.push_back(stem + "_rod.vtk");
+    write_rod_vtk((fs::path(dir) / files[0]).string(), rod_->rod(), x, n, name_ + " rod, t = " + fmt(t));
+  } else {
+    files.push_back(stem + "_shell.vtk");
+    write_shell_vtk((fs::path(dir) / files[0]).string(), shell_->shell(), x, n,
+                    name_ + " shell, t = " + fmt(t));
+  }
+  VtkPointData cd;
+  std::vector<Vector3d> pts;
+  if (rod_contact_) {
+    std::vector<Vector3d> normal;
     std::vector<double> N, T, B, slip;
-    for (const CurveContactPoint& cp : contact_->contact().points()) {
+    for (const CurveContactPoint& cp : rod_contact_->contact().points()) {
       if (!cp.law.active) continue;
       pts.push_back(cp.x);
       normal.push_back(cp.law.normal);
@@ -452,9 +848,24 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
       B.push_back(cp.B);
       slip.push_back(cp.law.slip ? 1.0 : 0.0);
     }
-    VtkPointData cd;
     cd.scalars = {{"N", N}, {"T", T}, {"B", B}, {"slip", slip}};
     cd.vectors = {{"normal", normal}};
+  } else if (shell_contact_) {
+    std::vector<Vector3d> normal, ft;
+    std::vector<double> N, gap, slip;
+    for (const SurfaceContactPoint& cp : shell_contact_->contact().points()) {
+      if (!cp.active) continue;
+      pts.push_back(cp.x);
+      normal.push_back(cp.normal);
+      ft.push_back(cp.T_vector);
+      N.push_back(cp.N);
+      gap.push_back(cp.gap);
+      slip.push_back(cp.slip ? 1.0 : 0.0);
+    }
+    cd.scalars = {{"N", N}, {"gap", gap}, {"slip", slip}};
+    cd.vectors = {{"shell_normal", normal}, {"tangential_force", ft}};
+  }
+  if (has_contact()) {
     files.push_back(stem + "_contact.vtk");
     write_vtk_polydata((fs::path(dir) / files[1]).string(), pts, false, cd,
                        name_ + " contact points, t = " + fmt(t));
@@ -462,12 +873,38 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   return files;
 }
 
-AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir) {
+bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) const {
+  if (!rigid_) return false;
+  // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk.
+  int written = 0;
+  for (int i = 0; i < rigid_->num_patches(); ++i) {
+    const Surface& S = rigid_->patch(i);
+    const Domain2 D = S.domain();
+    if (!std::isfinite(D.u.lo) || !std::isfinite(D.u.hi) || !std::isfinite(D.v.lo) ||
+        !std::isfinite(D.v.hi))
+      continue;
+    constexpr int n = 41;
+    std::vector<Vector3d> pts;
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        pts.push_back(S.derivs(D.u.lo + (D.u.hi - D.u.lo) * k / (n - 1),
+                               D.v.lo + (D.v.hi - D.v.lo) * j / (n - 1), 0)
+                          .S);
+    const std::string file = rigid_->num_patches() == 1 ? stem + ".vtk" : stem + "_" + std::to_string(i) + ".vtk";
+    write_vtk_grid((fs::path(dir) / file).string(), pts, n, n, {}, name_ + " rigid surface");
+    ++written;
+  }
+  return written > 0;
+}
+
+AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
+                             const AnalysisStepCallback& user_callback) {
   AnalysisResult res;
   NonlinearSolver solver(settings_);
   solver.set_log(log);
   std::ofstream csv;
-  std::unique_ptr<VtkCollection> pvd_rod, pvd_contact;
+  std::unique_ptr<VtkCollection> pvd_body, pvd_contact;
+  const std::string body_file = rod_ ? "rod" : "shell";
   if (!out_dir.empty()) {
     fs::create_directories(out_dir);
     csv.open(fs::path(out_dir) / "steps.csv");
@@ -475,15 +912,19 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir) {
     csv << "step,t,iterations,active,stick,slip";
     for (int i : output_.reactions)
       for (const char* c : {"x", "y", "z", "norm"}) csv << ",R" << i << "_" << c;
+    for (const AnalysisMonitor& m : output_.monitors)
+      for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
+    for (const auto& [name, curve] : curves_) csv << "," << name;
     csv << "\n" << std::setprecision(12);
     if (output_.vtk != AnalysisOutput::Vtk::kNone) {
-      pvd_rod = std::make_unique<VtkCollection>((fs::path(out_dir) / "rod.pvd").string());
-      if (contact_) pvd_contact = std::make_unique<VtkCollection>((fs::path(out_dir) / "contact.pvd").string());
+      pvd_body = std::make_unique<VtkCollection>((fs::path(out_dir) / (body_file + ".pvd")).string());
+      if (has_contact()) pvd_contact = std::make_unique<VtkCollection>((fs::path(out_dir) / "contact.pvd").string());
+      write_rigid_vtk(out_dir, "rigid");
     }
   }
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
     const std::vector<std::string> f = write_vtk(out_dir, stem, u, t);
-    pvd_rod->add(t, f[0]);
+    pvd_body->add(t, f[0]);
     if (pvd_contact) pvd_contact->add(t, f[1]);
   };
   VectorXd u = VectorXd::Zero(problem_->num_dofs());
@@ -491,19 +932,22 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir) {
     AnalysisStep st;
     st.t = t;
     st.iterations = at.iterations;
-    if (contact_) st.contact = contact_->contact().counts();
+    st.contact = contact_counts();
     if (!output_.reactions.empty()) st.reactions = reactions(uc, t);
+    for (const AnalysisMonitor& m : output_.monitors) st.displacements.push_back(displacement(m, uc, t));
     res.steps.push_back(st);
     if (csv.is_open()) {
       csv << res.steps.size() << "," << t << "," << st.iterations << "," << st.contact.active << ","
           << st.contact.stick << "," << st.contact.slip;
       for (const Vector3d& r : st.reactions) csv << "," << r.x() << "," << r.y() << "," << r.z() << "," << r.norm();
+      for (const Vector3d& d : st.displacements) csv << "," << d.x() << "," << d.y() << "," << d.z();
+      for (const auto& [name, curve] : curves_) csv << "," << curve(t);
       csv << std::endl;  // flushed: a run that stops midway keeps its rows
       if (output_.vtk == AnalysisOutput::Vtk::kAll)
         vtk(uc, t, "step" + std::to_string(res.steps.size()));
     }
-    if (contact_ && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
-      const bool sliding = contact_->contact().parameters().mu == 0.0 ||
+    if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
+      const bool sliding = contact_mu() == 0.0 ||
                            (st.contact.active > 0 && st.contact.slip == st.contact.active);
       if (sliding) {
         res.full_slip = true;
@@ -511,15 +955,16 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir) {
         return false;
       }
     }
-    return true;
+    return user_callback ? user_callback(uc, t, st) : true;
   };
   res.solver = solver.solve(*problem_, u, on_step);
   res.u = u;
-  res.contact_time = contact_ ? contact_->contact_time() : 0.0;
+  res.contact_time = contact_time();
   if (!out_dir.empty()) {
     if (output_.vtk == AnalysisOutput::Vtk::kLast && !res.steps.empty()) vtk(u, res.solver.t, "last");
     Json s = Json::object();
     s["name"] = name_;
+    s["body"] = rod_ ? "rod" : "shell";
     s["status"] = to_string(res.solver.status);
     s["message"] = res.solver.message;
     s["t"] = res.solver.t;

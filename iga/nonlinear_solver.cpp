@@ -60,6 +60,8 @@ void NonlinearSolverSettings::validate() const {
   if (!(divergence_ratio > 1.0)) bad_setting("divergence_ratio", "> 1", divergence_ratio);
   if (max_residual_increases < 0)
     bad_setting("max_residual_increases", ">= 0", max_residual_increases);
+  for (double h : hit_times)
+    if (!std::isfinite(h)) bad_setting("hit_times", "finite", h);
 }
 
 const char* to_string(NewtonOutcome o) {
@@ -231,6 +233,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     // The step ends at t1 if it would leave less than min_step to go.
     double t_new = t + dt;
     if (t_new > s.t1 - t_eps || s.t1 - t_new < s.min_step) t_new = s.t1;
+    for (double h : s.hit_times)  // land on requested times
+      if (h > t + t_eps && h < t_new - t_eps) t_new = h;
 
     StepAttempt a;
     a.step = r.steps + 1;

@@ -50,6 +50,10 @@ struct NonlinearSolverSettings {
   /// max_residual_increases consecutive iterations (0: that check is off).
   double divergence_ratio = 1e4;
   int max_residual_increases = 3;
+  /// Times inside (t0, t1) that steps land on exactly (output times of an application, e.g.
+  /// the snapshots of a load history): a step that would pass one ends there instead; the
+  /// step size itself is kept for the step after. Any order; must be finite.
+  std::vector<double> hit_times;
 
   /// Throws std::invalid_argument naming the field, e.g. "NonlinearSolverSettings.min_step:
   /// must be > 0, got 0".

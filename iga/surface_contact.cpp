@@ -382,7 +382,8 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         f = params_.eps_n * xi3 * g.n;
         df.noalias() = params_.eps_n * (g.n * dxi3 + xi3 * g.Ng);
         const ContactHistory& h = cp.history;
-        if (params_.mu > 0.0 && params_.eps_t > 0.0 && h.patch >= 0) {
+        // no tangential force in the step of first contact (contact/contact_law.hpp)
+        if (params_.mu > 0.0 && params_.eps_t > 0.0 && h.patch >= 0 && h.active) {
           Matrix32 A;
           A << g.a1, g.a2;
           const Matrix2d a = A.transpose() * A;
@@ -391,8 +392,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
           const Vector3d d = cp.foot.point - h.foot;
           Matrix39 dd;
           dd.noalias() = g.Xg + g.n * dxi3 + xi3 * g.Ng;  // d r/dG, r = x_c + xi3 n
-          const Vector2d T_prev = h.active ? h.T : Vector2d::Zero();
-          const Vector2d t = T_prev + params_.eps_t * A.transpose() * d;
+          const Vector2d t = h.T + params_.eps_t * A.transpose() * d;
           Matrix29 dt;
           dt.noalias() = params_.eps_t * A.transpose() * dd;
           dt.block<1, 3>(0, 3) += params_.eps_t * d.transpose();
@@ -482,11 +482,12 @@ void SurfaceContact::commit() {
 
 SurfaceContactCounts SurfaceContact::counts() const {
   SurfaceContactCounts c;
+  const bool frictionless = !(params_.mu > 0.0 && params_.eps_t > 0.0);
   for (const SurfaceContactPoint& cp : points_) {
     if (!found(cp.foot.status)) ++c.failed;
     if (!cp.active) continue;
     ++c.active;
-    (cp.slip ? c.slip : c.stick)++;
+    (cp.slip || frictionless ? c.slip : c.stick)++;
   }
   return c;
 }

@@ -147,6 +147,8 @@ struct SurfaceContactPoint {
   ContactHistory history;             ///< committed state of the last converged step
 };
 
+/// Active points split into sticking and sliding ones. Without friction (mu = 0 or eps_T = 0)
+/// every active point slides freely and counts as sliding.
 struct SurfaceContactCounts {
   int active = 0, stick = 0, slip = 0;
   int failed = 0;  ///< no foot point: far, miss, tangent or not converged

@@ -7,8 +7,12 @@
 
 namespace iga {
 
-void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector3d>& points,
-                        bool connect, const VtkPointData& data, const std::string& title) {
+namespace {
+
+enum class Cells { kVertices, kPolyline, kQuads };
+
+void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, Cells cells,
+           int nu, int nv, const VtkPointData& data, const std::string& title) {
   const std::size_t n = points.size();
   for (const auto& [name, v] : data.scalars)
     if (v.size() != n)
@@ -24,7 +28,15 @@ void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector
   os << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
   os << "POINTS " << n << " double\n";
   for (const Eigen::Vector3d& p : points) os << p.x() << " " << p.y() << " " << p.z() << "\n";
-  if (connect && n >= 2) {
+  if (cells == Cells::kQuads) {
+    const int quads = (nu - 1) * (nv - 1);
+    os << "POLYGONS " << quads << " " << 5 * quads << "\n";
+    for (int j = 0; j + 1 < nv; ++j)
+      for (int i = 0; i + 1 < nu; ++i) {
+        const int a = i + nu * j;
+        os << "4 " << a << " " << a + 1 << " " << a + 1 + nu << " " << a + nu << "\n";
+      }
+  } else if (cells == Cells::kPolyline && n >= 2) {
     os << "LINES 1 " << n + 1 << "\n" << n;
     for (std::size_t i = 0; i < n; ++i) os << " " << i;
     os << "\n";
@@ -44,6 +56,21 @@ void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector
     }
   }
   if (!os) throw std::runtime_error("error while writing " + path);
+}
+
+}  // namespace
+
+void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector3d>& points,
+                        bool connect, const VtkPointData& data, const std::string& title) {
+  write(path, points, connect ? Cells::kPolyline : Cells::kVertices, 0, 0, data, title);
+}
+
+void write_vtk_grid(const std::string& path, const std::vector<Eigen::Vector3d>& points, int nu,
+                    int nv, const VtkPointData& data, const std::string& title) {
+  if (nu < 2 || nv < 2 || points.size() != static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv))
+    throw std::runtime_error(path + ": a grid of " + std::to_string(nu) + " x " + std::to_string(nv) +
+                             " needs that many points, got " + std::to_string(points.size()));
+  write(path, points, Cells::kQuads, nu, nv, data, title);
 }
 
 void VtkCollection::add(double time, const std::string& file) {

@@ -24,6 +24,12 @@ void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector
                         bool connect, const VtkPointData& data = {},
                         const std::string& title = "iga");
 
+/// Writes a structured grid of points (nu x nv, u fastest: point i + nu j) as quadrilaterals
+/// (a sampled surface). Throws std::runtime_error as write_vtk_polydata, and if the number of
+/// points is not nu nv or nu, nv < 2.
+void write_vtk_grid(const std::string& path, const std::vector<Eigen::Vector3d>& points, int nu,
+                    int nv, const VtkPointData& data = {}, const std::string& title = "iga");
+
 /// A ParaView collection (.pvd): (time, file) pairs, files relative to the .pvd's folder.
 class VtkCollection {
  public:

@@ -393,6 +393,23 @@ TEST_CASE("NonlinearSolver: progress lines, summary, callback stop, step growth"
     CHECK_THAT(log.str(), Catch::Contains("load stepping: converged") &&
                               Catch::Contains("linear solves") && Catch::Contains("CHOLMOD"));
   }
+  SECTION("steps land on the hit times, the step size carries on") {
+    s.hit_times = {0.55, 0.25};
+    solver.set_settings(s);
+    const NonlinearSolverResult r = solver.solve(chain, u);
+    REQUIRE(r.converged());
+    std::vector<double> times;
+    for (const StepAttempt& a : r.attempts) times.push_back(a.t);
+    // dt 0.1; 0.2 -> 0.25 (hit); 0.4 -> 0.55 (hit, 0.3 taken); 0.4 -> 0.95; 1.0
+    REQUIRE(times.size() == 5);
+    CHECK(times[0] == Approx(0.1));
+    CHECK(times[1] == 0.25);
+    CHECK(times[2] == 0.55);
+    CHECK(times[3] == Approx(0.95));
+    CHECK(times[4] == 1.0);
+    s.hit_times = {std::nan("")};
+    CHECK_THROWS_WITH(solver.set_settings(s), Catch::Contains("hit_times"));
+  }
   SECTION("the callback stops the run") {
     const NonlinearSolverResult r = solver.solve(
         chain, u, [](const VectorXd&, double, const StepAttempt& a) { return a.step < 2; });

@@ -123,6 +123,7 @@ TEST_CASE("SurfaceContact: tangent = d(residual)/dx for both strategies, frictio
                          << " failed " << n.failed << " error " << err);
           CHECK(n.active == static_cast<int>(sc.points().size()));
           CHECK(n.failed == 0);
+          if (friction == 0) CHECK(n.slip == n.active);  // frictionless points slide freely
           if (friction == 1) CHECK(n.stick == n.active);
           if (friction == 2) CHECK(n.slip == n.active);
           CHECK(err <= 1e-6);

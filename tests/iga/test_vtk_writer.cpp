@@ -47,3 +47,21 @@ TEST_CASE("write_vtk_polydata: polyline with scalar and vector point data", "[ig
   CHECK_THAT(c, Catch::Contains("<DataSet timestep=\"1\" part=\"0\" file=\"rope_0002.vtk\"/>"));
   fs::remove_all(dir);
 }
+
+TEST_CASE("write_vtk_grid: quadrilaterals of a structured grid", "[iga][output]") {
+  const fs::path dir = fs::temp_directory_path() / ("iga_vtk_grid_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::vector<Eigen::Vector3d> pts;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 3; ++i) pts.emplace_back(i, j, 0.0);
+  VtkPointData d;
+  d.scalars.push_back({"z", std::vector<double>(6, 0.5)});
+  write_vtk_grid((dir / "grid.vtk").string(), pts, 3, 2, d);
+  const std::string s = slurp(dir / "grid.vtk");
+  CHECK_THAT(s, Catch::Contains("POINTS 6 double\n"));
+  CHECK_THAT(s, Catch::Contains("POLYGONS 2 10\n4 0 1 4 3\n4 1 2 5 4\n"));
+  CHECK_THAT(s, Catch::Contains("POINT_DATA 6\nSCALARS z double 1\n"));
+  CHECK_THROWS_WITH(write_vtk_grid((dir / "bad.vtk").string(), pts, 2, 2),
+                    Catch::Contains("a grid of 2 x 2 needs that many points, got 6"));
+  fs::remove_all(dir);
+}
