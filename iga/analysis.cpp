@@ -384,7 +384,8 @@ RodSection parse_rod_material(const JsonCursor& m) {
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
                    "tol_residual_rel", "tol_residual_abs", "tol_energy_rel",
-                   "stop_at_full_slip_after", "hit_times", "description"});
+                   "stop_at_full_slip_after", "hit_times", "easy_iterations", "growth_factor",
+                   "cutback_factor", "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
   if (s.has("t_end")) n.t1 = positive(s["t_end"]);
@@ -405,6 +406,13 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
   if (s.has("tol_energy_rel")) n.tol_energy_rel = positive(s["tol_energy_rel"], true);
   if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
+  if (s.has("easy_iterations")) {  // a step converged in <= this many iterations grows the next
+    const JsonCursor c = s["easy_iterations"];
+    n.easy_iterations = c.as_int();
+    if (n.easy_iterations < 0) c.fail("must be >= 0");
+  }
+  if (s.has("growth_factor")) n.growth_factor = positive(s["growth_factor"]);
+  if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);
   if (s.has("hit_times")) {  // times the steps land on (snapshots)
     s["hit_times"].expect_array();
     n.hit_times = s["hit_times"].as_numbers();
@@ -860,7 +868,7 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
       ft.push_back(cp.T_vector);
       N.push_back(cp.N);
       gap.push_back(cp.gap);
-      slip.push_back(cp.slip ? 1.0 : 0.0);
+      slip.push_back(shell_contact_->contact().sticks(cp) ? 0.0 : 1.0);
     }
     cd.scalars = {{"N", N}, {"gap", gap}, {"slip", slip}};
     cd.vectors = {{"shell_normal", normal}, {"tangential_force", ft}};

@@ -100,6 +100,7 @@ struct NonlinearSolver::Workspace {
   VectorXd rhs;  // -R
   VectorXd du;   // Newton correction
   SparseMatrix K;
+  double r0_max = 0.0;  // the largest |R_0| of the run's attempts so far (divergence scale)
 };
 
 NonlinearSolver::NonlinearSolver(const NonlinearSolverSettings& settings) : settings_(settings) {
@@ -136,6 +137,11 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   };
 
   const double r0 = assemble();
+  // Divergence is judged against the run's force scale, not only this step's |R_0|: after a
+  // cutback |R_0| shrinks with dt, but a contact point that closes in the step adds a force of
+  // the size of the penalty times its gap at once, however small dt is.
+  w.r0_max = std::max(w.r0_max, r0);
+  const double r_div = s.divergence_ratio * w.r0_max;
   a.residual_norms.push_back(r0);
   if (!std::isfinite(r0)) return finish(NewtonOutcome::not_finite, "|R_0| is not finite");
   if (r0 <= s.tol_residual_abs) return finish(NewtonOutcome::converged, {});
@@ -180,10 +186,10 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
     const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
     if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
 
-    if (rk > s.divergence_ratio * r0)
+    if (rk > r_div)
       return finish(NewtonOutcome::diverged,
-                    format("iteration %d: |R| = %.3e > %.3g |R_0| (|R_0| = %.3e)", k, rk,
-                           s.divergence_ratio, r0));
+                    format("iteration %d: |R| = %.3e > %.3g max |R_0| (max |R_0| = %.3e)", k, rk,
+                           s.divergence_ratio, w.r0_max));
     increases = rk > r_prev ? increases + 1 : 0;
     if (s.max_residual_increases > 0 && increases >= s.max_residual_increases)
       return finish(NewtonOutcome::diverged,

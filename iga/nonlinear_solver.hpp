@@ -46,7 +46,8 @@ struct NonlinearSolverSettings {
   int easy_iterations = 4;      ///< a step converged in <= this many iterations grows the next
   double growth_factor = 1.5;   ///< dt <- min(growth_factor dt, max_step) after an easy step
   double cutback_factor = 0.5;  ///< dt <- max(cutback_factor dt, min_step) after a failure
-  /// Divergence: |R_k| > divergence_ratio |R_0|, or the residual grew in
+  /// Divergence: |R_k| > divergence_ratio max |R_0| (the largest |R_0| of the run's steps so
+  /// far: a step cut back to a small dt keeps the run's force scale), or the residual grew in
   /// max_residual_increases consecutive iterations (0: that check is off).
   double divergence_ratio = 1e4;
   int max_residual_increases = 3;

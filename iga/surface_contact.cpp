@@ -423,6 +423,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         }
       }
       cp.active = true;
+      cp.first_contact = !cp.history.active;
       any = true;
       // R_a -= w (dx_c/dX_a)^T f: with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f.
       const Eigen::Matrix<double, 9, 1> rG = g.Xg.transpose() * f;
@@ -480,14 +481,17 @@ void SurfaceContact::commit() {
   }
 }
 
+bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {
+  return cp.active && !cp.slip && !cp.first_contact && params_.mu > 0.0 && params_.eps_t > 0.0;
+}
+
 SurfaceContactCounts SurfaceContact::counts() const {
   SurfaceContactCounts c;
-  const bool frictionless = !(params_.mu > 0.0 && params_.eps_t > 0.0);
   for (const SurfaceContactPoint& cp : points_) {
     if (!found(cp.foot.status)) ++c.failed;
     if (!cp.active) continue;
     ++c.active;
-    (cp.slip || frictionless ? c.slip : c.stick)++;
+    (sticks(cp) ? c.stick : c.slip)++;
   }
   return c;
 }

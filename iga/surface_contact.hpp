@@ -144,11 +144,11 @@ struct SurfaceContactPoint {
   double phi = 0.0;                   ///< slip function of the trial force (35)
   bool active = false;                ///< penetrating, contributes to R and K
   bool slip = false;                  ///< return mapping on the slip surface (36)
+  bool first_contact = false;         ///< active, but not in contact at the last converged step
   ContactHistory history;             ///< committed state of the last converged step
 };
 
-/// Active points split into sticking and sliding ones. Without friction (mu = 0 or eps_T = 0)
-/// every active point slides freely and counts as sliding.
+/// Active points split into sticking and sliding ones (SurfaceContact::sticks).
 struct SurfaceContactCounts {
   int active = 0, stick = 0, slip = 0;
   int failed = 0;  ///< no foot point: far, miss, tangent or not converged
@@ -172,6 +172,11 @@ class SurfaceContact {
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }
   SurfaceContactCounts counts() const;
+  /// Whether an active point sticks: friction is on (mu, eps_T > 0), the point is on the stick
+  /// branch of (36) and was in contact at the last converged step. Without friction every active
+  /// point slides freely; in its step of first contact a point carries no tangential force
+  /// (contact/contact_law.hpp) and is not counted as sticking either.
+  bool sticks(const SurfaceContactPoint& cp) const;
   const SurfaceContactParameters& parameters() const { return params_; }
   /// New penalties, friction, face, thickness or search distance; the Gauss points stay
   /// (points_per_direction cannot change).

@@ -1,0 +1,336 @@
+// saddle: covering a saddle, [KS15] Sects. 6.1-6.2 (Figs. 6-8). A square Kirchhoff-Love plate
+// hung by four weakening corner springs is loaded downward onto the rigid hyperboloid
+// z = a x y (STAS contact, rigid surface as master or slave), without friction and with Coulomb
+// friction. With friction the contact zone splits into a sticking centre and a sliding rim: a
+// mass point on the saddle sticks while mu > tan(gamma) = a r, i.e. inside the circle of radius
+// mu / a (79)-(81); the app fits the radius of the computed sticking zone and compares.
+//
+//   saddle                                   the model's runs (data/saddle.json: mu = 0, 0.125)
+//   saddle --quick                           a coarse version (the model's "app"/"quick" overrides)
+//   saddle --mu 0,0.1,0.2 --strategy slave   other friction coefficients (eps_T = eps_N), ray
+//   saddle MODEL.json --set /materials/plate/E=1e5 --out DIR
+//
+// Writes to --out (default out/saddle):
+//   saddle.csv            one row per converged step: run, mu, t, load q(t), centre deflection,
+//                         contact / sticking / sliding points, Newton iterations
+//   saddle_summary.json   per run: status, steps, iterations, times (assembly, contact, linear
+//                         solves), DOFs, final deflection, the fitted sticking radius vs mu / a
+//   contact_<run>.csv     the active contact points at the snapshot times (t, x, y, z, foot
+//                         parameters, N, stick)
+//   saddle_contact_<run>.png, saddle_load_deflection.png   plots (scripts/plot_saddle.py)
+//   <run>/                steps.csv, summary.json, shell and contact .vtk + .pvd per snapshot,
+//                         rigid.vtk (ParaView)
+// Exit status: 0 all runs reached t_end, 1 bad input, 2 a run ended early (its rows are kept).
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <numbers>
+#include <numeric>
+#include <sstream>
+
+#include <CLI/CLI.hpp>
+
+#include "iga/analysis.hpp"
+#include "iga/vtk_writer.hpp"
+
+namespace {
+
+using namespace iga;
+namespace fs = std::filesystem;
+
+struct RunSpec {
+  double mu = 0.0, eps_t = 0.0;
+  std::string name;  // file stem, "mu0.125"
+};
+
+/// Where the app finds its quantities in the model (the "app" section).
+struct AppSection {
+  JsonPointer mu, eps_t, strategy, a, load;
+  std::string load_curve, centre_monitor;
+  std::vector<RunSpec> runs;
+  std::vector<double> snapshots;
+};
+
+JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
+  const JsonCursor c = app[key];
+  const std::string s = c.as_string();
+  if (s.empty() || s[0] != '/') c.fail("expected a JSON pointer (\"/section/key\")");
+  const JsonPointer p(s);
+  if (!doc.contains(p)) c.fail("names no entry of the model");
+  return p;
+}
+
+std::string run_name(double mu) {
+  std::ostringstream s;
+  s << "mu" << mu;
+  return s.str();
+}
+
+AppSection read_app(const Json& doc, const std::string& file) {
+  const JsonCursor root(doc, file);
+  if (!root.has("app")) root.fail_plain("missing required key \"app\" (the runs of the saddle app)");
+  const JsonCursor app = root["app"];
+  app.expect_object({"mu", "eps_T", "strategy", "a", "load", "load_curve", "centre_monitor", "runs",
+                     "snapshots", "quick", "description"});
+  AppSection s;
+  s.mu = pointer(app, "mu", doc);
+  s.eps_t = pointer(app, "eps_T", doc);
+  s.strategy = pointer(app, "strategy", doc);
+  s.a = pointer(app, "a", doc);
+  s.load = pointer(app, "load", doc);
+  s.load_curve = app["load_curve"].as_string();
+  s.centre_monitor = app["centre_monitor"].as_string();
+  const JsonCursor runs = app["runs"];
+  runs.expect_array(1);
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const JsonCursor r = runs[k];
+    r.expect_object({"mu", "eps_T"});
+    RunSpec spec{r["mu"].as_number(), r["eps_T"].as_number(), {}};
+    if (spec.mu < 0.0) r["mu"].fail("must be >= 0");
+    if (spec.eps_t < 0.0) r["eps_T"].fail("must be >= 0");
+    spec.name = run_name(spec.mu);
+    s.runs.push_back(spec);
+  }
+  const JsonCursor snaps = app["snapshots"];
+  snaps.expect_array(1);
+  s.snapshots = snaps.as_numbers();
+  return s;
+}
+
+/// The sticking zone of the active points at one state: the radius (about the saddle's axis,
+/// from the foot points' x, y) that best separates sticking points (inside) from sliding points
+/// (outside), i.e. minimizes the misclassified contact area; the radius of the circle with the
+/// sticking area; the centroid of the sticking points.
+struct StickZone {
+  double radius_fit = 0.0, radius_area = 0.0;
+  Vector2d centroid = Vector2d::Zero();
+  int stick = 0, active = 0;
+};
+
+StickZone stick_zone(const SurfaceContact& sc) {
+  struct P {
+    double r, w;
+    bool stick;
+  };
+  std::vector<P> pts;
+  StickZone z;
+  double area = 0.0;
+  for (const SurfaceContactPoint& cp : sc.points()) {
+    if (!cp.active) continue;
+    const bool st = sc.sticks(cp);
+    const Vector2d xy = cp.foot.point.head<2>();
+    pts.push_back({xy.norm(), cp.weight, st});
+    ++z.active;
+    if (st) {
+      ++z.stick;
+      area += cp.weight;
+      z.centroid += cp.weight * xy;
+    }
+  }
+  if (z.stick == 0) return z;
+  z.centroid /= area;
+  z.radius_area = std::sqrt(area / std::numbers::pi);
+  // Misclassified area as the circle grows past each point: sliding inside + sticking outside.
+  std::sort(pts.begin(), pts.end(), [](const P& a, const P& b) { return a.r < b.r; });
+  double outside_stick = area, inside_slip = 0.0, best = area;
+  for (std::size_t k = 0; k < pts.size(); ++k) {
+    (pts[k].stick ? outside_stick : inside_slip) += pts[k].stick ? -pts[k].w : pts[k].w;
+    const double miss = outside_stick + inside_slip;
+    if (miss < best) {
+      best = miss;
+      z.radius_fit = k + 1 < pts.size() ? 0.5 * (pts[k].r + pts[k + 1].r) : pts[k].r;
+    }
+  }
+  return z;
+}
+
+Json zone_json(const StickZone& z) {
+  Json j = Json::object();
+  j["sticking_points"] = z.stick;
+  j["contact_points"] = z.active;
+  j["sticking_radius_fit"] = z.radius_fit;
+  j["sticking_radius_area"] = z.radius_area;
+  j["sticking_centroid"] = {z.centroid.x(), z.centroid.y()};
+  return j;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) try {
+  CLI::App cli{"saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. 6.1-6.2)"};
+  std::string model_file = std::string(IGA_SOURCE_DIR) + "/data/saddle.json";
+  std::vector<double> mu_list;
+  std::vector<std::string> sets;
+  std::string strategy, out = "out/saddle";
+  bool quick = false, verbose = false;
+  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")->capture_default_str();
+  cli.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.125); eps_T = eps_N when mu > 0")
+      ->delimiter(',');
+  cli.add_option("--strategy", strategy, "Penetration strategy: the rigid surface as master (closest point) or slave (ray)")
+      ->check(CLI::IsMember({"master", "slave"}));
+  cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
+  cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
+  cli.add_flag("--quick", quick, "Coarse version: apply the model's app/quick overrides first");
+  cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return cli.exit(e);
+  }
+
+  // 1. Model: read, quick overrides, --set, validated once before any run.
+  Json doc = read_json_file(model_file);
+  if (quick) {
+    const JsonCursor root(doc, model_file);
+    if (!root.has("app") || !root["app"].has("quick")) root.fail_plain("--quick: the model has no \"app\"/\"quick\" overrides");
+    const JsonCursor q = root["app"]["quick"];
+    if (!q.json().is_object()) q.fail_type("an object {\"/json/pointer\": value}");
+    for (const std::string& k : q.keys()) apply_override(doc, model_file, k + "=" + q[k].json().dump());
+  }
+  for (const std::string& s : sets) apply_override(doc, model_file, s);
+  AppSection app = read_app(doc, model_file);
+  if (!strategy.empty()) doc[app.strategy] = strategy;
+  if (!mu_list.empty()) {
+    const double eps_n = doc.at(JsonPointer("/contact/0/eps_N")).get<double>();
+    app.runs.clear();
+    for (double mu : mu_list) {
+      if (!(mu >= 0.0)) throw std::invalid_argument("--mu: must be >= 0, got " + std::to_string(mu));
+      app.runs.push_back({mu, mu > 0.0 ? eps_n : 0.0, run_name(mu)});
+    }
+  }
+  {  // snapshot times become step ends, the last one is t_end
+    Json& hits = doc["solver"]["hit_times"];
+    hits = Json::array();
+    for (double t : app.snapshots) hits.push_back(t);
+  }
+  const Analysis probe = Analysis::from_json(doc, model_file);  // validates the whole model
+  const double t_end = probe.solver_settings().t1;
+  const double a = doc.at(app.a).get<double>();
+  const std::vector<double> load_vec = doc.at(app.load).get<std::vector<double>>();
+  const double q_final = std::sqrt(std::inner_product(load_vec.begin(), load_vec.end(), load_vec.begin(), 0.0));
+  int centre = -1;
+  for (std::size_t k = 0; k < probe.output().monitors.size(); ++k)
+    if (probe.output().monitors[k].name == app.centre_monitor) centre = static_cast<int>(k);
+  if (centre < 0) throw std::invalid_argument(model_file + ": app/centre_monitor: no output monitor named '" + app.centre_monitor + "'");
+  LoadCurve lambda;
+  for (const auto& [name, curve] : probe.load_curves())
+    if (name == app.load_curve) lambda = curve;
+  if (!lambda) throw std::invalid_argument(model_file + ": app/load_curve: no load curve named '" + app.load_curve + "'");
+
+  // 2. Output folder.
+  const fs::path dir(out);
+  fs::create_directories(dir);
+  std::ofstream(dir / "model_used.json") << format_json(doc) << "\n";
+  std::ofstream csv(dir / "saddle.csv");
+  if (!csv) throw std::runtime_error("cannot write " + (dir / "saddle.csv").string());
+  csv << "run,mu,t,load,centre_deflection,contact_points,sticking_points,sliding_points,iterations\n"
+      << std::setprecision(10);
+  std::cout << "saddle: " << probe.describe() << "\n";
+  std::cout << "saddle: " << app.runs.size() << " run(s), strategy "
+            << doc.at(app.strategy).get<std::string>() << ", results in " << dir.string() << "\n";
+
+  // 3. The runs.
+  Json summary = Json::object();
+  summary["model"] = model_file;
+  summary["strategy"] = doc.at(app.strategy).get<std::string>();
+  summary["a"] = a;
+  summary["runs"] = Json::array();
+  int failed = 0;
+  for (const RunSpec& run : app.runs) {
+    Json d = doc;
+    d[app.mu] = run.mu;
+    d[app.eps_t] = run.eps_t;
+    Analysis an = Analysis::from_json(d, model_file);
+    ShellContactProblem* contact = an.shell_contact_problem();
+    if (contact == nullptr) throw std::invalid_argument(model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");
+    const fs::path run_dir = dir / run.name;
+    fs::create_directories(run_dir);
+    std::ofstream points(dir / ("contact_" + run.name + ".csv"));
+    points << "t,x,y,z,foot_u,foot_v,N,stick\n" << std::setprecision(10);
+    VtkCollection pvd_shell((run_dir / "snapshots_shell.pvd").string());
+    VtkCollection pvd_contact((run_dir / "snapshots_contact.pvd").string());
+    Json snaps = Json::array();
+    std::cout << "saddle: run " << run.name << " (mu = " << run.mu << ", eps_T = " << run.eps_t << ")\n";
+    auto on_step = [&](const VectorXd& u, double t, const AnalysisStep& st) {
+      const double w = -st.displacements[static_cast<std::size_t>(centre)].z();
+      csv << run.name << "," << run.mu << "," << t << "," << q_final * lambda(t) << "," << w << ","
+          << st.contact.active << "," << st.contact.stick << "," << st.contact.slip << ","
+          << st.iterations << std::endl;
+      for (double ts : app.snapshots) {
+        if (std::abs(t - ts) > 1e-9 * t_end) continue;
+        for (const SurfaceContactPoint& cp : contact->contact().points())
+          if (cp.active)
+            points << t << "," << cp.x.x() << "," << cp.x.y() << "," << cp.x.z() << "," << cp.foot.uv.x()
+                   << "," << cp.foot.uv.y() << "," << cp.N << "," << (contact->contact().sticks(cp) ? 1 : 0)
+                   << "\n";
+        points.flush();
+        std::ostringstream stem;
+        stem << "t" << t;
+        const std::vector<std::string> f = an.write_vtk(run_dir.string(), stem.str(), u, t);
+        pvd_shell.add(t, f[0]);
+        pvd_contact.add(t, f[1]);
+        Json z = zone_json(stick_zone(contact->contact()));
+        z["t"] = t;
+        z["centre_deflection"] = w;
+        snaps.push_back(z);
+        std::cout << "  t = " << std::setw(6) << t << "  q = " << std::setw(8) << q_final * lambda(t)
+                  << "  centre deflection " << std::setw(9) << w << "  contact " << st.contact.active
+                  << " (stick " << st.contact.stick << ", slide " << st.contact.slip << ")\n";
+      }
+      return true;
+    };
+    const AnalysisResult r = an.run(verbose ? &std::cout : nullptr, run_dir.string(), on_step);
+    const NonlinearSolverResult& s = r.solver;
+    const StickZone zone = stick_zone(contact->contact());
+    Json j = zone_json(zone);
+    j["name"] = run.name;
+    j["mu"] = run.mu;
+    j["eps_T"] = run.eps_t;
+    j["expected_radius_mu_over_a"] = run.mu / a;
+    j["status"] = to_string(s.status);
+    j["message"] = s.message;
+    j["t_reached"] = s.t;
+    j["steps"] = s.steps;
+    j["cutbacks"] = s.cutbacks;
+    j["newton_iterations"] = s.total_iterations;
+    j["iterations_per_step"] = static_cast<double>(s.total_iterations) / std::max(s.steps, 1);
+    j["dofs"] = an.problem().num_dofs();
+    j["contact_quadrature_points"] = contact->contact().points().size();
+    j["time_total_s"] = s.time_total;
+    j["time_assembly_s"] = s.time_assembly;
+    j["time_contact_s"] = r.contact_time;
+    j["time_linear_solve_s"] = s.time_linear_solve;
+    j["time_per_iteration_s"] = s.time_total / std::max(s.total_iterations, 1);
+    j["centre_deflection"] = r.steps.empty() ? 0.0 : -r.steps.back().displacements[static_cast<std::size_t>(centre)].z();
+    j["snapshots"] = snaps;
+    summary["runs"].push_back(j);
+    std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";  // after each run
+    std::cout << "  " << run.name << ": " << to_string(s.status) << " at t = " << s.t << ", " << s.steps
+              << " steps, " << s.total_iterations << " Newton iterations ("
+              << static_cast<double>(s.total_iterations) / std::max(s.steps, 1) << " per step), "
+              << s.time_total << " s: assembly " << 100 * s.time_assembly / s.time_total << " % (contact "
+              << 100 * r.contact_time / s.time_total << " %), linear solves "
+              << 100 * s.time_linear_solve / s.time_total << " %\n";
+    if (run.mu > 0.0)
+      std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points, radius "
+                << zone.radius_fit << " (fit), " << zone.radius_area << " (area), mu/a = " << run.mu / a
+                << ", centroid (" << zone.centroid.x() << ", " << zone.centroid.y() << ")\n";
+    if (!s.converged()) {
+      ++failed;
+      std::cout << "saddle: run " << run.name << " ended early: " << s.message << "\n";
+    }
+  }
+
+  // 4. Plots.
+  const std::string cmd = "/usr/bin/python3 \"" + std::string(IGA_SOURCE_DIR) + "/scripts/plot_saddle.py\" \"" +
+                          dir.string() + "\" 2>&1";
+  if (std::system(cmd.c_str()) != 0) std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";
+  return failed > 0 ? 2 : 0;
+} catch (const std::exception& e) {
+  std::cerr << "saddle: error: " << e.what() << "\n";
+  return 1;
+}
