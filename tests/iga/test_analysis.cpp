@@ -104,6 +104,12 @@ TEST_CASE("analysis: structural errors of the model name their JSON path", "[iga
              Catch::Contains("m.json: /contact: one contact pair per model in this version, got 2"));
   CHECK_THAT(error([](Json& d) { d["contact"][0]["body"] = "rod"; }),
              Catch::Contains("m.json: /contact/0/body: names no body (the model's body is \"rope\"), got \"rod\""));
+  CHECK_THAT(error([](Json& d) {
+               d["contact"][0]["type"] = "surface_to_rigid";
+               d["contact"][0]["face"] = "lower";
+             }),
+             Catch::Contains("m.json: /contact/0/type: a rod's contact is \"curve_to_rigid\", got "
+                             "\"surface_to_rigid\""));
   CHECK_THAT(error([](Json& d) { d["loads"][0]["force"] = {1, 0, 0}; }),
              Catch::Contains("m.json: /loads/0: give either \"force\" or \"magnitude\" and \"direction\""));
   CHECK_THAT(error([](Json& d) { d["materials"]["rope"]["EI"] = -1.0; }),
