@@ -58,6 +58,13 @@ std::vector<fs::path> data_models() {
   return files;
 }
 
+// `iga run data/MODEL --out OUT EXTRA` into a fresh folder OUT.
+Run run_data_model(const std::string& model, const fs::path& out, const std::string& extra = "") {
+  fs::remove_all(out);
+  return iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/" + model + "\" --out \"" +
+             out.string() + "\" " + extra);
+}
+
 std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
   std::vector<std::vector<std::string>> rows;
   std::istringstream in(text);
@@ -243,9 +250,7 @@ TEST_CASE("iga info validates and summarizes the analysis sections", "[apps][iga
 TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
           "[apps][iga][run]") {
   const fs::path out = fs::temp_directory_path() / ("iga_run_test_" + std::to_string(::getpid()));
-  fs::remove_all(out);
-  const Run r = iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\" --out \"" +
-                    out.string() + "\" --set /contact/0/mu=0.2");
+  const Run r = run_data_model("capstan.json", out, "--set /contact/0/mu=0.2");
   INFO(r.out << r.err);
   REQUIRE(r.status == 0);
   CHECK(r.out.find("full slip at t = ") != std::string::npos);
@@ -267,9 +272,7 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
 TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the shell files",
           "[apps][iga][run][shell]") {
   const fs::path out = fs::temp_directory_path() / ("iga_run_shell_" + std::to_string(::getpid()));
-  fs::remove_all(out);
-  const Run r = iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/scordelis_lo.json\" --out \"" +
-                    out.string() + "\"");
+  const Run r = run_data_model("scordelis_lo.json", out);
   INFO(r.out << r.err);
   REQUIRE(r.status == 0);
   CHECK(r.out.find("shell of 256 elements (degree 3 x 3, 361 control points)") !=
@@ -288,8 +291,7 @@ TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the s
   const double w = -1e5 * std::stod(rows[1][static_cast<std::size_t>(col - rows[0].begin())]);
   CHECK(std::abs(w / 0.3006 - 1.0) < 1e-3);
   const Run bad =
-      iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/scordelis_lo.json\" --quiet " +
-          "--out /tmp/iga_bad_run --set /materials/concrete/thickness=-1");
+      run_data_model("scordelis_lo.json", out, "--quiet --set /materials/concrete/thickness=-1");
   CHECK(bad.status == 1);
   CHECK(bad.err.find("scordelis_lo.json: /materials/concrete/thickness: must be > 0, got -1") !=
         std::string::npos);

@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "analysis_error.hpp"
 #include "iga/analysis.hpp"
 #include "iga/capstan.hpp"
 
@@ -85,16 +86,7 @@ TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the
 
 TEST_CASE("analysis: structural errors of the model name their JSON path", "[iga][analysis][errors]") {
   const Json base = read_json_file(kData + "capstan.json");
-  auto error = [&](auto&& edit) -> std::string {
-    Json doc = base;
-    edit(doc);
-    try {
-      (void)Analysis::from_json(doc, "m.json");
-    } catch (const ModelError& e) {
-      return e.what();
-    }
-    return "no error";
-  };
+  auto error = [&](auto&& edit) { return test::analysis_error(base, edit); };
   CHECK_THAT(error([](Json& d) { d.erase("bodies"); }), Catch::Contains("m.json: missing required key \"bodies\""));
   CHECK_THAT(error([](Json& d) { d["bodies"]["second"] = d["bodies"]["rope"]; }),
              Catch::Contains("m.json: /bodies: expected an object with exactly one named body"));
