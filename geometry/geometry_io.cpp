@@ -7,6 +7,7 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -293,16 +294,29 @@ Vector3d parse_direction(const JsonCursor& c) {
   return d;
 }
 
-/// "refine": {"elevate": k, "subdivide": n} of a constructed surface, then "normal".
+/// A count for both surface directions: n, or [n_u, n_v].
+std::array<int, 2> parse_count_pair(const JsonCursor& c, int lo, int hi) {
+  if (!c.json().is_array()) {
+    const int n = parse_count(c, lo, hi);
+    return {n, n};
+  }
+  if (c.size() != 2) c.fail_type("a count or a pair [u, v]");
+  return {parse_count(c[0], lo, hi), parse_count(c[1], lo, hi)};
+}
+
+/// "refine": {"elevate": k or [k_u, k_v], "subdivide": n or [n_u, n_v]} of a constructed
+/// surface, then "normal".
 NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
   if (e.has("refine")) {
     const JsonCursor r = e["refine"];
     r.expect_object({"elevate", "subdivide"});
-    const int k = r.has("elevate") ? parse_count(r["elevate"], 0, 5) : 0;
-    const int n = r.has("subdivide") ? parse_count(r["subdivide"], 1, 64) : 1;
+    const std::array<int, 2> k =
+        r.has("elevate") ? parse_count_pair(r["elevate"], 0, 5) : std::array{0, 0};
+    const std::array<int, 2> n =
+        r.has("subdivide") ? parse_count_pair(r["subdivide"], 1, 64) : std::array{1, 1};
     s = build(e, [&] {
-      NurbsSurface t = k > 0 ? elevate_degree(s, k, k) : s;
-      return n > 1 ? subdivide(t, n, n) : t;
+      NurbsSurface t = k[0] > 0 || k[1] > 0 ? elevate_degree(s, k[0], k[1]) : s;
+      return n[0] > 1 || n[1] > 1 ? subdivide(t, n[0], n[1]) : t;
     });
   }
   parse_normal(e, s);

@@ -383,9 +383,9 @@ RodSection parse_rod_material(const JsonCursor& m) {
 
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
-                   "tol_residual_rel", "tol_residual_abs", "tol_energy_rel",
-                   "stop_at_full_slip_after", "hit_times", "easy_iterations", "growth_factor",
-                   "cutback_factor", "description"});
+                   "tol_residual_rel", "tol_residual_abs", "tol_energy_rel", "divergence_ratio",
+                   "max_residual_increases", "stop_at_full_slip_after", "hit_times",
+                   "easy_iterations", "growth_factor", "cutback_factor", "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
   if (s.has("t_end")) n.t1 = positive(s["t_end"]);
@@ -405,6 +405,16 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   if (s.has("tol_residual_rel")) n.tol_residual_rel = positive(s["tol_residual_rel"]);
   if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
   if (s.has("tol_energy_rel")) n.tol_energy_rel = positive(s["tol_energy_rel"], true);
+  if (s.has("divergence_ratio")) {  // a step fails when |R_k| > divergence_ratio |R_0|
+    const JsonCursor c = s["divergence_ratio"];
+    n.divergence_ratio = c.as_number();
+    if (!(n.divergence_ratio > 1.0)) c.fail("must be > 1");
+  }
+  if (s.has("max_residual_increases")) {  // ... or |R| grew this many times in a row (0: off)
+    const JsonCursor c = s["max_residual_increases"];
+    n.max_residual_increases = c.as_int();
+    if (n.max_residual_increases < 0) c.fail("must be >= 0");
+  }
   if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
   if (s.has("easy_iterations")) {  // a step converged in <= this many iterations grows the next
     const JsonCursor c = s["easy_iterations"];
@@ -514,10 +524,11 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   std::unique_ptr<RodProblem> problem;
   if (root.has("contact") && root["contact"].size() == 1) {
     const JsonCursor c = root["contact"][0];
-    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
-                     "points_per_element", "description"});
+    // The type first: a shell's contact keys would otherwise be reported as unknown keys.
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
+                     "points_per_element", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     ContactParameters cp;
@@ -583,10 +594,10 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   std::unique_ptr<ShellProblem> problem;
   if (root.has("contact") && root["contact"].size() == 1) {
     const JsonCursor c = root["contact"][0];
-    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
-                     "points_per_direction", "search_distance", "description"});
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
       c["type"].fail("a shell's contact is \"surface_to_rigid\"");
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
+                     "points_per_direction", "search_distance", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     SurfaceContactParameters cp;

@@ -366,3 +366,39 @@ TEST_CASE("geometry_io: errors in memory name the element and not just the entit
   CHECK(e7.pointer() == "/geometry");
   CHECK(e7.message().find("got array [1,2]") != std::string::npos);
 }
+
+TEST_CASE("geometry_io: a construction's \"refine\" takes one count or a pair [u, v] and leaves "
+          "the surface unchanged",
+          "[geometry][io]") {
+  const std::string cyl = R"({"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+      "axis": [0, 1, 0], "ref_dir": [0, 0, 1], "radius": 2, "height": 3, "start_deg": -40,
+      "end_deg": 40)";
+  auto surface = [](const std::string& entity) {
+    const GeometryModel m = parse_geometry(parse_json_text("{\"s\": " + entity + "}", "g.json"),
+                                           "g.json", JsonPointer("/geometry"));
+    return std::get<NurbsSurface>(m.entities.front().second);
+  };
+  const NurbsSurface base = surface(cyl + "}");
+  const NurbsSurface a = surface(cyl + R"(, "refine": {"elevate": [1, 2], "subdivide": [3, 2]}})");
+  const NurbsSurface b = surface(cyl + R"(, "refine": {"elevate": 1, "subdivide": 2}})");
+  CHECK(base.degree_u() == 2);
+  CHECK(base.degree_v() == 1);
+  CHECK(a.degree_u() == 3);
+  CHECK(a.degree_v() == 3);
+  CHECK(a.knots_u().breaks().size() == 4);
+  CHECK(a.knots_v().breaks().size() == 3);
+  CHECK(b.degree_u() == 3);
+  CHECK(b.degree_v() == 2);
+  CHECK(b.knots_u().breaks().size() == 3);
+  for (double u : {0.0, 0.3, 0.71, 1.0})
+    for (double v : {0.0, 0.45, 1.0}) {
+      CHECK((a.point(u, v) - base.point(u, v)).norm() <= 1e-14);
+      CHECK((b.point(u, v) - base.point(u, v)).norm() <= 1e-14);
+    }
+  const ModelError e = geometry_error("{\"s\": " + cyl + R"(, "refine": {"elevate": [1, 2, 3]}}})");
+  CHECK(e.pointer() == "/geometry/s/refine/elevate");
+  CHECK_THAT(std::string(e.what()), Catch::Contains("expected a count or a pair [u, v]"));
+  const ModelError f = geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
+  CHECK(f.pointer() == "/geometry/s/refine/subdivide/1");
+  CHECK_THAT(std::string(f.what()), Catch::Contains("must be in 1..64, got 0"));
+}

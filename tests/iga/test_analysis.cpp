@@ -7,6 +7,7 @@
 #include <numbers>
 #include <string>
 
+#include "analysis_error.hpp"
 #include "iga/analysis.hpp"
 #include "iga/capstan.hpp"
 
@@ -85,16 +86,7 @@ TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the
 
 TEST_CASE("analysis: structural errors of the model name their JSON path", "[iga][analysis][errors]") {
   const Json base = read_json_file(kData + "capstan.json");
-  auto error = [&](auto&& edit) -> std::string {
-    Json doc = base;
-    edit(doc);
-    try {
-      (void)Analysis::from_json(doc, "m.json");
-    } catch (const ModelError& e) {
-      return e.what();
-    }
-    return "no error";
-  };
+  auto error = [&](auto&& edit) { return test::analysis_error(base, edit); };
   CHECK_THAT(error([](Json& d) { d.erase("bodies"); }), Catch::Contains("m.json: missing required key \"bodies\""));
   CHECK_THAT(error([](Json& d) { d["bodies"]["second"] = d["bodies"]["rope"]; }),
              Catch::Contains("m.json: /bodies: expected an object with exactly one named body"));
@@ -104,6 +96,12 @@ TEST_CASE("analysis: structural errors of the model name their JSON path", "[iga
              Catch::Contains("m.json: /contact: one contact pair per model in this version, got 2"));
   CHECK_THAT(error([](Json& d) { d["contact"][0]["body"] = "rod"; }),
              Catch::Contains("m.json: /contact/0/body: names no body (the model's body is \"rope\"), got \"rod\""));
+  CHECK_THAT(error([](Json& d) {
+               d["contact"][0]["type"] = "surface_to_rigid";
+               d["contact"][0]["face"] = "lower";
+             }),
+             Catch::Contains("m.json: /contact/0/type: a rod's contact is \"curve_to_rigid\", got "
+                             "\"surface_to_rigid\""));
   CHECK_THAT(error([](Json& d) { d["loads"][0]["force"] = {1, 0, 0}; }),
              Catch::Contains("m.json: /loads/0: give either \"force\" or \"magnitude\" and \"direction\""));
   CHECK_THAT(error([](Json& d) { d["materials"]["rope"]["EI"] = -1.0; }),
