@@ -34,10 +34,7 @@ struct Pointers {
 
 JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
   const JsonCursor c = app[key];
-  const std::string s = c.as_string();
-  if (s.empty() || s[0] != '/') c.fail("expected a JSON pointer (\"/section/key\")");
-  const JsonPointer p(s);
-  if (!doc.contains(p)) c.fail("names no entry of the model");
+  const JsonPointer p = model_pointer(c, doc);
   if (!doc.at(p).is_number()) c.fail("must name a number of the model");
   return p;
 }

@@ -56,12 +56,7 @@ struct AppSection {
 };
 
 JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
-  const JsonCursor c = app[key];
-  const std::string s = c.as_string();
-  if (s.empty() || s[0] != '/') c.fail("expected a JSON pointer (\"/section/key\")");
-  const JsonPointer p(s);
-  if (!doc.contains(p)) c.fail("names no entry of the model");
-  return p;
+  return model_pointer(app[key], doc);
 }
 
 std::string run_name(double mu) {

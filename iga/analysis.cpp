@@ -206,17 +206,22 @@ int end_of(const JsonCursor& c) {
   return c.as_string() == "start" ? 0 : c.as_string() == "end" ? 1 : -1;
 }
 
+/// {"type": "fix", "points": ..., "components": [...]} (rods and shells).
+void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p) {
+  o.expect_object({"type", "body", "points", "components", "description"});
+  const std::vector<int> comps = components(o);
+  for (int i : point_list(o["points"], ctx))
+    for (int c : comps)
+      if (!p.constrained(i, c)) p.fix(i, c);
+}
+
 void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
   const std::string type = one_of(o["type"], {"fix", "clamp", "displacement"});
   check_body(o, ctx);
   try {
     if (type == "fix") {
-      o.expect_object({"type", "body", "points", "components", "description"});
-      const std::vector<int> comps = components(o);
-      for (int i : point_list(o["points"], ctx))
-        for (int c : comps)
-          if (!p.constrained(i, c)) p.fix(i, c);
+      fix_points(o, ctx, p);
     } else if (type == "clamp") {
       o.expect_object({"type", "body", "end", "description"});
       const std::string e = one_of(o["end"], {"start", "end"});
@@ -289,11 +294,7 @@ void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, She
   check_body(o, ctx);
   try {
     if (type == "fix") {
-      o.expect_object({"type", "body", "points", "components", "description"});
-      const std::vector<int> comps = components(o);
-      for (int i : point_list(o["points"], ctx))
-        for (int c : comps)
-          if (!p.constrained(i, c)) p.fix(i, c);
+      fix_points(o, ctx, p);
     } else if (type == "displacement") {
       o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
                        "description"});
@@ -487,6 +488,15 @@ std::string fmt(double v) {
 
 namespace {
 
+/// Calls f on every entry of the array root[key] (if present).
+template <class F>
+void for_each_entry(const JsonCursor& root, const char* key, F f) {
+  if (!root.has(key)) return;
+  const JsonCursor list = root[key];
+  list.expect_array();
+  for (std::size_t k = 0; k < list.size(); ++k) f(list[k]);
+}
+
 /// The rod body, its contact pair, boundary conditions and loads.
 std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                       const GeometryModel& geometry, const JsonCursor& materials,
@@ -548,16 +558,8 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   } else {
     problem = std::make_unique<RodProblem>(std::move(*rod));
   }
-  if (root.has("boundary_conditions")) {
-    const JsonCursor bc = root["boundary_conditions"];
-    bc.expect_array();
-    for (std::size_t k = 0; k < bc.size(); ++k) parse_rod_boundary_condition(bc[k], ctx, *problem);
-  }
-  if (root.has("loads")) {
-    const JsonCursor lc = root["loads"];
-    lc.expect_array();
-    for (std::size_t k = 0; k < lc.size(); ++k) parse_rod_load(lc[k], ctx, *problem);
-  }
+  for_each_entry(root, "boundary_conditions", [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
   return problem;
 }
 
@@ -628,16 +630,8 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   } else {
     problem = std::make_unique<ShellProblem>(std::move(*shell));
   }
-  if (root.has("boundary_conditions")) {
-    const JsonCursor bc = root["boundary_conditions"];
-    bc.expect_array();
-    for (std::size_t k = 0; k < bc.size(); ++k) parse_shell_boundary_condition(bc[k], ctx, *problem);
-  }
-  if (root.has("loads")) {
-    const JsonCursor lc = root["loads"];
-    lc.expect_array();
-    for (std::size_t k = 0; k < lc.size(); ++k) parse_shell_load(lc[k], ctx, *problem);
-  }
+  for_each_entry(root, "boundary_conditions", [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
   return problem;
 }
 
@@ -1008,6 +1002,14 @@ void apply_override(Json& doc, const std::string& file, const std::string& assig
   const JsonPointer ptr(assignment.substr(0, eq));
   if (!doc.contains(ptr)) throw ModelError(file, ptr.to_string(), "--set names no existing entry");
   doc[ptr] = parse_json_text(assignment.substr(eq + 1), "--set " + assignment.substr(0, eq));
+}
+
+JsonPointer model_pointer(const JsonCursor& c, const Json& doc) {
+  const std::string s = c.as_string();
+  if (s.empty() || s[0] != '/') c.fail("expected a JSON pointer (\"/section/key\")");
+  const JsonPointer p(s);
+  if (!doc.contains(p)) c.fail("names no entry of the model");
+  return p;
 }
 
 }  // namespace iga

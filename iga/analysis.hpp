@@ -155,4 +155,8 @@ class Analysis {
 /// ignored key. Throws ModelError / std::invalid_argument.
 void apply_override(Json& doc, const std::string& file, const std::string& assignment);
 
+/// A JSON pointer given as a string at `c` (e.g. an app section's "/contact/0/mu") that names an
+/// existing entry of `doc`; ModelError at c otherwise.
+JsonPointer model_pointer(const JsonCursor& c, const Json& doc);
+
 }  // namespace iga
