@@ -313,7 +313,7 @@ NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
     const std::array<int, 2> k =
         r.has("elevate") ? parse_count_pair(r["elevate"], 0, 5) : std::array{0, 0};
     const std::array<int, 2> n =
-        r.has("subdivide") ? parse_count_pair(r["subdivide"], 1, 64) : std::array{1, 1};
+        r.has("subdivide") ? parse_count_pair(r["subdivide"], 1, 1024) : std::array{1, 1};
     s = build(e, [&] {
       NurbsSurface t = k[0] > 0 || k[1] > 0 ? elevate_degree(s, k[0], k[1]) : s;
       return n[0] > 1 || n[1] > 1 ? subdivide(t, n[0], n[1]) : t;

@@ -400,5 +400,5 @@ TEST_CASE("geometry_io: a construction's \"refine\" takes one count or a pair [u
   CHECK_THAT(std::string(e.what()), Catch::Contains("expected a count or a pair [u, v]"));
   const ModelError f = geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
   CHECK(f.pointer() == "/geometry/s/refine/subdivide/1");
-  CHECK_THAT(std::string(f.what()), Catch::Contains("must be in 1..64, got 0"));
+  CHECK_THAT(std::string(f.what()), Catch::Contains("must be in 1..1024, got 0"));
 }
