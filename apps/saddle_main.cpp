@@ -104,6 +104,7 @@ struct StickZone {
   double radius_fit = 0.0, radius_area = 0.0;
   Vector2d centroid = Vector2d::Zero();
   int stick = 0, active = 0;
+  int first_contact = 0;  ///< active points that were not in contact at the previous step
 };
 
 StickZone stick_zone(const SurfaceContact& sc) {
@@ -120,6 +121,7 @@ StickZone stick_zone(const SurfaceContact& sc) {
     const Vector2d xy = cp.foot.point.head<2>();
     pts.push_back({xy.norm(), cp.weight, st});
     ++z.active;
+    if (cp.first_contact) ++z.first_contact;
     if (st) {
       ++z.stick;
       area += cp.weight;
@@ -147,6 +149,7 @@ Json zone_json(const StickZone& z) {
   Json j = Json::object();
   j["sticking_points"] = z.stick;
   j["contact_points"] = z.active;
+  j["first_contact_points"] = z.first_contact;
   j["sticking_radius_fit"] = z.radius_fit;
   j["sticking_radius_area"] = z.radius_area;
   j["sticking_centroid"] = {z.centroid.x(), z.centroid.y()};
@@ -311,7 +314,8 @@ int main(int argc, char** argv) try {
               << 100 * r.contact_time / s.time_total << " %), linear solves "
               << 100 * s.time_linear_solve / s.time_total << " %\n";
     if (run.mu > 0.0)
-      std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points, radius "
+      std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points ("
+                << zone.first_contact << " in their first step of contact), radius "
                 << zone.radius_fit << " (fit), " << zone.radius_area << " (area), mu/a = " << run.mu / a
                 << ", centroid (" << zone.centroid.x() << ", " << zone.centroid.y() << ")\n";
     if (!s.converged()) {
