@@ -16,50 +16,25 @@
 #include <vector>
 
 #include "contact/rigid_surface.hpp"
+#include "iga/rigid_contact_problem.hpp"
 #include "iga/shell_problem.hpp"
 #include "iga/surface_contact.hpp"
 
 namespace iga {
 
 /// ShellProblem whose residual includes the contact of one face of the shell with one rigid
-/// surface. The problem shares ownership of the rigid surface (the contact integral keeps a
-/// pointer to it), so the problem may be moved and outlive the caller's handle.
-class ShellContactProblem : public ShellProblem {
+/// surface (commit, status, reactions, contact time: RigidContactProblem). The problem shares
+/// ownership of the rigid surface, so it may be moved and outlive the caller's handle.
+class ShellContactProblem : public RigidContactProblem<ShellProblem, SurfaceContact> {
  public:
   /// `params.thickness` is replaced by the shell's thickness. Throws ShellError if `rigid` is
   /// null, std::invalid_argument (from SurfaceContact) for invalid parameters.
   ShellContactProblem(KirchhoffLoveShell shell, std::shared_ptr<const RigidSurface> rigid,
                       SurfaceContactParameters params);
 
-  const SurfaceContact& contact() const { return contact_; }
-  SurfaceContact& contact() { return contact_; }
-  const RigidSurface& rigid() const { return *rigid_; }
-
   /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)); so does the
   /// slave strategy (the ray direction depends on the shell's control points, (5)).
   bool symmetric() const override;
-  /// Commits the contact history (the state of the last assembly, made at the converged u, t).
-  void commit(const VectorXd& u, double t) override;
-  /// "contact 240 (stick 100, slip 140)" for the progress line.
-  std::string status() const override;
-
-  /// The reactions (nodal_residual) of an equilibrium state, without disturbing the contact
-  /// state kept for output (see RodContactProblem::reactions).
-  std::vector<Vector3d> reactions(const VectorXd& u, double t);
-
-  /// Wall time spent in the contact integral since construction, seconds; part of the solver's
-  /// assembly time.
-  double contact_time() const { return contact_time_; }
-
- protected:
-  void add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
-                         std::vector<Triplet>* K) override;
-
- private:
-  std::shared_ptr<const RigidSurface> rigid_;
-  SurfaceContact contact_;
-  std::vector<Vector3d> x_;  ///< work copy of the control points (SurfaceContact takes a vector)
-  double contact_time_ = 0.0;
 };
 
 }  // namespace iga
