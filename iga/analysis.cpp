@@ -28,6 +28,21 @@ double positive(const JsonCursor& c, bool allow_zero = false) {
 double number_or(const JsonCursor& o, const char* key, double fallback) {
   return o.has(key) ? o[key].as_number() : fallback;
 }
+/// An integer key of `o` in [lo, hi] (message `range`), or `fallback` if absent.
+int int_or(const JsonCursor& o, const char* key, int fallback, int lo, int hi, const char* range) {
+  if (!o.has(key)) return fallback;
+  const JsonCursor c = o[key];
+  const int n = c.as_int();
+  if (n < lo || n > hi) c.fail(std::string("must be in ") + range);
+  return n;
+}
+/// The penalty and friction keys of a contact pair: eps_N > 0, eps_T >= 0 (0), mu >= 0 (0).
+template <class Params>
+void penalty_and_friction(const JsonCursor& c, Params& p) {
+  p.eps_n = positive(c["eps_N"]);
+  p.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
+  p.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+}
 Vector3d vec3(const JsonCursor& c) {
   if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 components [x, y, z]");
   return Vector3d(c[0].as_number(), c[1].as_number(), c[2].as_number());
@@ -513,11 +528,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
   const RodSection section = parse_rod_material(mat);
   RodOptions opt;
-  if (b.has("quadrature_points")) {
-    const JsonCursor q = b["quadrature_points"];
-    opt.quadrature_points = q.as_int();
-    if (opt.quadrature_points < 0 || opt.quadrature_points > 20) q.fail("must be in 0..20 (0: p + 1)");
-  }
+  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
   if (b.has("bending"))
     opt.bending = one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) ==
                           "transported_frame"
@@ -542,16 +553,9 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     ContactParameters cp;
-    cp.eps_n = positive(c["eps_N"]);
-    cp.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
-    cp.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+    penalty_and_friction(c, cp);
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
-    int ppe = 3;
-    if (c.has("points_per_element")) {
-      const JsonCursor pc = c["points_per_element"];
-      ppe = pc.as_int();
-      if (ppe < 1 || ppe > 16) pc.fail("must be in 1..16");
-    }
+    const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
     auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid_out, cp, ppe);
     contact_out = p.get();
     problem = std::move(p);
@@ -578,11 +582,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) != "shell")
     mc.fail("names a rod material; a shell needs type \"shell\"");
   ShellOptions opt;
-  if (b.has("quadrature_points")) {
-    const JsonCursor q = b["quadrature_points"];
-    opt.quadrature_points = q.as_int();
-    if (opt.quadrature_points < 0 || opt.quadrature_points > 20) q.fail("must be in 0..20 (0: p + 1)");
-  }
+  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
   std::optional<KirchhoffLoveShell> shell;
   try {
     shell.emplace(*ctx.surface, parse_shell_material(mat), opt);
@@ -603,9 +603,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     SurfaceContactParameters cp;
-    cp.eps_n = positive(c["eps_N"]);
-    cp.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
-    cp.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+    penalty_and_friction(c, cp);
     if (c.has("strategy"))
       cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
                         ? SurfaceContactStrategy::kRigidMaster
@@ -614,11 +612,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
       const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
       cp.face = f == "lower" ? ShellFace::kLower : f == "upper" ? ShellFace::kUpper : ShellFace::kMid;
     }
-    if (c.has("points_per_direction")) {
-      const JsonCursor pc = c["points_per_direction"];
-      cp.points_per_direction = pc.as_int();
-      if (cp.points_per_direction < 1 || cp.points_per_direction > 20) pc.fail("must be in 1..20");
-    }
+    cp.points_per_direction = int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
     try {
       auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
