@@ -650,7 +650,7 @@ TEST_CASE(
 
 TEST_CASE(
     "ray_project_analytic: a ray through a torus meets up to four points and returns the "
-    "nearest; hits outside a bounded domain are skipped",
+    "nearest, hits outside a bounded domain are skipped",
     "[contact][analytic][ray]") {
   Placement pl;
   pl.center = Vector3d(1, 1, 1);

@@ -70,7 +70,7 @@ TEST_CASE("Placement::frame: orthonormal, right-handed, e_z along the axis, e_x 
   }
 }
 
-TEST_CASE("Placement::frame: zero or non-finite axis throws; parallel ref_dir falls back",
+TEST_CASE("Placement::frame: zero or non-finite axis throws, a parallel ref_dir falls back",
           "[geometry][analytic][errors]") {
   Placement p;
   p.axis = Vector3d::Zero();

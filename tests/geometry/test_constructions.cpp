@@ -311,7 +311,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "make_revolution: a NURBS profile keeps its distance to the axis and its height; "
+    "make_revolution: a NURBS profile keeps its distance to the axis and its height, "
     "u = 0 is the profile and u = 1 the profile rotated by the angle",
     "[geometry][constructions]") {
   std::mt19937 g(8);

@@ -86,7 +86,7 @@ TEST_CASE("CurveContact: a uniformly penetrating half wrap has the resultant of 
   CHECK(cc.counts().active == static_cast<int>(cc.points().size()));
 }
 
-TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch; far points inactive",
+TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch, far points inactive",
           "[iga][contact][ctrs]") {
   // The same penetrating half wrap on one exact cylinder patch and on four 90-degree patches
   // (a multi-patch rigid body): the first assembly projects every point through the CGAL broad

@@ -290,7 +290,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "KirchhoffRod: energy invariant and forces rotated under rigid motions; rigid modes "
+    "KirchhoffRod: energy invariant and forces rotated under rigid motions, rigid modes "
     "in the tangent's kernel at the reference",
     "[iga][rod]") {
   std::mt19937 rng(77);

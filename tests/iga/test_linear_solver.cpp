@@ -218,7 +218,7 @@ TEST_CASE("LinearSolver: singular matrices are reported as a status with a messa
   }
 }
 
-TEST_CASE("LinearSolver: non-finite entries are invalid input; bad shapes throw", "[iga][solver]") {
+TEST_CASE("LinearSolver: non-finite entries are invalid input, bad shapes throw", "[iga][solver]") {
   SparseMatrix A = random_matrix(5, 2, true, false, 3u);
   A.coeffRef(3, 3) = std::numeric_limits<double>::quiet_NaN();
   LinearSolver solver;

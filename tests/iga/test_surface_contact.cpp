@@ -255,7 +255,7 @@ TEST_CASE("SurfaceContact: a uniformly sheared plate has T = eps_T slip in stick
     }
 }
 
-TEST_CASE("SurfaceContact: points beyond the search distance are failed and inactive; bad "
+TEST_CASE("SurfaceContact: points beyond the search distance are failed and inactive, bad "
           "parameters throw",
           "[iga][contact][surface_contact]") {
   RigidSurface body;
