@@ -3,12 +3,16 @@
 // z = a x y (STAS contact, rigid surface as master or slave), without friction and with Coulomb
 // friction. With friction the contact zone splits into a sticking centre and a sliding rim: a
 // mass point on the saddle sticks while mu > tan(gamma) = a r, i.e. inside the circle of radius
-// mu / a (79)-(81); the app fits the radius of the computed sticking zone and compares.
+// mu / a (79)-(81); the app fits the radius of the computed sticking zone and compares. The
+// plate's membrane forces, which the mass point does not have, can make the whole plate slide;
+// so the app also checks the circle itself: a small stiff block (app/block_model,
+// data/saddle_block.json) put at radii around mu/a holds inside and slides outside.
 //
 //   saddle                                   the model's runs (data/saddle.json: mu = 0, 0.125)
 //   saddle --quick                           a coarse version (the model's "app"/"quick" overrides)
 //   saddle --mu 0,0.1,0.2 --strategy slave   other friction coefficients (eps_T = eps_N), ray
 //   saddle MODEL.json --set /materials/plate/E=1e5 --out DIR
+//   saddle --blocks-only --mu 0.125,0.25     only the sticking-circle check with the block
 //
 // Writes to --out (default out/saddle):
 //   saddle.csv            one row per converged step: run, mu, t, load q(t), centre deflection,
@@ -17,7 +21,11 @@
 //                         solves), DOFs, final deflection, the fitted sticking radius vs mu / a
 //   contact_<run>.csv     the active contact points at the snapshot times (t, x, y, z, foot
 //                         parameters, N, stick)
-//   saddle_contact_<run>.png, saddle_load_deflection.png   plots (scripts/plot_saddle.py)
+//   saddle_blocks.csv     the block check: per frictional run and radius r, the contact points
+//                         sticking / sliding and the contact force ratio T/N against
+//                         min(a r, mu); also in saddle_summary.json ("sticking_circle")
+//   saddle_contact_<run>.png, saddle_load_deflection.png, saddle_sticking_circle.png   plots
+//                         (scripts/plot_saddle.py)
 //   <run>/                steps.csv, summary.json, shell and contact .vtk + .pvd per snapshot,
 //                         rigid.vtk (ParaView)
 // Exit status: 0 all runs reached t_end, 1 bad input, 2 a run ended early (its rows are kept).
@@ -28,6 +36,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <numbers>
 #include <numeric>
 #include <sstream>
@@ -53,6 +62,7 @@ struct AppSection {
   std::string load_curve, centre_monitor;
   std::vector<RunSpec> runs;
   std::vector<double> snapshots;
+  std::string block_model;  ///< the sticking-circle check's model (a path), empty: none
 };
 
 JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
@@ -70,7 +80,7 @@ AppSection read_app(const Json& doc, const std::string& file) {
   if (!root.has("app")) root.fail_plain("missing required key \"app\" (the runs of the saddle app)");
   const JsonCursor app = root["app"];
   app.expect_object({"mu", "eps_T", "strategy", "a", "load", "load_curve", "centre_monitor", "runs",
-                     "snapshots", "quick", "description"});
+                     "snapshots", "quick", "block_model", "description"});
   AppSection s;
   s.mu = pointer(app, "mu", doc);
   s.eps_t = pointer(app, "eps_T", doc);
@@ -93,6 +103,10 @@ AppSection read_app(const Json& doc, const std::string& file) {
   const JsonCursor snaps = app["snapshots"];
   snaps.expect_array(1);
   s.snapshots = snaps.as_numbers();
+  if (app.has("block_model")) {  // relative to the model's folder
+    const fs::path p(app["block_model"].as_string());
+    s.block_model = (p.is_relative() ? fs::path(file).parent_path() / p : p).string();
+  }
   return s;
 }
 
@@ -156,6 +170,118 @@ Json zone_json(const StickZone& z) {
   return j;
 }
 
+/// The mass-point check of the sticking circle (79)-(81) on a second model (app/block_model,
+/// data/saddle_block.json): a small stiff block lying on the saddle at distance r from its
+/// axis, loaded downward, held by soft horizontal springs. A mass point there sticks while
+/// tan(gamma) = |grad z| = a r <= mu: friction then carries the whole slope component of the load
+/// and the contact force ratio T/N is tan(gamma). Outside the circle r = mu/a it slides and
+/// T/N = mu (the springs take the rest). The app moves the block to radii around mu/a.
+struct BlockModel {
+  std::string file;
+  Json doc;
+  JsonPointer block, a, thickness, mu, eps_t, strategy;
+  double half_size = 0.0, gap = 0.0, direction = 0.0;  ///< direction of the radius, radians
+  std::vector<double> radii;                           ///< fractions of mu / a
+};
+
+BlockModel read_block_model(const std::string& file) {
+  BlockModel b;
+  b.file = file;
+  b.doc = read_json_file(file);
+  const JsonCursor root(b.doc, file);
+  if (!root.has("app")) root.fail_plain("missing required key \"app\" (where the saddle app moves the block)");
+  const JsonCursor app = root["app"];
+  app.expect_object({"block", "a", "thickness", "mu", "eps_T", "strategy", "half_size", "gap", "direction_deg",
+                     "radii", "description"});
+  b.block = pointer(app, "block", b.doc);
+  b.a = pointer(app, "a", b.doc);
+  b.thickness = pointer(app, "thickness", b.doc);
+  b.mu = pointer(app, "mu", b.doc);
+  b.eps_t = pointer(app, "eps_T", b.doc);
+  b.strategy = pointer(app, "strategy", b.doc);
+  b.half_size = app["half_size"].as_number();
+  if (!(b.half_size > 0.0)) app["half_size"].fail("must be > 0");
+  b.gap = app["gap"].as_number();
+  if (!(b.gap >= 0.0)) app["gap"].fail("must be >= 0");
+  b.direction = app["direction_deg"].as_number() * std::numbers::pi / 180.0;
+  const JsonCursor radii = app["radii"];
+  radii.expect_array(1);
+  b.radii = radii.as_numbers();
+  for (std::size_t k = 0; k < b.radii.size(); ++k)
+    if (!(b.radii[k] > 0.0)) radii[k].fail("must be > 0 (a fraction of mu/a)");
+  (void)Analysis::from_json(b.doc, file);  // validates the model as given
+  return b;
+}
+
+struct BlockResult {
+  double fraction = 0.0, r_start = 0.0, r = 0.0, tan_gamma = 0.0, ratio = 0.0, theory = 0.0;
+  int active = 0, stick = 0, slip = 0;
+  /// "stick" (all contact points), "slide" (all: the block slides), "partial slip" (the block
+  /// holds, the points of least pressure slip: N varies over the block, whose friction acts at
+  /// its lower face, h/2 below the load), "no contact"
+  std::string state;
+  std::string status; ///< the solver's
+  bool converged = false;
+};
+
+/// The block at radius fraction * mu / a (along bm.direction), on the saddle z = a x y: the
+/// bilinear patch with corners on the saddle is the saddle itself, written with degree 2 and
+/// lifted so that its lower face (h/2 along the normal) lies bm.gap above it.
+BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t, const std::string& strategy,
+                      double fraction) {
+  BlockResult res;
+  res.fraction = fraction;
+  res.r_start = fraction * mu / a;
+  const double xc = res.r_start * std::cos(bm.direction), yc = res.r_start * std::sin(bm.direction);
+  const double h = bm.doc.at(bm.thickness).get<double>();
+  const double lift = 0.5 * h * std::sqrt(1.0 + a * a * res.r_start * res.r_start) + bm.gap;
+  Json d = bm.doc;
+  d[bm.a] = a;
+  d[bm.mu] = mu;
+  d[bm.eps_t] = eps_t;
+  d[bm.strategy] = strategy;
+  Json pts = Json::array();
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) {
+      const double x = xc + (i - 1) * bm.half_size, y = yc + (j - 1) * bm.half_size;
+      pts.push_back({x, y, a * x * y + lift});
+    }
+  d[bm.block] = {{"type", "nurbs_surface"},
+                 {"degree", {2, 2}},
+                 {"knots", {{"u", {0, 0, 0, 1, 1, 1}}, {"v", {0, 0, 0, 1, 1, 1}}}},
+                 {"control_points", pts}};
+  Analysis an = Analysis::from_json(d, bm.file);
+  const ShellContactProblem* contact = an.shell_contact_problem();
+  if (contact == nullptr) throw std::invalid_argument(bm.file + ": the block check needs a shell body with a surface_to_rigid contact pair");
+  const AnalysisResult r = an.run();
+  res.converged = r.solver.converged();
+  res.status = r.solver.message;
+  // Contact forces summed over the active points: normal sum w |N|, tangential |sum w f_T|.
+  double fn = 0.0;
+  Vector3d ft = Vector3d::Zero();
+  Vector2d centre = Vector2d::Zero();
+  for (const SurfaceContactPoint& cp : contact->contact().points()) {
+    if (!cp.active) continue;
+    ++res.active;
+    if (contact->contact().sticks(cp)) ++res.stick;
+    if (cp.slip) ++res.slip;
+    fn -= cp.weight * cp.N;
+    ft += cp.weight * cp.T_vector;
+    centre -= cp.weight * cp.N * cp.foot.point.head<2>();
+  }
+  if (res.active == 0) {
+    res.state = "no contact";
+    return res;
+  }
+  centre /= fn;
+  res.r = centre.norm();
+  res.tan_gamma = a * res.r;  // |grad (a x y)| = a r
+  res.ratio = ft.norm() / fn;
+  res.theory = std::min(res.tan_gamma, mu);
+  res.state = res.stick == res.active ? "stick" : res.slip == res.active ? "slide" : "partial slip";
+  return res;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) try {
@@ -164,7 +290,7 @@ int main(int argc, char** argv) try {
   std::vector<double> mu_list;
   std::vector<std::string> sets;
   std::string strategy, out = "out/saddle";
-  bool quick = false, verbose = false;
+  bool quick = false, verbose = false, blocks_only = false;
   cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")->capture_default_str();
   cli.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.125); eps_T = eps_N when mu > 0")
       ->delimiter(',');
@@ -173,6 +299,8 @@ int main(int argc, char** argv) try {
   cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
   cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
   cli.add_flag("--quick", quick, "Coarse version: apply the model's app/quick overrides first");
+  cli.add_flag("--blocks-only", blocks_only,
+               "Only the sticking-circle check (79)-(81): the small block of app/block_model at radii around mu/a");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
   try {
     cli.parse(argc, argv);
@@ -239,6 +367,7 @@ int main(int argc, char** argv) try {
   summary["runs"] = Json::array();
   int failed = 0;
   for (const RunSpec& run : app.runs) {
+    if (blocks_only) break;
     Json d = doc;
     d[app.mu] = run.mu;
     d[app.eps_t] = run.eps_t;
@@ -324,7 +453,56 @@ int main(int argc, char** argv) try {
     }
   }
 
-  // 4. Plots.
+  // 4. The sticking-circle check (79)-(81): per frictional run, the block at radii around mu/a.
+  if (!app.block_model.empty()) {
+    const BlockModel bm = read_block_model(app.block_model);
+    const std::string strat = doc.at(app.strategy).get<std::string>();
+    std::ofstream bcsv(dir / "saddle_blocks.csv");
+    bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_points,state,"
+            "T_over_N,theory,converged\n"
+         << std::setprecision(10);
+    summary["block_model"] = app.block_model;
+    summary["sticking_circle"] = Json::array();
+    for (const RunSpec& run : app.runs) {
+      if (!(run.mu > 0.0 && run.eps_t > 0.0)) continue;
+      Json c = Json::object();
+      c["mu"] = run.mu;
+      c["eps_T"] = run.eps_t;
+      c["expected_radius_mu_over_a"] = run.mu / a;
+      double hold_max = 0.0, slide_min = std::numeric_limits<double>::infinity(), err = 0.0;
+      bool consistent = true;
+      Json blocks = Json::array();
+      for (double f : bm.radii) {
+        const BlockResult b = run_block(bm, a, run.mu, run.eps_t, strat, f);
+        bcsv << run.mu << "," << run.eps_t << "," << f << "," << b.r_start << "," << b.r << "," << b.tan_gamma << ","
+             << b.active << "," << b.stick << "," << b.slip << "," << b.state << "," << b.ratio << "," << b.theory
+             << "," << (b.converged ? 1 : 0) << std::endl;
+        if (!b.converged) ++failed;
+        const bool holds = b.active > 0 && b.state != "slide";
+        if (holds) hold_max = std::max(hold_max, b.r);
+        if (b.state == "slide") slide_min = std::min(slide_min, b.r);
+        // a mass point sticks inside the circle, slides outside (radii exactly on it are not judged)
+        if ((f < 1.0 && !holds) || (f > 1.0 && b.state != "slide") || !b.converged) consistent = false;
+        if (b.active > 0 && b.theory > 0.0) err = std::max(err, std::abs(b.ratio - b.theory) / b.theory);
+        blocks.push_back({{"radius_fraction", f}, {"r_start", b.r_start}, {"r", b.r}, {"tan_gamma", b.tan_gamma},
+                          {"contact_points", b.active}, {"sticking_points", b.stick}, {"sliding_points", b.slip},
+                          {"state", b.state}, {"T_over_N", b.ratio}, {"theory_min_tan_gamma_mu", b.theory},
+                          {"converged", b.converged}, {"message", b.status}});
+      }
+      c["holds_up_to_r"] = hold_max;
+      c["slides_from_r"] = std::isfinite(slide_min) ? Json(slide_min) : Json(nullptr);
+      c["consistent_with_circle"] = consistent;
+      c["max_relative_error_T_over_N"] = err;
+      c["blocks"] = blocks;
+      summary["sticking_circle"].push_back(c);
+      std::cout << "saddle: sticking circle, mu = " << run.mu << " (mu/a = " << run.mu / a << "): the block holds up to r = "
+                << hold_max << ", slides from r = " << slide_min << (consistent ? " (as (79)-(81))" : " (NOT as (79)-(81))")
+                << "; T/N vs min(a r, mu) within " << 100.0 * err << " %\n";
+    }
+    std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";
+  }
+
+  // 5. Plots.
   const std::string cmd = "/usr/bin/python3 \"" + std::string(IGA_SOURCE_DIR) + "/scripts/plot_saddle.py\" \"" +
                           dir.string() + "\" 2>&1";
   if (std::system(cmd.c_str()) != 0) std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";

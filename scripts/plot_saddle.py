@@ -7,7 +7,10 @@ Reads DIR/saddle.csv, DIR/saddle_summary.json and DIR/contact_<run>.csv; writes
                                   contact / sticking points against q, for every run;
   DIR/saddle_contact_<run>.png    the active contact points at each snapshot time, sticking
                                   and sliding in two colours, with the circle of radius mu/a
-                                  (79)-(81) and the fitted radius of the sticking zone.
+                                  (79)-(81) and the fitted radius of the sticking zone;
+  DIR/saddle_sticking_circle.png  from DIR/saddle_blocks.csv: the contact force ratio T/N of the
+                                  small block at radius r against min(a r, mu), the mass point's
+                                  friction (79)-(81), with the state (stick, partial slip, slide).
 """
 import csv
 import json
@@ -84,11 +87,41 @@ def contact_zones(points, run, a, half, dst):
     plt.close(fig)
 
 
+def sticking_circle(rows, a, dst):
+    fig, ax = plt.subplots(figsize=(7, 4.8))
+    r_max = max(float(r["r"]) for r in rows) * 1.1
+    marks = {"stick": ("o", "sticks"), "partial slip": ("D", "holds, partial slip"), "slide": ("x", "slides")}
+    for k, mu in enumerate(sorted({float(r["mu"]) for r in rows})):
+        colour = f"C{k}"
+        xs = [r_max * i / 200 for i in range(201)]
+        ax.plot(xs, [min(a * x, mu) for x in xs], "-", c=colour, lw=1,
+                label=rf"min($a r$, $\mu$), $\mu$ = {mu:g}")
+        ax.axvline(mu / a, c=colour, ls=":", lw=1)
+        for state, (m, text) in marks.items():
+            sel = [r for r in rows if float(r["mu"]) == mu and r["state"] == state]
+            if sel:
+                ax.plot([float(r["r"]) for r in sel], [float(r["T_over_N"]) for r in sel], m, c=colour,
+                        ms=7, mfc="none" if state == "slide" else colour, label=rf"block {text}, $\mu$ = {mu:g}")
+    ax.set_xlabel("distance r of the block from the saddle point")
+    ax.set_ylabel("contact force ratio T / N")
+    ax.set_title(r"Sticking circle $r = \mu / a$ (79)-(81): a small block on z = a x y")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(dst, dpi=120)
+    plt.close(fig)
+
+
 def main(d):
+    summary = json.load(open(os.path.join(d, "saddle_summary.json")))
+    blocks = os.path.join(d, "saddle_blocks.csv")
+    if os.path.exists(blocks):
+        rows = [r for r in csv.DictReader(open(blocks)) if r["state"] != "no contact"]
+        if rows:
+            sticking_circle(rows, summary["a"], os.path.join(d, "saddle_sticking_circle.png"))
     rows = list(csv.DictReader(open(os.path.join(d, "saddle.csv"))))
     if not rows:
-        sys.exit(f"{d}/saddle.csv: no rows")
-    summary = json.load(open(os.path.join(d, "saddle_summary.json")))
+        return  # --blocks-only
     load_deflection(rows, os.path.join(d, "saddle_load_deflection.png"))
     for run in summary["runs"]:
         path = os.path.join(d, f"contact_{run['name']}.csv")

@@ -1,7 +1,8 @@
 // Runs the `saddle` app ([KS15] Sects. 6.1-6.2) on its coarse version (--quick: 8 x 8 elements,
 // 3 x 3 contact points) as a user would, and checks its files and the physics they show: the
 // plate comes down onto the saddle and stays on it, the contact zone grows with the load, a
-// frictionless run has no sticking points; bad input exits 1 naming the JSON path.
+// frictionless run has no sticking points; bad input exits 1 naming the JSON path. The sticking
+// circle of a mass point (79)-(81) is checked with the app's small block (--blocks-only).
 #include <catch2/catch.hpp>
 
 #include <cstdlib>
@@ -72,7 +73,8 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
   for (const char* f : {"saddle.csv", "saddle_summary.json", "model_used.json", "contact_mu0.csv",
                         "contact_mu0.125.csv", "saddle_load_deflection.png", "saddle_contact_mu0.png",
                         "saddle_contact_mu0.125.png", "mu0/rigid.vtk", "mu0/t1000_shell.vtk",
-                        "mu0/t1000_contact.vtk", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv"})
+                        "mu0/t1000_contact.vtk", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv",
+                        "saddle_blocks.csv", "saddle_sticking_circle.png"})
     CHECK(fs::exists(out / f));
   const auto rows = read_csv(out / "saddle.csv");
   const nlohmann::json summary = nlohmann::json::parse(slurp(out / "saddle_summary.json"));
@@ -102,7 +104,61 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
     ++n;
   }
   CHECK(n == summary["runs"][0]["steps"].get<int>() + summary["runs"][1]["steps"].get<int>());
+  // The block check ran for the frictional run only.
+  REQUIRE(summary["sticking_circle"].size() == 1);
+  CHECK(summary["sticking_circle"][0]["mu"] == 0.125);
+  CHECK(summary["sticking_circle"][0]["consistent_with_circle"] == true);
   fs::remove_all(out);
+}
+
+// A mass point on the saddle z = a x y sticks while mu >= tan(gamma) = a r: inside the circle of
+// radius mu/a (79)-(81). The app's small stiff block (data/saddle_block.json: 0.2 x 0.2, q = 100,
+// soft horizontal springs) is put at r = (0.25 ... 1.5) mu/a on the diagonal. Inside it holds,
+// and friction carries the whole slope component: T/N = tan(gamma). Outside every contact point
+// slides and T/N = mu; the springs take the rest. Tolerances: T/N in stick within 1 %: the springs
+// take the part of the load that moves the block by the elastic slip T/eps_T, at most
+// k / (eps_T area) = 80 / (2.5e5 * 0.04) = 0.8 %; in slip |sum T| <= mu sum |N| with near-parallel
+// tangential forces, 1e-4.
+TEST_CASE("saddle --blocks-only: a block sticks inside the circle mu/a and slides outside it, the circle grows with mu",
+          "[apps][saddle][friction]") {
+  for (const std::string strategy : {"master", "slave"}) {
+    INFO(strategy);
+    const fs::path out = fs::temp_directory_path() / ("saddle_blocks_" + strategy + std::to_string(::getpid()));
+    fs::remove_all(out);
+    std::string log;
+    const int status = saddle("--blocks-only --mu 0.125,0.25 --strategy " + strategy + " --out \"" + out.string() + "\"", log);
+    INFO(log);
+    REQUIRE(status == 0);
+    const nlohmann::json summary = nlohmann::json::parse(slurp(out / "saddle_summary.json"));
+    CHECK(summary["runs"].empty());  // no plate runs
+    const double a = summary["a"];
+    const auto& circles = summary["sticking_circle"];
+    REQUIRE(circles.size() == 2);
+    for (const auto& c : circles) {
+      const double mu = c["mu"], R = mu / a;
+      INFO("mu = " << mu);
+      CHECK(c["consistent_with_circle"] == true);
+      CHECK(c["holds_up_to_r"].get<double>() < R);
+      CHECK(c["slides_from_r"].get<double>() > R);
+      REQUIRE(c["blocks"].size() == 7);
+      for (const auto& b : c["blocks"]) {
+        const double f = b["radius_fraction"], tan_gamma = b["tan_gamma"], ratio = b["T_over_N"];
+        INFO("r/R = " << f << ", state " << b["state"] << ", T/N = " << ratio << ", tan gamma = " << tan_gamma);
+        CHECK(b["converged"] == true);
+        CHECK(b["contact_points"].get<int>() == 49);  // 7 x 7, the whole block
+        if (f <= 0.75) CHECK(b["state"] == "stick");
+        if (f < 1.0) CHECK(ratio == Approx(tan_gamma).epsilon(0.01));
+        if (f > 1.0) {
+          CHECK(b["state"] == "slide");
+          CHECK(ratio == Approx(mu).epsilon(1e-4));
+          CHECK(tan_gamma > mu);
+        }
+      }
+    }
+    // The circle grows with mu: the block holds at mu = 0.25 where it slides at mu = 0.125.
+    CHECK(circles[1]["holds_up_to_r"].get<double>() > circles[0]["slides_from_r"].get<double>());
+    fs::remove_all(out);
+  }
 }
 
 TEST_CASE("saddle: bad input exits 1 naming the file and JSON path", "[apps][saddle][errors]") {
