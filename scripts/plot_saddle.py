@@ -26,14 +26,14 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def load_deflection(rows, dst):
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(12, 4.5))
-    for run in sorted({r["run"] for r in rows}, key=lambda n: float(n[2:])):
+    for run in sorted({r["run"] for r in rows}, key=lambda n: (float(next(r["mu"] for r in rows if r["run"] == n)), n)):
         sel = [r for r in rows if r["run"] == run]
         mu = float(sel[0]["mu"])
         q = [float(r["load"]) for r in sel]
-        ax1.plot([float(r["centre_deflection"]) for r in sel], q, "o-", ms=3, label=rf"$\mu$ = {mu:g}")
-        ax2.plot(q, [int(r["contact_points"]) for r in sel], "-", label=rf"contact, $\mu$ = {mu:g}")
+        ax1.plot([float(r["centre_deflection"]) for r in sel], q, "o-", ms=3, label=run)
+        ax2.plot(q, [int(r["contact_points"]) for r in sel], "-", label=f"contact, {run}")
         if mu > 0:
-            ax2.plot(q, [int(r["sticking_points"]) for r in sel], "--", label=rf"sticking, $\mu$ = {mu:g}")
+            ax2.plot(q, [int(r["sticking_points"]) for r in sel], "--", label=f"sticking, {run}")
     ax1.set_xlabel("centre deflection")
     ax1.set_ylabel("load q (force / area)")
     ax1.set_title("Load against centre deflection")
@@ -81,7 +81,7 @@ def contact_zones(points, run, a, half, dst):
         ax.legend(loc="upper right", fontsize=7, markerscale=4)
     for ax in list(axes.flat)[len(times):]:
         ax.axis("off")
-    fig.suptitle(rf"Contact zone, $\mu$ = {mu:g} (x, y of the active contact points)")
+    fig.suptitle(rf"Contact zone, $\mu$ = {mu:g}, $\varepsilon_T$ = {run['eps_T']:g} (x, y of the active contact points)")
     fig.tight_layout()
     fig.savefig(dst, dpi=120)
     plt.close(fig)
