@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <sys/wait.h>
+#include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -23,15 +24,10 @@ struct Run {
   std::string out, err;
 };
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using iga::test::slurp;
 
 // Runs `iga ARGS`, capturing standard output and error in temporary files.
-Run iga(const std::string& args) {
+Run run_iga(const std::string& args) {
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() / ("iga_tool_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
@@ -61,7 +57,7 @@ std::vector<fs::path> data_models() {
 // `iga run data/MODEL --out OUT EXTRA` into a fresh folder OUT.
 Run run_data_model(const std::string& model, const fs::path& out, const std::string& extra = "") {
   fs::remove_all(out);
-  return iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/" + model + "\" --out \"" +
+  return run_iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/" + model + "\" --out \"" +
              out.string() + "\" " + extra);
 }
 
@@ -82,10 +78,10 @@ std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
 }  // namespace
 
 TEST_CASE("iga --help and subcommand help describe the commands", "[apps][iga]") {
-  const Run r = iga("--help");
+  const Run r = run_iga("--help");
   CHECK(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("eval") && Catch::Contains("make") && Catch::Contains("info"));
-  const Run e = iga("eval --help");
+  const Run e = run_iga("eval --help");
   CHECK(e.status == 0);
   CHECK_THAT(e.out, Catch::Contains("--uv") && Catch::Contains("--grid") && Catch::Contains("--u"));
 }
@@ -95,9 +91,9 @@ TEST_CASE("iga eval --center runs on every model in data/", "[apps][iga]") {
   REQUIRE(models.size() >= 5);
   for (const fs::path& m : models) {
     INFO(m);
-    const Run info = iga("info \"" + m.string() + "\"");
+    const Run info = run_iga("info \"" + m.string() + "\"");
     CHECK(info.status == 0);
-    const Run r = iga("eval \"" + m.string() + "\" --center");
+    const Run r = run_iga("eval \"" + m.string() + "\" --center");
     CHECK(r.status == 0);
     CHECK(r.err.empty());
     CHECK_THAT(r.out, Catch::Contains("point"));
@@ -108,7 +104,7 @@ TEST_CASE("iga eval --center runs on every model in data/", "[apps][iga]") {
 TEST_CASE("iga eval --grid on the NURBS cylinder: points on the radius, normals outward",
           "[apps][iga]") {
   const std::string model = std::string(IGA_SOURCE_DIR) + "/data/cylinder_patch.json";
-  const Run r = iga("eval \"" + model + "\" --grid 11");
+  const Run r = run_iga("eval \"" + model + "\" --grid 11");
   REQUIRE(r.status == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 1 + 11 * 11);
@@ -128,7 +124,7 @@ TEST_CASE("iga eval --grid on the NURBS cylinder: points on the radius, normals 
 TEST_CASE("iga eval --u on the helix: curvature and torsion of the helix", "[apps][iga]") {
   // data/helix_cubic.json: R = 1, pitch 1 -> c = 1/2pi, kappa = R/(R^2+c^2), tau = c/(R^2+c^2)
   const std::string model = std::string(IGA_SOURCE_DIR) + "/data/helix_cubic.json";
-  const Run r = iga("eval \"" + model + "\" --grid 5");
+  const Run r = run_iga("eval \"" + model + "\" --grid 5");
   REQUIRE(r.status == 0);
   const double c = 1.0 / (2 * M_PI);
   const auto rows = csv_rows(r.out);
@@ -143,35 +139,35 @@ TEST_CASE("iga eval --u on the helix: curvature and torsion of the helix", "[app
 TEST_CASE("iga eval: bad models exit 1 with file, JSON path and value on stderr",
           "[apps][iga][errors]") {
   const std::string bad = std::string(IGA_SOURCE_DIR) + "/tests/data/bad/";
-  const Run r = iga("eval \"" + bad + "decreasing_knots.json\" --center");
+  const Run r = run_iga("eval \"" + bad + "decreasing_knots.json\" --center");
   CHECK(r.status == 1);
   CHECK(r.out.empty());
   CHECK_THAT(r.err, Catch::Contains("decreasing_knots.json") && Catch::Contains("/geometry/"));
-  const Run m = iga("eval \"" + bad + "malformed_json.json\" --center");
+  const Run m = run_iga("eval \"" + bad + "malformed_json.json\" --center");
   CHECK(m.status == 1);
   CHECK_THAT(m.err, Catch::Contains("line") && Catch::Contains("column"));
-  const Run missing = iga("eval /nonexistent/model.json --center");
+  const Run missing = run_iga("eval /nonexistent/model.json --center");
   CHECK(missing.status == 1);
   CHECK_THAT(missing.err, Catch::Contains("/nonexistent/model.json"));
 }
 
 TEST_CASE("iga eval: bad command lines are rejected", "[apps][iga][errors]") {
   const std::string model = std::string(IGA_SOURCE_DIR) + "/data/torus_patch.json";
-  CHECK(iga("eval \"" + model + "\"").status != 0);                    // no mode
-  CHECK(iga("eval \"" + model + "\" --uv 0.5").status != 0);          // one value
-  CHECK(iga("eval \"" + model + "\" --uv 99,0.5").status == 1);       // outside domain
-  CHECK(iga("eval \"" + model + "\" --u 0.5").status == 1);           // surface needs --uv
-  CHECK(iga("eval \"" + model + "\" --uv 0.5,0.5 --entity nope").status == 1);
-  CHECK(iga("frobnicate").status != 0);
-  CHECK(iga("").status != 0);
+  CHECK(run_iga("eval \"" + model + "\"").status != 0);                    // no mode
+  CHECK(run_iga("eval \"" + model + "\" --uv 0.5").status != 0);          // one value
+  CHECK(run_iga("eval \"" + model + "\" --uv 99,0.5").status == 1);       // outside domain
+  CHECK(run_iga("eval \"" + model + "\" --u 0.5").status == 1);           // surface needs --uv
+  CHECK(run_iga("eval \"" + model + "\" --uv 0.5,0.5 --entity nope").status == 1);
+  CHECK(run_iga("frobnicate").status != 0);
+  CHECK(run_iga("").status != 0);
 }
 
 TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]") {
   const fs::path dir = fs::temp_directory_path() / ("iga_make_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string torus = (dir / "torus.json").string();
-  REQUIRE(iga("make torus --major-radius 3 --minor-radius 1 --out \"" + torus + "\"").status == 0);
-  const Run r = iga("eval \"" + torus + "\" --grid 9");
+  REQUIRE(run_iga("make torus --major-radius 3 --minor-radius 1 --out \"" + torus + "\"").status == 0);
+  const Run r = run_iga("eval \"" + torus + "\" --grid 9");
   REQUIRE(r.status == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 82);
@@ -181,10 +177,10 @@ TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]"
     CHECK(std::hypot(std::hypot(x, y) - 3.0, z) == Approx(1.0).epsilon(1e-13));
   }
   const std::string cyl = (dir / "cyl4.json").string();
-  REQUIRE(iga("make cylinder --patches 4 --out \"" + cyl + "\"").status == 0);
-  const Run info = iga("info \"" + cyl + "\"");
+  REQUIRE(run_iga("make cylinder --patches 4 --out \"" + cyl + "\"").status == 0);
+  const Run info = run_iga("info \"" + cyl + "\"");
   CHECK_THAT(info.out, Catch::Contains("patch_group of 4"));
-  CHECK(iga("make klein-bottle --out x.json").status != 0);
+  CHECK(run_iga("make klein-bottle --out x.json").status != 0);
   fs::remove_all(dir);
 }
 
@@ -207,7 +203,7 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
       dirs << std::cos(a) << "," << std::sin(a) << ",0\n";  // radial: the ray meets the cylinder
     }
   }
-  const Run r = iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\"");
+  const Run r = run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\"");
   REQUIRE(r.status == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 51);
@@ -218,7 +214,7 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
     CHECK(std::stod(row[8]) == Approx(rad - 1.0).margin(1e-10));  // (B.10): p = |d| - R
     CHECK(row[9] == "interior");
   }
-  const Run ray = iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() +
+  const Run ray = run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() +
                       "\" --ray \"" + (dir / "dirs.csv").string() + "\" --out \"" +
                       (dir / "ray.csv").string() + "\"");
   REQUIRE(ray.status == 0);
@@ -233,14 +229,14 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
     std::ofstream bad(dir / "bad.csv");
     bad << "x,y,z\n1,2,3\n4,5\n";
   }
-  const Run b = iga("project \"" + model + "\" --points \"" + (dir / "bad.csv").string() + "\"");
+  const Run b = run_iga("project \"" + model + "\" --points \"" + (dir / "bad.csv").string() + "\"");
   CHECK(b.status == 1);
   CHECK_THAT(b.err, Catch::Contains("bad.csv:3"));
   fs::remove_all(dir);
 }
 
 TEST_CASE("iga info validates and summarizes the analysis sections", "[apps][iga][run]") {
-  const Run r = iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\"");
+  const Run r = run_iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\"");
   INFO(r.out << r.err);
   CHECK(r.status == 0);
   CHECK(r.out.find("analysis: rod of 16 elements (degree 3, 21 control points)") != std::string::npos);
@@ -317,7 +313,7 @@ TEST_CASE("iga run: bad analysis input exits 1 naming the file, JSON path and va
       {"/output/vtk=\\\"some\\\"", "/output/vtk: expected one of \\\"none\\\", \\\"last\\\", \\\"all\\\", got \\\"some\\\""},
   };
   for (const Case& c : cases) {
-    const Run r = iga("run \"" + model + "\" --quiet --out /tmp/iga_bad_run --set \"" + c.set + "\"");
+    const Run r = run_iga("run \"" + model + "\" --quiet --out /tmp/iga_bad_run --set \"" + c.set + "\"");
     INFO(c.set << "\n" << r.out << r.err);
     CHECK(r.status == 1);
     std::string msg = c.message;

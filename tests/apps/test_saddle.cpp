@@ -16,17 +16,13 @@
 
 #include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using iga::test::slurp;
 
 int saddle(const std::string& args, std::string& output) {
   const fs::path log = fs::temp_directory_path() / ("saddle_test_" + std::to_string(::getpid()) + ".txt");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "iga/model.hpp"
+#include "tests/support/files.hpp"
 
 using namespace iga;
 namespace fs = std::filesystem;
@@ -24,12 +25,6 @@ std::string scratch(const std::string& name) {
   return (dir / name).string();
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 ModelError model_error(const std::string& path) {
   try {
@@ -55,7 +50,7 @@ TEST_CASE("model: load -> save -> load is exact and the saved text is stable", "
 
   const std::string second = scratch("all_entities_2.json");
   save_model(m2, second);
-  CHECK(read_text(second) == read_text(first));
+  CHECK(iga::test::slurp(second) == iga::test::slurp(first));
   CHECK(load_model(second) == m1);
 }
 

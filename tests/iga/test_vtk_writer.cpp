@@ -6,17 +6,13 @@
 #include <sstream>
 
 #include "iga/vtk_writer.hpp"
+#include "tests/support/files.hpp"
 
 using namespace iga;
 namespace fs = std::filesystem;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using iga::test::slurp;
 }  // namespace
 
 TEST_CASE("write_vtk_polydata: polyline with scalar and vector point data", "[iga][output]") {
