@@ -169,6 +169,16 @@ TEST_CASE("saddle: bad input exits 1 naming the file and JSON path", "[apps][sad
   CHECK(saddle("--quick --set /contact/0/stratgy=\"slave\" --out \"" + out.string() + "\"", log) == 1);
   CHECK_THAT(log, Catch::Contains("/contact/0/stratgy: --set names no existing entry"));
   CHECK(saddle("--quick --strategy sideways --out \"" + out.string() + "\"", log) != 0);
+  // The block model is read before any run: no saddle.csv, no run lines.
+  fs::remove_all(out);
+  CHECK(saddle("--quick --set /app/block_model='\"no_such_block.json\"' --out \"" + out.string() +
+                   "\"",
+               log) == 1);
+  CHECK_THAT(log, Catch::Contains("no_such_block.json"));
+  CHECK_FALSE(fs::exists(out / "saddle.csv"));
+  // Snapshots outside (0, t_end] name their path.
+  CHECK(saddle("--quick --set /app/snapshots=[250,2000] --out \"" + out.string() + "\"", log) == 1);
+  CHECK_THAT(log, Catch::Contains("saddle.json: /app/snapshots/1: must lie in (0, t_end]"));
   fs::remove_all(out);
 }
 
