@@ -114,8 +114,11 @@ TEST_CASE("analysis: data/slit_annular_plate.json is make_slit_annular_plate(4, 
           "[iga][analysis][shell]") {
   Analysis a = Analysis::load(kData + "slit_annular_plate.json");
   SlitAnnularPlate b = make_slit_annular_plate(4, 32, 3);
-  // The explicit surface is the builder's fit, written with round-trip doubles: bit for bit.
-  CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) == 0.0);
+  // The explicit surface is the builder's fit (a least-squares solve), written with round-trip
+  // doubles: equal to the fit recomputed here up to the round-off of the solve, which depends
+  // on the processor's libm and on the solver's order of operations (the plate spans 10).
+  CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) <=
+        1e-12 * 10.0);
   REQUIRE(a.shell_problem().num_dofs() == b.problem.num_dofs());
   REQUIRE(a.output().monitors.size() == 2);
   struct Ref {
