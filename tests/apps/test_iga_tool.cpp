@@ -482,6 +482,21 @@ TEST_CASE("iga eval: singular points (poles, apex, axis) are written with a flag
   }
   CHECK(ball_poles == 10);
   CHECK(bowl_axis == 5);
+  // A cone's apex has no limit normal (the normals circle the axis): empty cells, flag 1.
+  write_file(dir / "cone.json", R"({"format": "iga-contact-model", "version": 1, "name": "c",
+    "geometry": {"tip": {"type": "cone", "center": [0, 0, 0], "axis": [0, 0, 1], "alpha": 0.5,
+                         "domain": {"v": [0, 1]}}}})");
+  const Run cone = run_iga("eval \"" + (dir / "cone.json").string() + "\" --grid 3");
+  INFO(cone.err);
+  REQUIRE(cone.status == 0);
+  int apex = 0;
+  for (const auto& row : csv_rows(cone.out)) {
+    if (row.size() < 14 || row[13] != "1") continue;
+    ++apex;
+    CHECK(std::stod(row[2]) == 0.0);  // v = 0
+    for (int c = 6; c <= 12; ++c) CHECK(row[static_cast<std::size_t>(c)].empty());
+  }
+  CHECK(apex == 3);
   // One point: --uv at the pole prints the limit normal instead of failing.
   const Run uv = run_iga("eval \"" + kAnalytic + "\" --entity ball --uv 0,1.5707963267948966");
   INFO(uv.err);
