@@ -1,8 +1,10 @@
 // Knot vector validation and queries ([PT97] Sect. 2.2, 3.2).
 #include "geometry/knot_vector.hpp"
 
-#include <cmath>
+#include <algorithm>
+
 #include <charconv>
+#include <cmath>
 
 #include "geometry/bspline_basis.hpp"
 
@@ -75,7 +77,9 @@ KnotVector KnotVector::uniform(int degree, int n_elements, double a, double b, i
   return KnotVector(degree, std::move(U));
 }
 
-std::pair<double, double> KnotVector::domain() const { return {U_[p_], U_[U_.size() - 1 - p_]}; }
+std::pair<double, double> KnotVector::domain() const {
+  return {U_[p_], U_[U_.size() - 1 - p_]};
+}
 
 std::vector<double> KnotVector::breaks() const {
   std::vector<double> b;
@@ -86,12 +90,14 @@ std::vector<double> KnotVector::breaks() const {
 }
 
 int KnotVector::multiplicity(double u) const {
-  int m = 0;
-  for (double k : U_) m += (k == u);
-  return m;
+  // The knots are sorted: a binary search, O(log n) (callers loop over every knot).
+  const auto [lo, hi] = std::equal_range(U_.begin(), U_.end(), u);
+  return static_cast<int>(hi - lo);
 }
 
-int KnotVector::find_span(double u) const { return iga::find_span(num_basis(), p_, u, U_); }
+int KnotVector::find_span(double u) const {
+  return iga::find_span(num_basis(), p_, u, U_);
+}
 
 std::vector<double> KnotVector::greville() const {
   std::vector<double> g(static_cast<std::size_t>(num_basis()));
