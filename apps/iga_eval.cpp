@@ -1,12 +1,14 @@
 // `iga eval`: evaluate the curves and surfaces of a model at a parameter, at the centre of
 // their domains, or on a grid (CSV): point, derivatives, normal, metric, curvatures; for
 // curves the Serret-Frenet frame, curvature and torsion.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <memory>
 #include <sstream>
+#include <vector>
 
 #include "apps/iga_commands.hpp"
 #include "geometry/differential_geometry.hpp"
@@ -62,9 +64,95 @@ void check_in(const Interval& i, double x, const char* what) {
   }
 }
 
+// The frame at (u, v) for sampling. At a singular point of the parametrization (a pole, an
+// apex, the axis of a surface of revolution: rho_1 x rho_2 = 0) surface_frame throws; then the
+// point is still written, with the limit of the normal and of the curvatures where it exists:
+// when one of rho_1, rho_2 vanishes, a whole parameter line collapses to the point, and the
+// normals (curvatures) at points a small step off that line, taken along its whole length,
+// must agree (a sphere's pole, the smooth tip of a paraboloid: the axis direction, curvatures
+// of the cap). Where they do not (a cone's apex: the normals circle the axis) the normal and
+// the curvatures are absent.
+struct SampledFrame {
+  bool singular = false, has_normal = true, has_curvature = true;
+  SurfaceFrame f;
+};
+
+bool frame_finite(const SurfaceFrame& f) {
+  return f.n.allFinite() && std::isfinite(f.k1) && std::isfinite(f.k2) &&
+         std::isfinite(f.mean_curvature) && std::isfinite(f.gauss_curvature) &&
+         f.a_inv.allFinite() && f.h.allFinite() && f.dir1.allFinite() && f.dir2.allFinite();
+}
+
+SampledFrame sampled_frame(const Surface& s, double u, double v) {
+  SampledFrame out;
+  const SurfaceDerivs d = s.derivs(u, v, 2);
+  try {
+    out.f = surface_frame(d, s.normal_sign());
+    if (frame_finite(out.f)) return out;
+  } catch (const GeometryError&) {
+  }
+  out.singular = true;
+  out.has_normal = out.has_curvature = false;
+  out.f = SurfaceFrame{};
+  out.f.a1 = d.Su;
+  out.f.a2 = d.Sv;
+  // Which parameter line collapses: the one whose tangent vanishes against the other.
+  const double lu = d.Su.norm(), lv = d.Sv.norm();
+  if (!(std::max(lu, lv) > 0.0) || !std::isfinite(lu) || !std::isfinite(lv)) return out;
+  const bool along_u = lu < lv;  // rho_1 ~ 0: the u-line through the point collapses
+  bool clipped = false;
+  const Interval line = finite(along_u ? s.domain().u : s.domain().v, clipped);
+  const Interval off = finite(along_u ? s.domain().v : s.domain().u, clipped);
+  const double at = along_u ? v : u;
+  const double h = 1e-6 * (off.hi - off.lo);
+  std::vector<SurfaceFrame> near;
+  constexpr int kAlong = 16;
+  for (double step : {h, -h}) {
+    const double o = at + step;
+    if (!(o >= off.lo && o <= off.hi)) continue;
+    for (int k = 0; k < kAlong; ++k) {
+      const double t = line.lo + (line.hi - line.lo) * (k + 0.5) / kAlong;
+      try {
+        const SurfaceFrame g = along_u ? surface_frame(s.derivs(t, o, 2), s.normal_sign())
+                                       : surface_frame(s.derivs(o, t, 2), s.normal_sign());
+        if (frame_finite(g)) near.push_back(g);
+      } catch (const GeometryError&) {
+      }
+    }
+  }
+  if (near.size() < 2) return out;
+  Vector3d sum = Vector3d::Zero();
+  for (const SurfaceFrame& g : near) sum += g.n;
+  const Vector3d n = sum.normalized();
+  bool agree = sum.norm() > 0.0;
+  for (const SurfaceFrame& g : near) agree = agree && g.n.dot(n) > 1.0 - 1e-8;  // ~1e-4 rad
+  if (!agree) return out;
+  out.has_normal = true;
+  out.f.n = n;
+  double k1 = 0.0, k2 = 0.0, scale = 0.0;
+  for (const SurfaceFrame& g : near) {
+    k1 += g.k1 / near.size();
+    k2 += g.k2 / near.size();
+    scale = std::max({scale, std::abs(g.k1), std::abs(g.k2)});
+  }
+  bool same = true;
+  for (const SurfaceFrame& g : near)
+    same = same && std::abs(g.k1 - k1) <= 1e-4 * scale + 1e-12 &&
+           std::abs(g.k2 - k2) <= 1e-4 * scale + 1e-12;
+  if (same) {
+    out.has_curvature = true;
+    out.f.k1 = k1;
+    out.f.k2 = k2;
+    out.f.mean_curvature = 0.5 * (k1 + k2);
+    out.f.gauss_curvature = k1 * k2;
+  }
+  return out;
+}
+
 void print_surface(const std::string& name, const Surface& s, double u, double v) {
   const SurfaceDerivs d = s.derivs(u, v, 2);
-  const SurfaceFrame f = surface_frame(d, s.normal_sign());
+  const SampledFrame sf = sampled_frame(s, u, v);
+  const SurfaceFrame& f = sf.f;
   std::cout << std::setprecision(10) << name << " (" << s.type_name() << ") at (u, v) = (" << u
             << ", " << v << ")\n"
             << "  point      " << vec(d.S) << "\n"
@@ -72,8 +160,20 @@ void print_surface(const std::string& name, const Surface& s, double u, double v
             << "  S_v        " << vec(d.Sv) << "\n"
             << "  S_uu       " << vec(d.Suu) << "\n"
             << "  S_uv       " << vec(d.Suv) << "\n"
-            << "  S_vv       " << vec(d.Svv) << "\n"
-            << "  normal     " << vec(f.n) << "\n"
+            << "  S_vv       " << vec(d.Svv) << "\n";
+  if (sf.singular) {
+    std::cout << "  singular point of the parametrization (|S_u x S_v| = 0): no metric; "
+              << (sf.has_normal ? "normal and curvatures are limits from nearby points"
+                                : "the normal has no limit here")
+              << "\n";
+    if (sf.has_normal) std::cout << "  normal     " << vec(f.n) << " (limit)\n";
+    if (sf.has_curvature)
+      std::cout << "  principal k1, k2   " << f.k1 << ", " << f.k2 << " (limit)\n"
+                << "  mean H, Gauss K    " << f.mean_curvature << ", " << f.gauss_curvature
+                << " (limit)\n";
+    return;
+  }
+  std::cout << "  normal     " << vec(f.n) << "\n"
             << "  metric a_ij        " << mat(f.a) << "\n"
             << "  inverse a^ij       " << mat(f.a_inv) << "\n"
             << "  curvature h_ij     " << mat(f.h) << "\n"
@@ -101,17 +201,25 @@ void grid_surface(std::ostream& os, const std::string& name, const Surface& s, i
   bool clipped = false;
   const Interval iu = finite(s.domain().u, clipped), iv = finite(s.domain().v, clipped);
   if (clipped)
-    std::cerr << "iga eval: " << name << " has an unbounded domain; sampling ["
-              << iu.lo << ", " << iu.hi << "] x [" << iv.lo << ", " << iv.hi << "]\n";
+    std::cerr << "iga eval: " << name << " has an unbounded domain; sampling [" << iu.lo << ", "
+              << iu.hi << "] x [" << iv.lo << ", " << iv.hi << "]\n";
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const double u = iu.lo + (iu.hi - iu.lo) * i / (n - 1);
       const double v = iv.lo + (iv.hi - iv.lo) * j / (n - 1);
       const SurfaceDerivs d = s.derivs(u, v, 2);
-      const SurfaceFrame f = surface_frame(d, s.normal_sign());
-      os << name << "," << u << "," << v << "," << d.S.x() << "," << d.S.y() << "," << d.S.z()
-         << "," << f.n.x() << "," << f.n.y() << "," << f.n.z() << "," << f.k1 << "," << f.k2
-         << "," << f.mean_curvature << "," << f.gauss_curvature << "\n";
+      const SampledFrame sf = sampled_frame(s, u, v);
+      const SurfaceFrame& f = sf.f;
+      os << name << "," << u << "," << v << "," << d.S.x() << "," << d.S.y() << "," << d.S.z();
+      if (sf.has_normal)
+        os << "," << f.n.x() << "," << f.n.y() << "," << f.n.z();
+      else
+        os << ",,,";
+      if (sf.has_curvature)
+        os << "," << f.k1 << "," << f.k2 << "," << f.mean_curvature << "," << f.gauss_curvature;
+      else
+        os << ",,,,";
+      os << "," << (sf.singular ? 1 : 0) << "\n";
     }
 }
 
@@ -120,10 +228,17 @@ void grid_curve(std::ostream& os, const std::string& name, const NurbsCurve& c, 
   for (int i = 0; i < n; ++i) {
     const double u = I.lo + (I.hi - I.lo) * i / (n - 1);
     const CurveDerivs d = c.derivs(u, 3);
-    const CurveFrame f = curve_frame(d);
-    os << name << "," << u << "," << d.d[0].x() << "," << d.d[0].y() << "," << d.d[0].z() << ","
-       << f.tangent.x() << "," << f.tangent.y() << "," << f.tangent.z() << "," << f.curvature
-       << "," << f.torsion << "\n";
+    os << name << "," << u << "," << d.d[0].x() << "," << d.d[0].y() << "," << d.d[0].z() << ",";
+    // A point where C' = 0 has no frame: written with empty cells and the singular flag.
+    try {
+      const CurveFrame f = curve_frame(d);
+      if (!f.tangent.allFinite() || !std::isfinite(f.curvature) || !std::isfinite(f.torsion))
+        throw GeometryError("non-finite frame");
+      os << f.tangent.x() << "," << f.tangent.y() << "," << f.tangent.z() << "," << f.curvature
+         << "," << f.torsion << ",0\n";
+    } catch (const GeometryError&) {
+      os << ",,,,,1\n";
+    }
   }
 }
 
@@ -156,7 +271,7 @@ int run_eval(const EvalOptions& o) {
     if (s) {
       if (o.has_u) throw std::invalid_argument(name + " is a surface: use --uv U,V");
       if (o.grid > 0) {
-        if (!surface_header) *csv << "entity,u,v,x,y,z,nx,ny,nz,k1,k2,H,K\n";
+        if (!surface_header) *csv << "entity,u,v,x,y,z,nx,ny,nz,k1,k2,H,K,singular\n";
         surface_header = true;
         grid_surface(*csv, name, *s, o.grid);
         continue;
@@ -169,7 +284,7 @@ int run_eval(const EvalOptions& o) {
     } else if (c) {
       if (!o.uv.empty()) throw std::invalid_argument(name + " is a curve: use --u U");
       if (o.grid > 0) {
-        if (!curve_header) *csv << "entity,u,x,y,z,tx,ty,tz,curvature,torsion\n";
+        if (!curve_header) *csv << "entity,u,x,y,z,tx,ty,tz,curvature,torsion,singular\n";
         curve_header = true;
         grid_curve(*csv, name, *c, o.grid);
         continue;

@@ -55,7 +55,7 @@ double clamp_to(double t, const Interval& I, bool& active) {
 /// (16)); tangents that vanish (poles, apex, axis) carry no condition.
 double orthogonality_residual(const SurfaceDerivs& d, const Vector3d& diff, bool u_free,
                               bool v_free) {
-  const double dn = diff.norm();
+  const double dn = diff.stableNorm();
   double res = 0.0;
   if (u_free) {
     const double tn = d.Su.norm();
@@ -157,7 +157,9 @@ ProjectionResult closest_result(const View& V, const Vector3d& x, const Vector2d
   if (active == 0 && std::isfinite(p_closed)) {
     res.distance = V.sign * p_closed;
   } else {
-    const double dist = diff.norm();
+    // stableNorm: |x - rho| of a far point (|x| ~ 1e154 and beyond) without the overflow of
+    // the squared norm.
+    const double dist = diff.stableNorm();
     res.distance = diff.dot(res.normal) < 0.0 ? -dist : dist;  // (10): p along n
   }
   res.status = (degenerate || active == 2) ? ProjectionStatus::vertex
@@ -348,7 +350,7 @@ ProjectionResult closest_point_analytic(const AnalyticSurface& s, const Vector3d
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   // Length below which x - c carries only round-off (of x - c and of the frame): a point that
   // close to the axis (or the torus' centre circle) has an undefined angle.
-  const double round_off = 8.0 * kEps * (x.norm() + V.c.norm());
+  const double round_off = 8.0 * kEps * (x.stableNorm() + V.c.stableNorm());
   switch (V.kind) {
     case Kind::plane: {  // foot = in-plane coordinates, p = z (8)
       bool au = false, av = false;
@@ -358,8 +360,8 @@ ProjectionResult closest_point_analytic(const AnalyticSurface& s, const Vector3d
     case Kind::sphere: {  // (B.4): u = atan2(y, x), v = asin(z / |x - c|) (as atan2(z, s))
       const Meridian m = meridian_of(xl.x(), xl.y(), V.dom.u, round_off);
       AngleFit lat{std::clamp(0.0, V.dom.v.lo, V.dom.v.hi), true};  // x = c: undefined
-      if (xl.norm() > round_off) lat = fit_angle(std::atan2(z, m.s), V.dom.v);
-      const double p = xl.norm() - V.R;  // (B.4)
+      if (xl.stableNorm() > round_off) lat = fit_angle(std::atan2(z, m.s), V.dom.v);
+      const double p = xl.stableNorm() - V.R;  // (B.4)
       return closest_result(V, x, Vector2d(m.angle, lat.value), m.at_bound, !lat.inside, false, p);
     }
     case Kind::cylinder: {  // (B.10): u = polar angle, v = axial coordinate

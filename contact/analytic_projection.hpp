@@ -24,7 +24,7 @@ ProjectionResult closest_point_analytic(const AnalyticSurface& s, const Vector3d
                                         const ProjectionOptions& opt = {});
 /// Ray projection x + xi3 N/|N| onto an analytic surface; the intersection with the smallest
 /// |xi3| within the domain, or status miss (distance = +inf) / tangent (|n.N| < 1e-10, (9)).
-/// Throws GeometryError for N = 0.
+/// A zero or non-finite N defines no ray: status miss (as for NURBS patches), no exception.
 ProjectionResult ray_project_analytic(const AnalyticSurface& s, const Vector3d& x,
                                       const Vector3d& N, const ProjectionOptions& opt = {});
 

@@ -383,10 +383,17 @@ void revolution_ray(const View& V, const Vector3d& x, const Vector3d& N, const V
 ProjectionResult ray_project_analytic(const AnalyticSurface& s, const Vector3d& x,
                                       const Vector3d& N_in, const ProjectionOptions& opt) {
   const View V = view_of(s, "ray_project_analytic");
-  const double nlen = N_in.norm();
-  if (!(nlen > 0.0) || !std::isfinite(nlen))
-    throw GeometryError("ray_project_analytic: the ray direction N must be finite and non-zero");
-  const Vector3d N = N_in / nlen;  // unit: xi3 is a length
+  // A zero or non-finite direction defines no ray: a miss, as for NURBS patches (a batch of
+  // rays goes on). Scaled by its largest component first, so that a huge finite direction
+  // (|N|^2 overflowing) is still a direction.
+  const double nmax = N_in.cwiseAbs().maxCoeff();
+  if (!(nmax > 0.0) || !std::isfinite(nmax)) {
+    ProjectionResult none;
+    none.status = ProjectionStatus::miss;
+    none.distance = kInf;
+    return none;
+  }
+  const Vector3d N = (N_in / nmax).normalized();  // unit: xi3 is a length
   const Vector3d xl = V.E.transpose() * (x - V.c);
   const Vector3d Nl = V.E.transpose() * N;
   RayBest best;

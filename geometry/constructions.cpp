@@ -12,7 +12,8 @@
 #include <utility>
 
 #include <Eigen/Geometry>
-#include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 #include "geometry/analytic_surfaces.hpp"  // Placement::frame
 #include "geometry/bspline_basis.hpp"
@@ -269,6 +270,10 @@ HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_
   constexpr int p = 3;
   if (n_points < p + 1)
     fail("make_helix_cubic: need n_points >= 4 for a cubic, got " + std::to_string(n_points));
+  if (n_points - p > kMaxCurveElements)
+    fail("make_helix_cubic: n_points " + std::to_string(n_points) + " exceeds the limit of " +
+         std::to_string(kMaxCurveElements + p) + " (" + std::to_string(kMaxCurveElements) +
+         " elements of a curve)");
 
   const double c = pitch / kTwoPi;
   auto helix = [R, c](double t) { return Vector3d(R * std::cos(t), R * std::sin(t), c * t); };
@@ -290,19 +295,27 @@ HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_
   for (int j = n_points; j < n_points + p + 1; ++j) U[static_cast<std::size_t>(j)] = 1.0;
   const KnotVector kv(p, U);
 
-  // Collocation system A P = Q with A_kj = N_{j,p}(t_k) (banded, totally positive); small, so a
-  // dense LU is sufficient.
-  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n_points, n_points);
+  // Collocation system A P = Q with A_kj = N_{j,p}(t_k): banded (p + 1 entries a row) and
+  // totally positive, solved as a sparse LU (O(n) for the band, where a dense LU is O(n^3)).
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(static_cast<std::size_t>(n_points) * (p + 1));
   Eigen::MatrixXd Q(n_points, 3);
   BasisValues Nv{};
   for (int k = 0; k <= N; ++k) {
     const double tk = t[static_cast<std::size_t>(k)];
     const int span = kv.find_span(tk);
     basis_funs(span, tk, p, kv.span(), Nv);
-    for (int j = 0; j <= p; ++j) A(k, span - p + j) = Nv[static_cast<std::size_t>(j)];
+    for (int j = 0; j <= p; ++j)
+      trip.emplace_back(k, span - p + j, Nv[static_cast<std::size_t>(j)]);
     Q.row(k) = helix(tk * angle).transpose();
   }
-  const Eigen::MatrixXd P = A.partialPivLu().solve(Q);
+  Eigen::SparseMatrix<double> A(n_points, n_points);
+  A.setFromTriplets(trip.begin(), trip.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> lu(A);
+  if (lu.info() != Eigen::Success)
+    fail("make_helix_cubic: the collocation matrix is singular for " + std::to_string(n_points) +
+         " points");
+  const Eigen::MatrixXd P = lu.solve(Q);
   std::vector<Vector3d> points(static_cast<std::size_t>(n_points));
   for (int i = 0; i < n_points; ++i) points[static_cast<std::size_t>(i)] = P.row(i).transpose();
 
@@ -322,18 +335,62 @@ HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_
 }
 
 WrapPath make_wrap_path(const WrapPathSpec& w) {
-  check_positive("make_wrap_path: radius", w.radius);
-  check_positive("make_wrap_path: angle", w.angle);
-  check_positive("make_wrap_path: span_length", w.span_length);
-  if (!std::isfinite(w.pitch)) fail("make_wrap_path: pitch must be finite, got " + num(w.pitch));
-  if (w.arc_elements < 1 || w.span_elements < 1)
-    fail("make_wrap_path: element counts must be >= 1, got arc " + std::to_string(w.arc_elements) +
-         ", span " + std::to_string(w.span_elements));
-  check_positive("make_wrap_path: |axis|", w.axis.norm());
+  // Every input is checked here, before any knot is made, so that the error names the input at
+  // fault rather than a symptom inside the fit (a repeated knot, a singular system).
+  auto bad = [](const char* key, const std::string& msg) {
+    throw ConstructionError(key, "make_wrap_path: " + std::string(key) + " " + msg);
+  };
+  auto positive = [&](const char* key, double x) {
+    if (!(x > 0.0) || !std::isfinite(x)) bad(key, "must be finite and > 0, got " + num(x));
+  };
+  positive("radius", w.radius);
+  positive("angle", w.angle);
+  positive("span_length", w.span_length);
+  if (!std::isfinite(w.pitch)) bad("pitch", "must be finite, got " + num(w.pitch));
+  if (w.arc_elements < 1)
+    bad("arc_elements", "must be >= 1, got " + std::to_string(w.arc_elements));
+  if (w.span_elements < 1)
+    bad("span_elements", "must be >= 1, got " + std::to_string(w.span_elements));
+  if (static_cast<long>(w.arc_elements) + 2L * w.span_elements > kMaxCurveElements)
+    bad(w.arc_elements >= w.span_elements ? "arc_elements" : "span_elements",
+        "too large: arc_elements + 2 span_elements = " +
+            std::to_string(static_cast<long>(w.arc_elements) + 2L * w.span_elements) +
+            " exceeds the limit of " + std::to_string(kMaxCurveElements) +
+            " elements of a curve (arc_elements " + std::to_string(w.arc_elements) +
+            ", span_elements " + std::to_string(w.span_elements) + ")");
+  if (!(w.axis.norm() > 0.0) || !w.axis.allFinite())
+    bad("axis", "must be a finite non-zero vector");
+  if (!w.mid_dir.allFinite() || !w.center.allFinite())
+    bad(w.center.allFinite() ? "mid_dir" : "center", "must be finite");
   const Vector3d ez = w.axis.normalized();
   const Vector3d ey_raw = w.mid_dir - w.mid_dir.dot(ez) * ez;
   if (!(ey_raw.norm() > 1e-12 * std::max(1.0, w.mid_dir.norm())))
-    fail("make_wrap_path: mid_dir must not be parallel to the axis");
+    bad("mid_dir", "must not be parallel to the axis");
+  {
+    // Element lengths against the whole path: the knots must stay distinct in double
+    // precision (and the fit well posed).
+    const double c = w.pitch / kTwoPi, speed = std::sqrt(w.radius * w.radius + c * c);
+    const double La = w.angle * speed, total = 2.0 * w.span_length + La;
+    if (!std::isfinite(La))
+      bad("radius", "and pitch give an arc length that overflows, got radius " + num(w.radius) +
+                        ", pitch " + num(w.pitch));
+    if (!std::isfinite(total))
+      bad("span_length", "gives a path length that overflows, got " + num(w.span_length));
+    const double arc_el = La / w.arc_elements, span_el = w.span_length / w.span_elements;
+    const double least = kMinRelativeElement * total;
+    if (!(arc_el >= least))
+      bad("radius",
+          "too small for this path: the arc (angle " + num(w.angle) + " rad, pitch " +
+              num(w.pitch) + ") is " + num(La) + " long, its " + std::to_string(w.arc_elements) +
+              " elements " + num(arc_el) + " each, below " + num(kMinRelativeElement) +
+              " of the path's length " + num(total) +
+              " (use a larger radius, shorter spans or fewer arc_elements), got " + num(w.radius));
+    if (!(span_el >= least))
+      bad("span_length",
+          "too small for this path: its " + std::to_string(w.span_elements) + " elements of " +
+              num(span_el) + " are below " + num(kMinRelativeElement) + " of the path's length " +
+              num(total) + " (use longer spans or fewer span_elements), got " + num(w.span_length));
+  }
   const Vector3d ey = ey_raw.normalized(), ex = ey.cross(ez);
 
   const double rho = w.radius, c = w.pitch / kTwoPi, speed = std::sqrt(rho * rho + c * c);
@@ -342,7 +399,8 @@ WrapPath make_wrap_path(const WrapPathSpec& w) {
   const double s1 = L, s2 = L + La, s3 = 2.0 * L + La;
   // Arc point and unit travel direction at the polar angle theta (clockwise travel).
   auto arc = [&](double th) -> Vector3d {
-    return w.center + rho * (std::cos(th) * ex + std::sin(th) * ey) + c * (thA - th - 0.5 * w.angle) * ez;
+    return w.center + rho * (std::cos(th) * ex + std::sin(th) * ey) +
+           c * (thA - th - 0.5 * w.angle) * ez;
   };
   auto travel = [&](double th) -> Vector3d {
     return (rho * (std::sin(th) * ex - std::cos(th) * ey) + c * ez) / speed;

@@ -283,6 +283,17 @@ PatchGroup parse_patch_group(const JsonCursor& e) {
 double optional_number(const JsonCursor& e, const char* key, double fallback) {
   return e.has(key) ? e[key].as_number() : fallback;
 }
+/// Lengths and coordinates of a construction: at most kMaxLength in magnitude, so that squares
+/// of distances (and the homogeneous w P) stay far from overflow.
+constexpr double kMaxLength = 1e100;
+constexpr double kMaxAngleDeg = 1e6;
+void check_length(const JsonCursor& c) {
+  if (!(std::abs(c.as_number()) <= kMaxLength))
+    c.fail("must be at most " + num(kMaxLength) + " in magnitude");
+}
+void check_point(const JsonCursor& c) {
+  for (std::size_t i = 0; i < c.size(); ++i) check_length(c[i]);
+}
 int parse_count(const JsonCursor& c, int lo, int hi) {
   const int n = c.as_int();
   if (n < lo || n > hi) c.fail("must be in " + std::to_string(lo) + ".." + std::to_string(hi));
@@ -304,8 +315,31 @@ std::array<int, 2> parse_count_pair(const JsonCursor& c, int lo, int hi) {
   return {parse_count(c[0], lo, hi), parse_count(c[1], lo, hi)};
 }
 
+/// Runs a construction; a ConstructionError is reported at the key it names (the model
+/// format's key: make_wrap_path's "angle" is "angle_deg"), any other GeometryError at the entity.
+template <class F>
+auto construct(const JsonCursor& e, F&& make) -> decltype(make()) {
+  try {
+    return make();
+  } catch (const ConstructionError& err) {
+    const std::string key = err.key() == "angle" ? "angle_deg" : err.key();
+    if (e.has(key)) e[key].fail_plain(err.what());  // the message states the value
+    e.fail_plain(key + ": " + err.what());
+  } catch (const GeometryError& err) {
+    e.fail_plain(err.what());
+  }
+}
+
+/// Control points in one direction after raising the degree by k and splitting each of the
+/// E elements into `parts` ([PT97] A5.9 raises every distinct knot's multiplicity by k; the
+/// subdivision inserts parts - 1 simple knots per element).
+long refined_count(const KnotVector& K, int k, int parts) {
+  const long E = K.num_elements();
+  return K.num_basis() + static_cast<long>(k) * E + static_cast<long>(parts - 1) * E;
+}
+
 /// "refine": {"elevate": k or [k_u, k_v], "subdivide": n or [n_u, n_v]} of a constructed
-/// surface, then "normal".
+/// surface, then "normal". The refined net may hold at most kMaxSurfaceControlPoints points.
 NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
   if (e.has("refine")) {
     const JsonCursor r = e["refine"];
@@ -314,6 +348,12 @@ NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
         r.has("elevate") ? parse_count_pair(r["elevate"], 0, 5) : std::array{0, 0};
     const std::array<int, 2> n =
         r.has("subdivide") ? parse_count_pair(r["subdivide"], 1, 1024) : std::array{1, 1};
+    const long nu = refined_count(s.knots_u(), k[0], n[0]);
+    const long nv = refined_count(s.knots_v(), k[1], n[1]);
+    if (nu * nv > kMaxSurfaceControlPoints)
+      r.fail("makes " + std::to_string(nu) + " x " + std::to_string(nv) + " = " +
+             std::to_string(nu * nv) + " control points, above the limit of " +
+             std::to_string(kMaxSurfaceControlPoints) + " for a constructed surface");
     s = build(e, [&] {
       NurbsSurface t = k[0] > 0 || k[1] > 0 ? elevate_degree(s, k[0], k[1]) : s;
       return n[0] > 1 || n[1] > 1 ? subdivide(t, n[0], n[1]) : t;
@@ -334,28 +374,53 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     const Vector3d ref = e.has("ref_dir") ? parse_direction(e["ref_dir"]) : Vector3d::UnitX();
     const double r = parse_positive(e["radius"]), h = parse_positive(e["height"]);
     const double a = optional_number(e, "start_deg", 0.0), b = optional_number(e, "end_deg", 360.0);
-    return finish_surface(e, build(e, [&] {
-                            return make_cylinder(base, axis.normalized(), ref, r, h, a * kDeg, b * kDeg);
+    check_length(e["radius"]);
+    check_length(e["height"]);
+    if (!(std::abs(a) <= kMaxAngleDeg))
+      e["start_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
+    if (!(std::abs(b) <= kMaxAngleDeg))
+      e["end_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
+    if (!(b > a))
+      e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
+          "the angular range needs start_deg < end_deg (start_deg " + num(a) + ", end_deg " +
+          num(b) + ")");
+    if (b - a > 360.0 * (1.0 + 1e-12))
+      e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
+          "the angular range end_deg - start_deg must be <= 360 (start_deg " + num(a) +
+          ", end_deg " + num(b) + ")");
+    return finish_surface(e, construct(e, [&] {
+                            return make_cylinder(base, axis.normalized(), ref, r, h, a * kDeg,
+                                                 b * kDeg);
                           }));
   }
   if (shape == "sphere") {
     e.expect_object({"type", "shape", "center", "radius", "refine", "normal"});
     const Vector3d c = parse_vec3(e["center"]);
     const double r = parse_positive(e["radius"]);
-    return finish_surface(e, build(e, [&] { return make_sphere(c, r); }));
+    check_length(e["radius"]);
+    check_point(e["center"]);
+    return finish_surface(e, construct(e, [&] { return make_sphere(c, r); }));
   }
   if (shape == "torus") {
-    e.expect_object({"type", "shape", "center", "axis", "major_radius", "minor_radius", "refine",
-                     "normal"});
+    e.expect_object(
+        {"type", "shape", "center", "axis", "major_radius", "minor_radius", "refine", "normal"});
     const Vector3d c = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
     const double R = parse_positive(e["major_radius"]), r = parse_positive(e["minor_radius"]);
-    return finish_surface(e, build(e, [&] { return make_torus(c, axis.normalized(), R, r); }));
+    check_length(e["major_radius"]);
+    check_point(e["center"]);
+    if (!(r < R)) e["minor_radius"].fail("must be < major_radius " + num(R) + " (a ring torus)");
+    return finish_surface(e, construct(e, [&] { return make_torus(c, axis.normalized(), R, r); }));
   }
   if (shape == "plane") {
     e.expect_object({"type", "shape", "origin", "du", "dv", "refine", "normal"});
     const Vector3d o = parse_vec3(e["origin"]), du = parse_direction(e["du"]),
                    dv = parse_direction(e["dv"]);
-    return finish_surface(e, build(e, [&] { return make_plane_patch(o, du, dv); }));
+    check_point(e["origin"]);
+    check_point(e["du"]);
+    check_point(e["dv"]);
+    if (!(du.cross(dv).norm() > 1e-12 * du.norm() * dv.norm()))
+      e["dv"].fail("must not be parallel to du (the patch would be a line)");
+    return finish_surface(e, construct(e, [&] { return make_plane_patch(o, du, dv); }));
   }
   if (shape == "hyperboloid") {  // [KS15] (11)
     e.expect_object({"type", "shape", "a", "x_range", "y_range", "refine", "normal"});
@@ -363,15 +428,23 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     const Interval x = parse_interval(e["x_range"]), y = parse_interval(e["y_range"]);
     if (!std::isfinite(x.lo) || !std::isfinite(x.hi)) e["x_range"].fail("must be finite");
     if (!std::isfinite(y.lo) || !std::isfinite(y.hi)) e["y_range"].fail("must be finite");
-    return finish_surface(e, build(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
+    if (!(std::max(std::abs(x.lo), std::abs(x.hi)) <= kMaxLength))
+      e["x_range"].fail("must lie within +-" + num(kMaxLength));
+    if (!(std::max(std::abs(y.lo), std::abs(y.hi)) <= kMaxLength))
+      e["y_range"].fail("must lie within +-" + num(kMaxLength));
+    if (!(std::abs(a) <= kMaxLength)) e["a"].fail("must lie within +-" + num(kMaxLength));
+    return finish_surface(
+        e, construct(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
   }
   if (shape == "line") {  // a straight rod: degree-1 segment elevated and split into elements
     e.expect_object({"type", "shape", "start", "end", "degree", "elements"});
     const Vector3d a = parse_vec3(e["start"]), b = parse_vec3(e["end"]);
+    check_point(e["start"]);
+    check_point(e["end"]);
     if (!((b - a).norm() > 0.0)) e["end"].fail("must differ from start");
     const int p = e.has("degree") ? parse_count(e["degree"], 1, kMaxDegree) : 1;
-    const int n = e.has("elements") ? parse_count(e["elements"], 1, 100000) : 1;
-    return build(e, [&] {
+    const int n = e.has("elements") ? parse_count(e["elements"], 1, kMaxCurveElements) : 1;
+    return construct(e, [&] {
       NurbsCurve c = make_line(a, b);
       if (p > 1) c = elevate_degree(c, p - 1);
       return n > 1 ? subdivide(c, n) : c;
@@ -384,17 +457,24 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     if (e.has("center")) w.center = parse_vec3(e["center"]);
     if (e.has("axis")) w.axis = parse_direction(e["axis"]);
     if (e.has("mid_dir")) w.mid_dir = parse_direction(e["mid_dir"]);
+    if (e.has("center")) check_point(e["center"]);
     w.radius = parse_positive(e["radius"]);
+    check_length(e["radius"]);
     const JsonCursor ac = e["angle_deg"];
     w.angle = ac.as_number() * kDeg;
     if (!(w.angle > 0.0 && w.angle <= 4.0 * std::numbers::pi)) ac.fail("must be in (0, 720]");
     w.pitch = optional_number(e, "pitch", 0.0);
+    if (!std::isfinite(w.pitch) || std::abs(w.pitch) > kMaxLength)
+      e["pitch"].fail("must lie within +-" + num(kMaxLength));
     w.span_length = parse_positive(e["span_length"]);
-    w.arc_elements = parse_count(e["arc_elements"], 1, 100000);
-    w.span_elements = parse_count(e["span_elements"], 1, 100000);
-    return build(e, [&] { return make_wrap_path(w).curve; });
+    check_length(e["span_length"]);
+    w.arc_elements = parse_count(e["arc_elements"], 1, kMaxCurveElements);
+    w.span_elements = parse_count(e["span_elements"], 1, kMaxCurveElements);
+    return construct(e, [&] { return make_wrap_path(w).curve; });
   }
-  sc.fail("unknown shape (expected one of cylinder, sphere, torus, plane, hyperboloid, line, wrap_path)");
+  sc.fail(
+      "unknown shape (expected one of cylinder, sphere, torus, plane, hyperboloid, line, "
+      "wrap_path)");
 }
 
 constexpr const char* kEntityTypes[] = {"nurbs_curve", "nurbs_surface", "plane", "sphere",

@@ -1,6 +1,7 @@
 // Knot vector validation and queries ([PT97] Sect. 2.2, 3.2).
 #include "geometry/knot_vector.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <charconv>
 
@@ -86,9 +87,9 @@ std::vector<double> KnotVector::breaks() const {
 }
 
 int KnotVector::multiplicity(double u) const {
-  int m = 0;
-  for (double k : U_) m += (k == u);
-  return m;
+  // The knots are sorted: a binary search, O(log n) (callers loop over every knot).
+  const auto [lo, hi] = std::equal_range(U_.begin(), U_.end(), u);
+  return static_cast<int>(hi - lo);
 }
 
 int KnotVector::find_span(double u) const { return iga::find_span(num_basis(), p_, u, U_); }

@@ -33,10 +33,11 @@ void DofMap::check_component(int component) const {
   }
 }
 
-void DofMap::renumber() {
+void DofMap::renumber() const {
+  stale_ = false;
   num_free_ = 0;
-  for (PointDofs& P : points_)
-    for (Component& c : P.c) {
+  for (const PointDofs& P : points_)
+    for (const Component& c : P.c) {
       c.free = -1;
       c.resolved = c.prescribed;
       c.sign = 1.0;
@@ -44,8 +45,8 @@ void DofMap::renumber() {
     }
   // Ties: follow the chain to a component with its own constraint or its own unknown (tie()
   // rejects cycles, so the chain ends).
-  for (PointDofs& P : points_)
-    for (Component& c : P.c) {
+  for (const PointDofs& P : points_)
+    for (const Component& c : P.c) {
       if (c.prescribed >= 0 || c.tie_point < 0) continue;
       double s = c.tie_sign;
       const Component* m = &points_[static_cast<std::size_t>(c.tie_point)]
@@ -72,7 +73,7 @@ void DofMap::constrain(int point, int component, Prescribed p) {
     idx = static_cast<int>(prescribed_.size());
     prescribed_.push_back(std::move(p));
   }
-  renumber();
+  stale_ = true;
 }
 
 void DofMap::set_local_basis(int point, const Matrix3d& Q) {
@@ -142,8 +143,8 @@ void DofMap::tie(int slave, int component, int master, int master_component) {
   const PointDofs& S = points_[static_cast<std::size_t>(slave)];
   const PointDofs& M = points_[static_cast<std::size_t>(master)];
   const Vector3d es = S.rotated ? Vector3d(S.Q.col(component)) : Vector3d::Unit(component);
-  const Vector3d em = M.rotated ? Vector3d(M.Q.col(master_component))
-                                : Vector3d::Unit(master_component);
+  const Vector3d em =
+      M.rotated ? Vector3d(M.Q.col(master_component)) : Vector3d::Unit(master_component);
   const double cs = es.dot(em);
   if (!(std::abs(cs) > 1.0 - 1e-10))
     fail_(owner_ + "::tie: component " + std::to_string(component) + " of control point " +
@@ -165,18 +166,24 @@ void DofMap::tie(int slave, int component, int master, int master_component) {
   s.tie_sign = cs > 0.0 ? 1.0 : -1.0;
   points_[static_cast<std::size_t>(master)].c[static_cast<std::size_t>(master_component)].master =
       true;
-  renumber();
+  stale_ = true;
 }
 
 bool DofMap::constrained(int point, int component) const {
   check_point(point, "constrained");
   check_component(component);
-  const Component& c =
-      points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)];
-  return c.free < 0;
+  // Without renumbering (a loop of constrained / fix calls stays O(n)): follow the ties to
+  // the component that decides, as renumber() does; constrained iff it has a constraint.
+  const Component* m =
+      &points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)];
+  while (m->prescribed < 0 && m->tie_point >= 0)
+    m = &points_[static_cast<std::size_t>(m->tie_point)]
+             .c[static_cast<std::size_t>(m->tie_component)];
+  return m->prescribed >= 0;
 }
 
 int DofMap::dof(int point, int component) const {
+  refresh();
   check_point(point, "dof");
   check_component(component);
   return points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].free;
@@ -184,6 +191,7 @@ int DofMap::dof(int point, int component) const {
 
 void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
                             std::vector<Vector3d>& x) const {
+  refresh();
   if (u.size() != num_free_)
     throw std::invalid_argument(owner_ + ": state has " + std::to_string(u.size()) +
                                 " entries, expected " + std::to_string(num_free_));
@@ -206,6 +214,7 @@ void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, doub
 }
 
 void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
+  refresh();
   R.setZero(num_free_);
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PointDofs& P = points_[i];
@@ -218,6 +227,7 @@ void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
 }
 
 void DofMap::reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const {
+  refresh();
   free.reserve(free.size() + cart.size());
   for (const Triplet& tr : cart) {
     const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;

@@ -44,7 +44,10 @@ class DofMap {
   DofMap(int num_points, std::string owner, FailFn fail);
 
   int num_points() const { return static_cast<int>(points_.size()); }
-  int num_free() const { return num_free_; }
+  int num_free() const {
+    refresh();
+    return num_free_;
+  }
 
   /// Sets the local basis of `point` (orthonormal columns); fails if the point already has
   /// constrained or tied components or Q is not orthonormal.
@@ -88,11 +91,11 @@ class DofMap {
     int tie_point = -1;   ///< tied to (tie_point, tie_component), or -1
     int tie_component = -1;
     double tie_sign = 1.0;
-    // Resolved by renumber():
-    int free = -1;      ///< free DOF index, or -1
-    int resolved = -1;  ///< prescribed index after following ties, or -1
-    double sign = 1.0;  ///< d_c = sign * u[free] or sign * prescribed value
-    bool master = false;  ///< another component is tied to this one
+    // Resolved by renumber() (mutable: renumbered lazily, on first use after a change):
+    mutable int free = -1;      ///< free DOF index, or -1
+    mutable int resolved = -1;  ///< prescribed index after following ties, or -1
+    mutable double sign = 1.0;  ///< d_c = sign * u[free] or sign * prescribed value
+    bool master = false;        ///< another component is tied to this one
   };
   struct PointDofs {
     Matrix3d Q = Matrix3d::Identity();
@@ -103,7 +106,12 @@ class DofMap {
   void check_point(int point, const char* what) const;
   void check_component(int component) const;
   void constrain(int point, int component, Prescribed p);
-  void renumber();
+  /// Numbers the free unknowns and resolves ties. Constraining and tying only mark the map
+  /// stale; the readers call refresh(), so that n constraints cost O(n), not O(n^2).
+  void renumber() const;
+  void refresh() const {
+    if (stale_) renumber();
+  }
   /// Column weight of component (point, c) in Cartesian direction a.
   double axis(const PointDofs& P, int a, int c) const {
     return P.rotated ? P.Q(a, c) : (a == c ? 1.0 : 0.0);
@@ -113,7 +121,8 @@ class DofMap {
   FailFn fail_;
   std::vector<PointDofs> points_;
   std::vector<Prescribed> prescribed_;
-  int num_free_ = 0;
+  mutable int num_free_ = 0;
+  mutable bool stale_ = false;
 };
 
 }  // namespace iga

@@ -110,7 +110,8 @@ TEST_CASE("iga eval --grid on the NURBS cylinder: points on the radius, normals 
   REQUIRE(rows.size() == 1 + 11 * 11);
   CHECK(rows[0].front() == "entity");
   for (std::size_t i = 1; i < rows.size(); ++i) {
-    REQUIRE(rows[i].size() == 13);
+    REQUIRE(rows[i].size() == 14);
+    CHECK(rows[i][13] == "0");  // no singular point on a cylinder
     const double x = std::stod(rows[i][3]), y = std::stod(rows[i][4]);
     const double nx = std::stod(rows[i][6]), ny = std::stod(rows[i][7]);
     CHECK(std::hypot(x, y) == Approx(1.0).epsilon(1e-13));  // data/cylinder_patch.json: R = 1
@@ -319,5 +320,200 @@ TEST_CASE("iga run: bad analysis input exits 1 naming the file, JSON path and va
     std::string msg = c.message;
     for (std::size_t k; (k = msg.find("\\\"")) != std::string::npos;) msg.replace(k, 2, "\"");
     CHECK(r.err.find("capstan.json: " + msg) != std::string::npos);
+  }
+}
+
+namespace {
+
+/// A fresh temporary folder for one test case.
+fs::path temp_dir(const std::string& tag) {
+  const fs::path dir = fs::temp_directory_path() / (tag + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_file(const fs::path& p, const std::string& text) {
+  std::ofstream(p) << text;
+}
+
+/// No cell of a CSV text is a non-finite number.
+bool all_finite_cells(const std::string& csv) {
+  for (const auto& row : csv_rows(csv))
+    for (const std::string& c : row)
+      if (c.find("inf") != std::string::npos || c.find("nan") != std::string::npos) return false;
+  return true;
+}
+
+const std::string kAnalytic = std::string(IGA_SOURCE_DIR) + "/data/analytic_surfaces.json";
+
+}  // namespace
+
+TEST_CASE("iga project: only a line of the expected names is a header, bad rows are errors with file and line",
+          "[apps][iga][project][errors]") {
+  const fs::path dir = temp_dir("iga_project_input");
+  const std::string model = "project \"" + kAnalytic + "\" --entity ball --points ";
+  auto project = [&](const std::string& name, const std::string& text) {
+    write_file(dir / name, text);
+    return run_iga(model + "\"" + (dir / name).string() + "\"");
+  };
+  // A header by its names (any case, blanks), or none: the same two points.
+  for (const std::string head : {"x,y,z\n", " X , Y , Z \n", ""}) {
+    const Run r = project("ok.csv", head + "0,0,3\n1,0,2\n");
+    INFO(head << r.err);
+    CHECK(r.status == 0);
+    CHECK(csv_rows(r.out).size() == 3);
+  }
+  // A first line that is neither the names nor three numbers was once taken for a header and
+  // the point lost; now each is an error at line 1 saying what is wrong.
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {"1,2\n0,0,3\n", "found 2 fields"},
+      {"1e309,0,0\n0,0,3\n", "out of the range"},
+      {"1;2;3\n0,0,3\n", "found 1 field"},
+      {"0x1p3,0,0\n0,0,3\n", "not a decimal number"},
+      {"inf,0,0\n0,0,3\n", "not a decimal number"},
+      {"a,b,c\n0,0,3\n", "not a decimal number"},
+      {"1,,3\n", "empty field"}};
+  for (const auto& [text, what] : bad) {
+    const Run r = project("bad.csv", text);
+    INFO(text << " -> " << r.err);
+    CHECK(r.status == 1);
+    CHECK_THAT(r.err, Catch::Contains("bad.csv:1:") && Catch::Contains(what));
+  }
+  // Later lines too, with their line number.
+  const Run late = project("late.csv", "x,y,z\n0,0,3\n1e309,0,0\n");
+  CHECK(late.status == 1);
+  CHECK_THAT(late.err, Catch::Contains("late.csv:3:"));
+  // A directory, a missing file and a file without rows are errors, not 0 points.
+  Run r = run_iga(model + "\"" + dir.string() + "\"");
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("not a regular file"));
+  r = run_iga(model + "\"" + (dir / "none.csv").string() + "\"");
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("no such file"));
+  r = project("empty.csv", "x,y,z\n");
+  CHECK(r.status == 1);
+  CHECK_THAT(r.err, Catch::Contains("no rows"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("iga project: far points and bad rays are per-point statuses, never inf in the output",
+          "[apps][iga][project]") {
+  const fs::path dir = temp_dir("iga_project_far");
+  write_file(dir / "far.csv", "x,y,z\n1e154,1e154,1e154\n-1e154,3e153,2\n1e300,-1e300,1e300\n0,0,3\n");
+  for (const std::string e : {"ball", "drum", "ring", "funnel", "saddle", "bowl", "floor", "roof"}) {
+    const Run r = run_iga("project \"" + kAnalytic + "\" --entity " + e + " --points \"" +
+                          (dir / "far.csv").string() + "\"");
+    INFO(e << ": " << r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(all_finite_cells(r.out));
+    const auto rows = csv_rows(r.out);
+    REQUIRE(rows.size() == 5);
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+      REQUIRE(rows[k].size() >= 10);
+      const std::string& status = rows[k][9];
+      const bool foot = status == "interior" || status == "edge" || status == "vertex";
+      // A foot point's distance is a finite number; out_of_range has empty cells.
+      if (foot) CHECK(std::isfinite(std::stod(rows[k][8])));
+      if (status == "out_of_range") CHECK(rows[k][8].empty());
+    }
+  }
+  // On the sphere the far distance is right: |x - c| - R (c = (0, 0, 2), R = 0.5).
+  const Run ball = run_iga("project \"" + kAnalytic + "\" --entity ball --points \"" +
+                           (dir / "far.csv").string() + "\"");
+  const auto rows = csv_rows(ball.out);
+  CHECK(std::stod(rows[1][8]) == Approx(std::sqrt(3.0) * 1e154).epsilon(1e-12));
+  CHECK(rows[1][9] == "interior");
+
+  // Rays: a zero direction is bad_direction for its point, a huge one is rescaled, the batch
+  // goes on (it aborted on analytic surfaces; NURBS patches said miss).
+  write_file(dir / "pts.csv", "x,y,z\n0,0,3\n0,0,3\n0,0,3\n5,5,5\n");
+  write_file(dir / "dirs.csv", "dx,dy,dz\n0,0,0\n0,0,-1e300\n0,0,-1\n1,0,0\n");
+  for (const std::string e : {"ball", "roof", "obstacle"}) {
+    const Run r = run_iga("project \"" + kAnalytic + "\" --entity " + e + " --points \"" +
+                          (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() +
+                          "\"");
+    INFO(e << ": " << r.out << r.err);
+    REQUIRE(r.status == 0);
+    CHECK(all_finite_cells(r.out));
+    const auto rr = csv_rows(r.out);
+    REQUIRE(rr.size() == 5);
+    CHECK(rr[1][9] == "bad_direction");
+    CHECK(rr[2][9] == rr[3][9]);
+    CHECK(rr[2][8] == rr[3][8]);
+    CHECK((rr[4][9] == "miss" || rr[4][9] == "tangent"));  // the floor plane is parallel
+    for (int c = 0; c < 9; ++c) CHECK(rr[4][static_cast<std::size_t>(c)].empty());
+  }
+  const Run ray = run_iga("project \"" + kAnalytic + "\" --entity ball --points \"" +
+                          (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() + "\"");
+  CHECK(std::stod(csv_rows(ray.out)[2][8]) == Approx(0.5).epsilon(1e-12));  // z = 3 to z = 2.5
+  fs::remove_all(dir);
+}
+
+TEST_CASE("iga eval: singular points (poles, apex, axis) are written with a flag, the grid goes on",
+          "[apps][iga]") {
+  const fs::path dir = temp_dir("iga_eval_singular");
+  const Run r = run_iga("eval \"" + kAnalytic + "\" --grid 5 --out \"" + (dir / "g.csv").string() + "\"");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string text = slurp(dir / "g.csv");
+  CHECK(all_finite_cells(text));
+  const auto rows = csv_rows(text);
+  REQUIRE(rows.size() > 1);
+  CHECK(rows[0].back() == "singular");
+  int ball_poles = 0, bowl_axis = 0;
+  for (const auto& row : rows) {
+    if (row.size() < 14 || row[13] != "1") continue;
+    if (row[0] == "ball") {
+      // The sphere's poles (v = +-pi/2): the limit normal is the axis, +-e_z, the curvatures
+      // those of the sphere, 1/R = 2.
+      ++ball_poles;
+      const double v = std::stod(row[2]);
+      CHECK(std::stod(row[8]) == Approx(v > 0 ? 1.0 : -1.0).epsilon(1e-6));
+      CHECK(std::abs(std::stod(row[9])) == Approx(2.0).epsilon(1e-4));
+      CHECK(std::stod(row[12]) == Approx(4.0).epsilon(1e-4));
+    }
+    if (row[0] == "bowl") {
+      // z = r^2/2 at r = 0: normal along the axis, both curvatures 1.
+      ++bowl_axis;
+      CHECK(std::abs(std::stod(row[8])) == Approx(1.0).epsilon(1e-6));
+      CHECK(std::abs(std::stod(row[9])) == Approx(1.0).epsilon(1e-4));
+    }
+  }
+  CHECK(ball_poles == 10);
+  CHECK(bowl_axis == 5);
+  // A cone's apex has no limit normal (the normals circle the axis): empty cells, flag 1.
+  write_file(dir / "cone.json", R"({"format": "iga-contact-model", "version": 1, "name": "c",
+    "geometry": {"tip": {"type": "cone", "center": [0, 0, 0], "axis": [0, 0, 1], "alpha": 0.5,
+                         "domain": {"v": [0, 1]}}}})");
+  const Run cone = run_iga("eval \"" + (dir / "cone.json").string() + "\" --grid 3");
+  INFO(cone.err);
+  REQUIRE(cone.status == 0);
+  int apex = 0;
+  for (const auto& row : csv_rows(cone.out)) {
+    if (row.size() < 14 || row[13] != "1") continue;
+    ++apex;
+    CHECK(std::stod(row[2]) == 0.0);  // v = 0
+    for (int c = 6; c <= 12; ++c) CHECK(row[static_cast<std::size_t>(c)].empty());
+  }
+  CHECK(apex == 3);
+  // One point: --uv at the pole prints the limit normal instead of failing.
+  const Run uv = run_iga("eval \"" + kAnalytic + "\" --entity ball --uv 0,1.5707963267948966");
+  INFO(uv.err);
+  CHECK(uv.status == 0);
+  CHECK_THAT(uv.out, Catch::Contains("singular point") && Catch::Contains("(limit)"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("iga info: every line ends with a newline, patch groups included", "[apps][iga]") {
+  for (const std::string f : {"analytic_surfaces.json", "cylinder_4patch.json", "capstan.json"}) {
+    const Run r = run_iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/" + f + "\"");
+    INFO(f << ": " << r.out << r.err);
+    CHECK(r.status == 0);
+    REQUIRE(!r.out.empty());
+    CHECK(r.out.back() == '\n');
+    const bool newline_after_group = r.out.find("patch_group") == std::string::npos ||
+                                     r.out.find('\n', r.out.find("patch_group")) != std::string::npos;
+    CHECK(newline_after_group);
   }
 }

@@ -745,3 +745,31 @@ TEST_CASE(
     }
   }
 }
+
+TEST_CASE("analytic projections: far points keep finite distances, a zero ray direction is a miss",
+          "[contact][analytic][projection]") {
+  const Placement pl{Vector3d(0.0, 0.0, 2.0), Vector3d::UnitZ()};
+  const Sphere sphere(pl, 0.5);
+  // |x|^2 overflows at 1e154 per coordinate: the distance was +inf with status interior and
+  // the foot at u = v = 0 (the angle taken as undefined).
+  const Vector3d far(1e154, 1e154, 1e154);
+  const ProjectionResult r = closest_point_analytic(sphere, far);
+  CHECK(found(r.status));
+  CHECK(r.distance == Approx(std::sqrt(3.0) * 1e154).epsilon(1e-12));
+  CHECK((r.point - pl.center).normalized().dot(Vector3d(1, 1, 1).normalized()) ==
+        Approx(1.0).epsilon(1e-12));
+  const Cylinder cyl(pl, 0.5);
+  const ProjectionResult rc = closest_point_analytic(cyl, Vector3d(-1e300, 1e300, 5.0));
+  CHECK(rc.distance == Approx(std::sqrt(2.0) * 1e300).epsilon(1e-12));
+  // A ray without a direction: a miss (it threw and aborted a whole batch), as on NURBS.
+  const ProjectionResult z = ray_project_analytic(sphere, Vector3d(0, 0, 3), Vector3d::Zero());
+  CHECK(z.status == ProjectionStatus::miss);
+  const double inf = std::numeric_limits<double>::infinity();
+  CHECK(ray_project_analytic(sphere, Vector3d(0, 0, 3), Vector3d(0, 0, inf)).status ==
+        ProjectionStatus::miss);
+  // A direction too long for |N|^2 is still a direction.
+  const ProjectionResult h =
+      ray_project_analytic(sphere, Vector3d(0, 0, 3), Vector3d(0, 0, -1e300));
+  CHECK(h.status == ProjectionStatus::interior);
+  CHECK(h.distance == Approx(0.5).epsilon(1e-12));
+}

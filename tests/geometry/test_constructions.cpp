@@ -5,16 +5,23 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <string>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <vector>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Dense>
 #include <Eigen/Geometry>
 
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/fitting.hpp"
+#include "geometry/geometry_io.hpp"
+#include "geometry/json_reader.hpp"
 #include "geometry/knot_vector.hpp"
 #include "tests/support/geometry_checks.hpp"
 
@@ -512,4 +519,209 @@ TEST_CASE("make_wrap_path: spans tangent to a helix of the given radius and pitc
   bad = w;
   bad.arc_elements = 0;
   CHECK_THROWS_AS(make_wrap_path(bad), GeometryError);
+}
+
+namespace {
+
+/// The fit as it was computed before the banded solve: the dense m x n collocation matrix and
+/// a dense LDL^T of the normal equations, [PT97] (9.66). The reference for the sparse solve.
+std::vector<Vector3d> dense_fit(const std::vector<Vector3d>& Q, const std::vector<double>& t,
+                                int p, const std::vector<double>& knots) {
+  const KnotVector K(p, knots);
+  const int n = K.num_basis(), m = static_cast<int>(Q.size());
+  Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m, n);
+  BasisValues b;
+  for (int k = 0; k < m; ++k) {
+    const int span = K.find_span(t[static_cast<std::size_t>(k)]);
+    basis_funs(span, t[static_cast<std::size_t>(k)], p, K.span(), b);
+    for (int j = 0; j <= p; ++j) N(k, span - p + j) = b[static_cast<std::size_t>(j)];
+  }
+  Eigen::MatrixXd rhs(m, 3);
+  for (int k = 0; k < m; ++k)
+    rhs.row(k) = (Q[static_cast<std::size_t>(k)] - N(k, 0) * Q.front() - N(k, n - 1) * Q.back())
+                     .transpose();
+  const Eigen::MatrixXd Ni = N.block(0, 1, m, n - 2);
+  const Eigen::MatrixXd P = Eigen::LDLT<Eigen::MatrixXd>(Ni.transpose() * Ni).solve(Ni.transpose() * rhs);
+  std::vector<Vector3d> cp(static_cast<std::size_t>(n));
+  cp.front() = Q.front();
+  cp.back() = Q.back();
+  for (int i = 1; i < n - 1; ++i) cp[static_cast<std::size_t>(i)] = P.row(i - 1).transpose();
+  return cp;
+}
+
+/// The ModelError of parsing `text` as the geometry section of g.json.
+ModelError construction_error(const std::string& text) {
+  try {
+    parse_geometry(parse_json_text(text, "g.json"), "g.json", JsonPointer("/geometry"));
+  } catch (const ModelError& e) {
+    return e;
+  }
+  FAIL("no ModelError for " << text);
+  return ModelError("", "", "");
+}
+
+std::string rope(const std::string& radius, const std::string& arc, const std::string& span = "3",
+                 const std::string& span_length = "1.0") {
+  return R"({"rope": {"type": "construction", "shape": "wrap_path", "radius": )" + radius +
+         R"(, "angle_deg": 180, "pitch": 0, "span_length": )" + span_length +
+         R"(, "arc_elements": )" + arc + R"(, "span_elements": )" + span + "}}";
+}
+
+}  // namespace
+
+TEST_CASE("fit_curve: the banded solve gives the dense normal-equation fit to round-off",
+          "[geometry][fitting]") {
+  // A wrap path's data (line + helix + line, double knots) and a wiggly curve with uneven
+  // knots and degrees 2..5: control points agree with the dense solve within 1e-12 of the
+  // curve's size (both are backward stable on the same well-conditioned normal equations).
+  WrapPathSpec w;
+  w.radius = 0.8;
+  w.angle = 1.3 * kPi;
+  w.pitch = 0.4;
+  w.span_length = 1.1;
+  w.arc_elements = 17;
+  w.span_elements = 3;
+  const WrapPath r = make_wrap_path(w);
+  std::vector<double> t;
+  std::vector<Vector3d> Q;
+  const std::vector<double>& U = r.curve.knots().knots();
+  for (std::size_t k = 3; k + 4 < U.size(); ++k)
+    if (U[k + 1] > U[k])
+      for (int j = 0; j < 16; ++j) t.push_back(U[k] + (U[k + 1] - U[k]) * j / 16.0);
+  t.push_back(U.back());
+  // Sample the fitted curve plus a wiggle, so that the least-squares residual is not zero.
+  for (double s : t) Q.push_back(r.curve.point(s) + 1e-3 * Vector3d(std::sin(7 * s), std::cos(5 * s), std::sin(3 * s)));
+  const CurveFit f = fit_curve(Q, t, 3, U);
+  const std::vector<Vector3d> ref = dense_fit(Q, t, 3, U);
+  for (int i = 0; i < f.curve.num_control_points(); ++i)
+    CHECK((f.curve.control_point(i) - ref[static_cast<std::size_t>(i)]).norm() <= 1e-12 * 5.0);
+
+  std::mt19937 g(11);
+  std::uniform_real_distribution<double> unif(0.0, 1.0);
+  for (int p = 2; p <= 5; ++p) {
+    std::vector<double> K(static_cast<std::size_t>(p + 1), 0.0);
+    double x = 0.0;
+    for (int e = 0; e < 12; ++e) K.push_back(x += 0.5 + unif(g));
+    K.pop_back();
+    K.insert(K.end(), static_cast<std::size_t>(p + 1), x);
+    std::vector<double> s;
+    std::vector<Vector3d> pts;
+    for (int k = 0; k <= 300; ++k) {
+      const double sk = x * k / 300.0;
+      s.push_back(sk);
+      pts.emplace_back(std::cos(sk), std::sin(2 * sk), sk * sk / 10);
+    }
+    const CurveFit fp = fit_curve(pts, s, p, K);
+    const std::vector<Vector3d> rp = dense_fit(pts, s, p, K);
+    for (int i = 0; i < fp.curve.num_control_points(); ++i)
+      CHECK((fp.curve.control_point(i) - rp[static_cast<std::size_t>(i)]).norm() <= 1e-11);
+  }
+}
+
+TEST_CASE("make_wrap_path: 50000 arc elements build in seconds (banded fit, no dense matrix)",
+          "[geometry][constructions]") {
+  // The dense collocation matrix of 800,000 samples x 50,000 control points would need 320 GB.
+  WrapPathSpec w;
+  w.radius = 1.02;
+  w.angle = kPi;
+  w.span_length = 1.0;
+  w.arc_elements = 50000;
+  w.span_elements = 3;
+  const auto t0 = std::chrono::steady_clock::now();
+  const WrapPath r = make_wrap_path(w);
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(r.curve.num_control_points() == 50000 + 2 * 3 + 3 + 2);
+  CHECK(r.max_deviation < 1e-12);
+  CHECK(secs < 30.0);  // about 1 s on one core; a generous bound for loaded machines
+}
+
+TEST_CASE("make_helix_cubic: 20000 points solve as a banded system", "[geometry][constructions]") {
+  // Dense: a 20000^2 matrix (3.2 GB) and an O(n^3) LU.
+  const HelixApproximation h = make_helix_cubic(1.0, 0.5, 8 * kPi, 20000);
+  CHECK(h.curve.num_control_points() == 20000);
+  CHECK(h.max_deviation < 1e-9);
+  CHECK_THROWS_AS(make_helix_cubic(1.0, 0.5, kPi, kMaxCurveElements + 4), GeometryError);
+}
+
+TEST_CASE("make_wrap_path: bad inputs are named by their key before any fitting",
+          "[geometry][constructions][errors]") {
+  WrapPathSpec w;
+  auto key_of = [](const WrapPathSpec& spec) -> std::string {
+    try {
+      make_wrap_path(spec);
+    } catch (const ConstructionError& e) {
+      return e.key();
+    }
+    return "(none)";
+  };
+  WrapPathSpec b = w;
+  b.radius = 1e-12;  // the arc's knots would coincide ("interior knot 1 has multiplicity 13")
+  CHECK(key_of(b) == "radius");
+  b = w;
+  b.radius = -1.0;
+  CHECK(key_of(b) == "radius");
+  b = w;
+  b.span_length = 1e-12;
+  CHECK(key_of(b) == "span_length");
+  b = w;
+  b.mid_dir = w.axis;
+  CHECK(key_of(b) == "mid_dir");
+  b = w;
+  b.arc_elements = kMaxCurveElements;
+  CHECK(key_of(b) == "arc_elements");
+  b = w;
+  b.span_elements = 0;
+  CHECK(key_of(b) == "span_elements");
+  b = w;
+  b.pitch = std::numeric_limits<double>::infinity();
+  CHECK(key_of(b) == "pitch");
+  CHECK(key_of(w) == "(none)");
+}
+
+TEST_CASE("geometry_io: construction errors name the key at fault and state the limits",
+          "[geometry][constructions][errors]") {
+  // Tiny radius: the key, not an internal knot.
+  ModelError e = construction_error(rope("1e-12", "10"));
+  CHECK(e.pointer() == "/geometry/rope/radius");
+  CHECK_THAT(e.message(), Catch::Contains("too small"));
+  CHECK_THAT(e.message(), !Catch::Contains("knot"));
+  // Too many elements: the limit is stated at the key.
+  e = construction_error(rope("1.0", "100000"));
+  CHECK(e.pointer() == "/geometry/rope/arc_elements");
+  CHECK_THAT(e.message(), Catch::Contains("100000"));
+  e = construction_error(rope("1.0", "1e5"));
+  CHECK(e.pointer() == "/geometry/rope/arc_elements");
+  e = construction_error(rope("1.0", "10", "3", "1e-13"));
+  CHECK(e.pointer() == "/geometry/rope/span_length");
+  e = construction_error(rope("1e300", "10"));
+  CHECK(e.pointer() == "/geometry/rope/radius");
+  // A refined surface above the control point limit: at "refine", with the count and limit.
+  e = construction_error(R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
+      "radius": 1, "refine": {"subdivide": 1024}}})");
+  CHECK(e.pointer() == "/geometry/shell/refine");
+  CHECK_THAT(e.message(), Catch::Contains("10000"));
+  e = construction_error(R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
+      "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 2}})");
+  CHECK(e.pointer() == "/geometry/t/minor_radius");
+  e = construction_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+      "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 90, "end_deg": 45}})");
+  CHECK(e.pointer() == "/geometry/c/end_deg");
+  e = construction_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+      "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 0, "end_deg": 400}})");
+  CHECK(e.pointer() == "/geometry/c/end_deg");
+  e = construction_error(R"({"p": {"type": "construction", "shape": "plane", "origin": [0, 0, 0],
+      "du": [1, 0, 0], "dv": [2, 0, 0]}})");
+  CHECK(e.pointer() == "/geometry/p/dv");
+  e = construction_error(R"({"l": {"type": "construction", "shape": "line", "start": [0, 0, 0],
+      "end": [1, 0, 0], "elements": 200000}})");
+  CHECK(e.pointer() == "/geometry/l/elements");
+  // The largest allowed surface builds.
+  const GeometryModel m = parse_geometry(
+      parse_json_text(R"({"shell": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+      "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [24, 93]}}})",
+                      "g.json"),
+      "g.json", JsonPointer("/geometry"));
+  const auto& shell = std::get<NurbsSurface>(m.entities.at(0).second);
+  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() <= kMaxSurfaceControlPoints);
+  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() > kMaxSurfaceControlPoints * 9 / 10);
 }

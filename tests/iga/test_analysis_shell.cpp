@@ -129,12 +129,14 @@ TEST_CASE(
     "[iga][analysis][shell]") {
   Analysis a = Analysis::load(kData + "slit_annular_plate.json");
   SlitAnnularPlate b = make_slit_annular_plate(4, 32, 3);
-  // The explicit surface is the builder's fit, written with round-trip doubles on the machine
-  // that made the file; this machine's fit agrees to round-off of the coordinates (R_o = 10):
-  // 1e-13 R_o, as for the other benchmark models (never bit for bit: see net_distance).
+  // The explicit surface is the builder's fit (a least-squares solve), written with round-trip
+  // doubles on the machine that made the file. The fit recomputed here agrees up to the
+  // round-off of the solve, which depends on the processor's libm (sin, cos of the samples) and
+  // on the solver's order of operations (the banded LDL^T that replaced the dense solve):
+  // 1e-12 R_o, R_o = 10 the outer radius. Never bit for bit: see net_distance.
   const double R_outer = 10.0;
   CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) <=
-        1e-13 * R_outer);
+        1e-12 * R_outer);
   REQUIRE(a.shell_problem().num_dofs() == b.problem.num_dofs());
   REQUIRE(a.output().monitors.size() == 2);
   struct Ref {
