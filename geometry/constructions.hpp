@@ -19,10 +19,11 @@ namespace iga {
 /// constructed curve (wrap_path: arc_elements + 2 span_elements; line: elements; helix:
 /// points - 3) and control points of a constructed (refined) surface. Chosen so that the
 /// largest allowed model, analysis included, is set up in a few seconds and some hundred MB:
-/// a rod of 100,000 elements in about 2 s and 0.5 GB, a shell of 10,000 control points in
-/// about 1 s and 0.5 GB (a shell costs some 50 KB per control point: element matrices).
+/// a rod of 100,000 elements in about 2 s and 0.5 GB, a shell of 40,000 control points (about
+/// 200 x 200 bicubic elements) in about 5 s and 2 GB (a shell costs some 50 KB per control
+/// point: element matrices). Analysis bodies given by explicit NURBS obey the same bounds.
 inline constexpr int kMaxCurveElements = 100000;
-inline constexpr long kMaxSurfaceControlPoints = 10000;
+inline constexpr long kMaxSurfaceControlPoints = 40000;
 /// Smallest element of a fitted curve relative to its whole length: below it the knots are
 /// no longer distinct in double precision (and the fit is ill-conditioned).
 inline constexpr double kMinRelativeElement = 1e-9;

@@ -11,6 +11,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "geometry/constructions.hpp"
 #include "iga/model.hpp"
 #include "iga/output_format.hpp"
 #include "iga/vtk_writer.hpp"
@@ -554,6 +555,11 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   const JsonCursor cc = b["curve"];
   ctx.curve = geometry.curve(cc.as_string());
   if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
+  // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
+  if (const long n = ctx.curve->num_control_points(); n - ctx.curve->degree() > kMaxCurveElements)
+    cc.fail("the curve has " + std::to_string(n) + " control points, above the limit of " +
+            std::to_string(kMaxCurveElements + ctx.curve->degree()) + " of a rod body (" +
+            std::to_string(kMaxCurveElements) + " elements)");
   const JsonCursor mc = b["material"];
   if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
   const JsonCursor mat = materials[mc.as_string()];
@@ -609,6 +615,12 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   const JsonCursor sc = b["surface"];
   ctx.surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
   if (ctx.surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
+  // A shell costs about 50 KB per control point to set up (its element matrices): the bound
+  // of constructed surfaces holds for explicit ones too (docs/model_format.md).
+  if (const long n = static_cast<long>(ctx.surface->num_u()) * ctx.surface->num_v();
+      n > kMaxSurfaceControlPoints)
+    sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
+            std::to_string(kMaxSurfaceControlPoints) + " of a shell body");
   const JsonCursor mc = b["material"];
   if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
   const JsonCursor mat = materials[mc.as_string()];

@@ -699,7 +699,7 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
   e = construction_error(R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
       "radius": 1, "refine": {"subdivide": 1024}}})");
   CHECK(e.pointer() == "/geometry/shell/refine");
-  CHECK_THAT(e.message(), Catch::Contains("10000"));
+  CHECK_THAT(e.message(), Catch::Contains(std::to_string(kMaxSurfaceControlPoints)));
   e = construction_error(R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
       "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 2}})");
   CHECK(e.pointer() == "/geometry/t/minor_radius");

@@ -245,3 +245,29 @@ TEST_CASE("analysis: bad shell input names the file, the JSON path and the value
   CHECK_THAT(error([](Json& d) { d["solver"]["divergence_ratio"] = 0.5; }),
              Catch::Contains("m.json: /solver/divergence_ratio: must be > 1, got 0.5"));
 }
+
+TEST_CASE(
+    "analysis: a shell body on an explicit NURBS surface above the size limit is refused "
+    "at its surface key",
+    "[iga][analysis][shell]") {
+  const Json base = read_json_file(kData + "scordelis_lo.json");
+  // A bilinear net of 201 x 201 points, one row above the limit of 40,000 (a net at the limit
+  // would be set up: some 2 GB, too much for a test).
+  auto flat = [](int n) {
+    Json s = {{"type", "nurbs_surface"}, {"degree", {1, 1}}};
+    Json ku = Json::array({0.0, 0.0});
+    for (int i = 1; i < n - 1; ++i) ku.push_back(static_cast<double>(i) / (n - 1));
+    ku.push_back(1.0);
+    ku.push_back(1.0);
+    s["knots"] = {{"u", ku}, {"v", ku}};
+    Json cp = Json::array();
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) cp.push_back({i, j, 0});
+    s["control_points"] = cp;
+    return s;
+  };
+  auto with_surface = [&](int n) { return [&, n](Json& d) { d["geometry"]["roof"] = flat(n); }; };
+  const std::string big = test::analysis_error(base, with_surface(201));
+  CHECK_THAT(big, Catch::Contains("m.json: /bodies/roof/surface: the surface has 40401 control "
+                                  "points, above the limit of 40000 of a shell body"));
+}
