@@ -1,8 +1,8 @@
 // JSON input with errors that name file, path, value and expectation; readable JSON output.
-// A first SAX pass over the text tracks the JSON path so that syntax errors, overflowing
-// numbers, duplicate keys and the limits of json_reader.hpp (depth, number of values) are
-// reported where they are; the document is then parsed into an order-preserving
-// nlohmann::ordered_json. Nothing recursive sees a document before the pass accepted it.
+// One SAX pass over the text tracks the JSON path so that syntax errors, overflowing numbers,
+// duplicate keys and the limits of json_reader.hpp (depth, number of values) are reported
+// where they are, and builds the order-preserving nlohmann::ordered_json on the way. Nothing
+// recursive sees a document before the pass accepted it.
 #include "geometry/json_reader.hpp"
 
 #include <cerrno>
@@ -78,8 +78,11 @@ std::string bare_message(const std::string& what) {
   return m;
 }
 
-/// SAX handler that builds nothing: it keeps the JSON path of the current position, rejects
-/// duplicate keys and records where a parse error happened.
+/// SAX handler that builds the document while it keeps the JSON path of the current position,
+/// rejects duplicate keys, enforces the limits (depth, number of values) and records where a
+/// parse error happened. Keys are appended to objects without the linear search of
+/// ordered_json's own insertion (duplicates are excluded here by a hash set), so an object
+/// with millions of keys costs linear, not quadratic, time.
 class PathTracker final : public nlohmann::json_sax<Json> {
  public:
   struct Frame {
@@ -88,20 +91,23 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     std::string key;        // current key of an object
     bool has_key = false;
     std::unordered_set<std::string> keys;
+    Json* value = nullptr;  // the array or object being filled
   };
 
   enum class Limit { none, depth, values };
 
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
+  bool null() override { return value(Json(nullptr)); }
+  bool boolean(bool b) override { return value(Json(b)); }
+  bool number_integer(number_integer_t x) override { return value(Json(x)); }
+  bool number_unsigned(number_unsigned_t x) override { return value(Json(x)); }
+  bool number_float(number_float_t x, const string_t&) override { return value(Json(x)); }
+  bool string(string_t& x) override { return value(Json(std::move(x))); }
+  bool binary(binary_t&) override { return value(Json(nullptr)); }  // not in JSON text
   bool start_object(std::size_t) override {
     if (!enter()) return false;
-    stack_.push_back(Frame{});
+    Frame f;
+    f.value = insert(Json::object());
+    stack_.push_back(std::move(f));
     return true;
   }
   bool key(string_t& k) override {
@@ -123,6 +129,7 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     if (!enter()) return false;
     Frame f;
     f.array = true;
+    f.value = insert(Json::array());
     stack_.push_back(std::move(f));
     return true;
   }
@@ -138,6 +145,9 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     error_id_ = ex.id;
     return false;
   }
+
+  /// The document read (complete once sax_parse returned true).
+  Json take() { return std::move(root_); }
 
   JsonPointer pointer() const {
     JsonPointer p;
@@ -175,7 +185,30 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     }
     return true;
   }
-  bool value() { return count() && advance(); }
+  bool value(Json v) {
+    if (!count()) return false;
+    insert(std::move(v));
+    return advance();
+  }
+  /// Puts v where the parser is: the root, the next array element or the current key's value.
+  /// The pointers on the stack stay valid: a container only grows while it is the innermost.
+  Json* insert(Json v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Frame& f = stack_.back();
+    if (f.array) {
+      auto& a = f.value->get_ref<Json::array_t&>();
+      a.push_back(std::move(v));
+      return &a.back();
+    }
+    // ordered_map is a vector of pairs: append, the hash set has excluded duplicates.
+    using Pairs = std::vector<std::pair<const std::string, Json>>;
+    Pairs& o = f.value->get_ref<Json::object_t&>();
+    o.emplace_back(f.key, std::move(v));
+    return &o.back().second;
+  }
   /// One value of the enclosing array or object is complete.
   bool advance() {
     if (!stack_.empty()) {
@@ -189,6 +222,7 @@ class PathTracker final : public nlohmann::json_sax<Json> {
   }
   std::vector<Frame> stack_;
   std::size_t values_ = 0;
+  Json root_;
 };
 
 /// Byte offset of the array or object that opens nesting level `depth` + 1 (the first level
@@ -264,7 +298,7 @@ Json parse_json_text(const std::string& text, const std::string& file) {
                      "malformed JSON at " + at_text + ": " +
                          abbreviate(bare_message(tracker.error_message_), 200, 20));
   }
-  return Json::parse(first, last);  // cannot fail after the SAX pass
+  return tracker.take();
 }
 
 std::string read_model_text(const std::string& path, std::size_t max_bytes) {

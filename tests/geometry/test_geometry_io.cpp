@@ -510,6 +510,26 @@ TEST_CASE("json_reader: a document holds at most 10 million values",
   CHECK(e.pointer() == "/9999999");
 }
 
+TEST_CASE("json_reader: an object with many keys is read in linear time, in file order",
+          "[geometry][io][limits]") {
+  // ordered_json inserts a key after a linear search for it: 5 million keys (a 64 MB file)
+  // took hours. The reader appends (duplicates are excluded by its own hash set).
+  constexpr int n = 300000;
+  std::string text = "{";
+  for (int i = 0; i < n; ++i)
+    text += (i ? ",\"k" : "\"k") + std::to_string(n - i) + "\": " + std::to_string(i);
+  text += "}";
+  const auto t0 = std::chrono::steady_clock::now();
+  const Json j = parse_json_text(text, "keys.json");
+  CHECK(seconds_since(t0) < 10.0);  // well under a second; the quadratic insertion took minutes
+  REQUIRE(j.size() == static_cast<std::size_t>(n));
+  CHECK(j.begin().key() == "k300000");  // file order, not sorted
+  CHECK(j.at("k1") == n - 1);
+  CHECK(parse_error_of(text.substr(0, text.size() - 1) + ", \"k17\": 0}")
+            .message()
+            .find("duplicate key \"k17\"") == 0);
+}
+
 TEST_CASE("json_reader: messages serialize only what they show of a value",
           "[geometry][io][errors][limits]") {
   // A large array as the root: the type error shows about 60 characters of it.
