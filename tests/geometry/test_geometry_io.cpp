@@ -487,7 +487,7 @@ TEST_CASE("json_reader: nesting is limited to 256 levels with a located error",
   CHECK(parse_error_of(objects).pointer().rfind("/k/k/k", 0) == 0);
 }
 
-TEST_CASE("json_reader: an unclosed 1 MB [[[[ is rejected quickly with a located error",
+TEST_CASE("json_reader: an unclosed 1 MB run of opening brackets is rejected quickly with a located error",
           "[geometry][io][errors][limits]") {
   // Rejected in 52 s before: the error path built a million-level pointer, quadratically.
   const auto t0 = std::chrono::steady_clock::now();
