@@ -10,7 +10,8 @@
 //   capstan MODEL.json --out DIR --max-error 0.005
 //   capstan --profile                          time shares: assembly, contact, linear solves
 //
-// Writes to --out (default out/capstan): capstan.csv (case,mu,phi,T_ratio,exact,rel_error),
+// Writes to --out (default out/capstan): capstan.csv (case,sweep,mu,phi,T_ratio,exact,rel_error,
+// pull,status: one row per case, a case without full slip with its status and empty T_ratio),
 // capstan_steps.csv (every converged step), model_used.json, capstan.png (plot), and for each
 // case <case>_rod.vtk (centre line with axial force and curvature) and <case>_contact.vtk
 // (contact points with N, T, B, slip) for ParaView. The sweep driver: apps/rope_sweep.hpp.

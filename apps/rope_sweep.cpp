@@ -8,10 +8,12 @@
 #include <iomanip>
 #include <iostream>
 #include <numbers>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
 #include "iga/analysis.hpp"
+#include "iga/output_format.hpp"
 
 namespace iga::app {
 
@@ -21,8 +23,8 @@ namespace fs = std::filesystem;
 constexpr double kPi = std::numbers::pi;
 
 struct Case {
-  std::string sweep;  ///< the CSV's case column: the model's sweep name or "c" (command line)
-  std::string name;   ///< file stem: sweep + index
+  std::string sweep;  ///< the CSV's sweep column: the model's sweep name or "c" (command line)
+  std::string name;   ///< the CSV's case column and file stem: sweep + index
   double mu = 0.0, phi_deg = 0.0, pitch = 0.0;
 };
 
@@ -30,7 +32,19 @@ struct Case {
 struct Pointers {
   JsonPointer T0, mu, phi_deg, pitch, rho;
   Json reaction_point;
+  std::optional<JsonPointer> pull;  ///< the pulled end's displacement magnitude (app/pull)
+  double max_pull = 0.0;            ///< how far a case may be pulled on (app/max_pull)
 };
+
+/// A number of the model named by an app pointer that must be > 0; the error names the value's
+/// own path and the app key that points there.
+double positive_at(const Json& doc, const std::string& file, const JsonPointer& p, const char* key,
+                   const char* why) {
+  const double v = doc.at(p).get<double>();
+  if (!(v > 0.0))
+    JsonCursor(doc.at(p), file, p).fail(std::string("must be > 0 (app/") + key + ": " + why + ")");
+  return v;
+}
 
 JsonPointer pointer(const JsonCursor& app, const char* key, const Json& doc) {
   const JsonCursor c = app[key];
@@ -93,10 +107,27 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   const JsonCursor root(doc, model_file);
   if (!root.has("app")) root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");
   const JsonCursor app = root["app"];
-  app.expect_object({"T0", "mu", "phi_deg", "pitch", "centre_radius", "reaction_point", "sweeps", "quick"});
-  Pointers ptr{pointer(app, "T0", doc), pointer(app, "mu", doc), pointer(app, "phi_deg", doc),
-               pointer(app, "pitch", doc), pointer(app, "centre_radius", doc),
-               app["reaction_point"].json()};
+  app.expect_object({"T0", "mu", "phi_deg", "pitch", "centre_radius", "reaction_point", "pull",
+                     "max_pull", "sweeps", "quick", "description"});
+  Pointers ptr{pointer(app, "T0", doc),
+               pointer(app, "mu", doc),
+               pointer(app, "phi_deg", doc),
+               pointer(app, "pitch", doc),
+               pointer(app, "centre_radius", doc),
+               app["reaction_point"].json(),
+               std::nullopt,
+               0.0};
+  // T / T0 is the result: T0 = 0 would make every ratio infinite.
+  positive_at(doc, model_file, ptr.T0, "T0", "the result is T / T0");
+  positive_at(doc, model_file, ptr.rho, "centre_radius", "the centre line's radius in (83)");
+  if (app.has("pull")) {  // a case that reaches t_end without full slip is pulled further
+    ptr.pull = pointer(app, "pull", doc);
+    const double pull =
+        positive_at(doc, model_file, *ptr.pull, "pull", "the pulled end's displacement");
+    const JsonCursor m = app["max_pull"];
+    ptr.max_pull = m.as_number();
+    if (!(ptr.max_pull >= pull)) m.fail("must be >= the model's pull " + csv_number(pull));
+  }
   doc["output"]["reactions"] = Json::array({ptr.reaction_point});
   (void)Analysis::from_json(doc, model_file);  // validates the whole model before any case runs
 
@@ -108,11 +139,19 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     int k = 0;
     for (double mu : mu_list)
       for (double phi : phi_list)
-        for (double H : pitch_list) cases.push_back({"c", std::string("c").append(std::to_string(++k)), mu, phi, H});
+        for (double H : pitch_list)
+          cases.push_back({"c", std::string("c").append(std::to_string(++k)), mu, phi, H});
   } else {
     cases = sweeps_from(quick ? app["quick"] : app["sweeps"], doc, ptr);
   }
   if (cases.empty()) throw std::invalid_argument("no cases to run");
+  for (const Case& c : cases) {  // every case is valid before the first one runs
+    Json d = doc;
+    d[ptr.mu] = c.mu;
+    d[ptr.phi_deg] = c.phi_deg;
+    d[ptr.pitch] = c.pitch;
+    (void)Analysis::from_json(d, model_file);
+  }
 
   // 3. Output folder and the model used.
   const fs::path dir(out);
@@ -120,9 +159,11 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   std::ofstream(dir / "model_used.json") << format_json(doc) << "\n";
   std::ofstream csv(dir / (ra.name + ".csv")), steps(dir / (ra.name + "_steps.csv"));
   if (!csv || !steps) throw std::runtime_error("cannot write to " + out);
-  csv << (ra.pitch_column ? "case,mu,phi,pitch,T_ratio,exact,rel_error\n" : "case,mu,phi,T_ratio,exact,rel_error\n")
-      << std::setprecision(10);
-  steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n" << std::setprecision(10);
+  // One row per case, failed ones included (status other than full_slip, T_ratio and rel_error
+  // empty); csv_number never writes nan or inf.
+  csv << (ra.pitch_column ? "case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,status\n"
+                          : "case,sweep,mu,phi,T_ratio,exact,rel_error,pull,status\n");
+  steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n";
 
   // 4. Each case; rows are written as they finish (a failure keeps what is done).
   const auto t_start = std::chrono::steady_clock::now();
@@ -134,40 +175,66 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     d[ptr.mu] = c.mu;
     d[ptr.phi_deg] = c.phi_deg;
     d[ptr.pitch] = c.pitch;
-    Analysis a = Analysis::from_json(d, model_file);
     const double T0 = d.at(ptr.T0).get<double>(), rho = d.at(ptr.rho).get<double>();
     const double phi = c.phi_deg * kPi / 180.0, cH = c.pitch / (2.0 * kPi);
     const double exact = std::exp(c.mu * phi * rho / std::sqrt(rho * rho + cH * cH));  // (83)
-    const AnalysisResult r = a.run(verbose ? &std::cout : nullptr);
-    steps_total += r.solver.steps;
-    iterations_total += r.solver.total_iterations;
-    t_solver += r.solver.time_total;
-    t_assembly += r.solver.time_assembly;
-    t_contact += r.contact_time;
-    t_linear += r.solver.time_linear_solve;
+    // Pull until the whole arc slides: a case that reaches t_end without full slip is run again
+    // with twice the pull, up to app/max_pull.
+    double pull = ptr.pull ? d.at(*ptr.pull).get<double>() : 0.0;
+    std::optional<Analysis> a;
+    AnalysisResult r;
+    for (;;) {
+      a.emplace(Analysis::from_json(d, model_file));
+      r = a->run(verbose ? &std::cout : nullptr);
+      steps_total += r.solver.steps;
+      iterations_total += r.solver.total_iterations;
+      t_solver += r.solver.time_total;
+      t_assembly += r.solver.time_assembly;
+      t_contact += r.contact_time;
+      t_linear += r.solver.time_linear_solve;
+      if (r.full_slip || !ptr.pull || !r.solver.converged() ||
+          2.0 * pull > ptr.max_pull * (1.0 + 1e-12))
+        break;
+      std::cout << "  " << c.name << ": no full slip at the pull " << pull << ": pulling on to "
+                << 2.0 * pull << "\n";
+      pull *= 2.0;
+      d[*ptr.pull] = pull;
+    }
     for (const AnalysisStep& s : r.steps)
-      steps << c.name << "," << c.mu << "," << phi << "," << c.pitch << "," << s.t << ","
-            << s.reactions[0].norm() / T0 << "," << s.contact.active << "," << s.contact.stick << ","
-            << s.contact.slip << "," << s.iterations << "\n";
+      steps << c.name << "," << csv_number(c.mu, 10) << "," << csv_number(phi, 10) << ","
+            << csv_number(c.pitch, 10) << "," << csv_number(s.t, 10) << ","
+            << csv_number(s.reactions[0].norm() / T0, 10) << "," << s.contact.active << ","
+            << s.contact.stick << "," << s.contact.slip << "," << s.iterations << "\n";
     steps.flush();
-    if (!r.full_slip || r.steps.empty()) {
+    const bool ok = r.full_slip && !r.steps.empty();
+    const double T_ratio = ok ? r.steps.back().reactions[0].norm() / T0 : 0.0,
+                 rel = T_ratio / exact - 1.0;
+    std::string status = ok                     ? "full_slip"
+                         : r.solver.converged() ? "no_full_slip"
+                                                : to_string(r.solver.status);
+    csv << c.name << "," << c.sweep << "," << csv_number(c.mu, 10) << "," << csv_number(phi, 10)
+        << ",";
+    if (ra.pitch_column) csv << csv_number(c.pitch, 10) << ",";
+    csv << (ok ? csv_number(T_ratio, 10) : "") << "," << csv_number(exact, 10) << ","
+        << (ok ? csv_number(rel, 10) : "") << "," << (ptr.pull ? csv_number(pull, 10) : "") << ","
+        << status << std::endl;
+    if (!ok) {
       ++failed;
-      std::cout << "  " << c.name << ": mu " << c.mu << " phi " << c.phi_deg << " deg pitch " << c.pitch
-                << ": no full slip reached (" << to_string(r.solver.status) << ": " << r.solver.message << ")\n";
+      std::cout << "  " << c.name << ": mu " << c.mu << " phi " << c.phi_deg << " deg pitch "
+                << c.pitch << ": no full slip reached (" << status << ": " << r.solver.message;
+      if (ptr.pull && r.solver.converged())
+        std::cout << "; pulled up to " << pull << ", the limit app/max_pull is " << ptr.max_pull;
+      std::cout << ")\n";
       continue;
     }
-    const double T_ratio = r.steps.back().reactions[0].norm() / T0, rel = T_ratio / exact - 1.0;
-    csv << c.sweep << "," << c.mu << "," << phi << ",";
-    if (ra.pitch_column) csv << c.pitch << ",";
-    csv << T_ratio << "," << exact << "," << rel << std::endl;
     worst = std::max(worst, std::abs(rel));
-    a.write_vtk(dir.string(), c.name, r.u, r.solver.t);
-    std::cout << "  " << std::left << std::setw(4) << c.name << " mu " << std::setw(5) << c.mu << " phi "
-              << std::setw(5) << c.phi_deg << " deg";
+    a->write_vtk(dir.string(), c.name, r.u, r.solver.t);
+    std::cout << "  " << std::left << std::setw(4) << c.name << " mu " << std::setw(5) << c.mu
+              << " phi " << std::setw(5) << c.phi_deg << " deg";
     if (ra.pitch_column) std::cout << " pitch " << std::setw(5) << c.pitch;
     std::cout << "   T/T0 " << std::setw(10) << T_ratio << " exact " << std::setw(10) << exact
-              << " rel_error " << std::showpos << rel << std::noshowpos << "   steps " << r.solver.steps
-              << ", Newton " << r.solver.total_iterations << "\n";
+              << " rel_error " << std::showpos << rel << std::noshowpos << "   steps "
+              << r.solver.steps << ", Newton " << r.solver.total_iterations << "\n";
   }
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 

@@ -7,7 +7,11 @@
 //
 // The model's "app" section names, by JSON pointers into the model, where T0, mu, phi (degrees),
 // H and rho are, and which control point's reaction is the pulled end's tension; "sweeps" and
-// "quick" give the cases. Command line:
+// "quick" give the cases. Optional "pull" (a pointer to the pulled end's displacement) and
+// "max_pull": a case that reaches t_end without full slip is run again with twice the pull,
+// up to max_pull. T0 and rho must be > 0 (checked before any case runs, as is every case's
+// model). The CSV has one row per case (case name, sweep, ..., pull, status), failed cases
+// included with an empty T_ratio. Command line:
 //   APP [MODEL.json] [--mu LIST] [--phi-deg LIST] [--pitch LIST] [--set /ptr=value]...
 //       [--out DIR] [--quick] [--max-error X] [--profile] [--verbose]
 // Exit status: 0 ok, 1 bad input, 2 a bad command line or a case that did not reach full slip,

@@ -41,6 +41,7 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -335,12 +336,25 @@ int main(int argc, char** argv) try {
       app.runs.push_back({mu, mu > 0.0 ? eps_n : 0.0, run_name(mu)});
     }
   }
-  {  // snapshot times become step ends, the last one is t_end
-    Json& hits = doc["solver"]["hit_times"];
-    hits = Json::array();
-    for (double t : app.snapshots) hits.push_back(t);
+  {  // snapshot times inside (0, t_end) become step ends (the last one is t_end itself)
+    const JsonPointer t_end_ptr("/solver/t_end");
+    const double t_end = doc.contains(t_end_ptr) && doc.at(t_end_ptr).is_number()
+                             ? doc.at(t_end_ptr).get<double>()
+                             : 1.0;
+    const JsonCursor snaps = JsonCursor(doc, model_file)["app"]["snapshots"];
+    Json hits = Json::array();
+    for (std::size_t k = 0; k < app.snapshots.size(); ++k) {
+      const double t = app.snapshots[k];
+      if (!(t > 0.0 && t <= t_end))
+        snaps[k].fail("must lie in (0, t_end] = (0, " + std::to_string(t_end) + "]");
+      if (t < t_end) hits.push_back(t);
+    }
+    doc["solver"]["hit_times"] = hits;
   }
   const Analysis probe = Analysis::from_json(doc, model_file);  // validates the whole model
+  // The sticking-circle check's model is read and validated now, before any run.
+  std::optional<BlockModel> block_model;
+  if (!app.block_model.empty()) block_model = read_block_model(app.block_model);
   const double t_end = probe.solver_settings().t1;
   const double a = doc.at(app.a).get<double>();
   const std::vector<double> load_vec = doc.at(app.load).get<std::vector<double>>();
@@ -461,8 +475,8 @@ int main(int argc, char** argv) try {
   }
 
   // 4. The sticking-circle check (79)-(81): per frictional run, the block at radii around mu/a.
-  if (!app.block_model.empty()) {
-    const BlockModel bm = read_block_model(app.block_model);
+  if (block_model) {
+    const BlockModel& bm = *block_model;
     const std::string strat = doc.at(app.strategy).get<std::string>();
     std::ofstream bcsv(dir / "saddle_blocks.csv");
     bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_points,state,"

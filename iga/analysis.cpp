@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "iga/model.hpp"
+#include "iga/output_format.hpp"
 #include "iga/vtk_writer.hpp"
 
 namespace iga {
@@ -19,6 +20,15 @@ namespace iga {
 namespace {
 
 namespace fs = std::filesystem;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+
+/// Largest accepted "t_end" (pseudo-time).
+constexpr double kMaxEndTime = 1e6;
 
 double positive(const JsonCursor& c, bool allow_zero = false) {
   const double x = c.as_number();
@@ -97,6 +107,22 @@ LoadCurve parse_load_curve(const JsonCursor& c) {
     const double s = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
     return (1.0 - s) * vs[k - 1] + s * vs[k];
   };
+}
+
+/// A load curve whose value is not finite somewhere in [t0, t1] (an exponential or a scaled
+/// ramp that overflows) is refused: no output may hold a non-finite number. Ramps and
+/// exponentials are monotone and piecewise linear curves are bounded by their points, so the
+/// ends decide; the samples in between are a guard.
+void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const NonlinearSolverSettings& s) {
+  constexpr int n = 64;
+  std::vector<double> ts = s.hit_times;
+  for (int k = 0; k <= n; ++k) ts.push_back(s.t0 + (s.t1 - s.t0) * k / n);
+  for (double t : ts) {
+    const double v = f(t);
+    if (!std::isfinite(v))
+      c.fail_plain("the load curve must be finite over the run's pseudo-time [" + fmt(s.t0) + ", " +
+                   fmt(s.t1) + "], got " + fmt(v) + " at t = " + fmt(t));
+  }
 }
 
 struct Context {
@@ -399,12 +425,19 @@ RodSection parse_rod_material(const JsonCursor& m) {
 
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
-                   "tol_residual_rel", "tol_residual_abs", "tol_energy_rel", "divergence_ratio",
-                   "max_residual_increases", "stop_at_full_slip_after", "hit_times",
-                   "easy_iterations", "growth_factor", "cutback_factor", "description"});
+                   "tol_residual_rel", "tol_residual_abs", "tol_residual_scaled", "tol_energy_rel",
+                   "divergence_ratio", "max_residual_increases", "stop_at_full_slip_after",
+                   "hit_times", "easy_iterations", "growth_factor", "cutback_factor",
+                   "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
-  if (s.has("t_end")) n.t1 = positive(s["t_end"]);
+  if (s.has("t_end")) {
+    n.t1 = positive(s["t_end"]);
+    // Pseudo-time is a load parameter, not a physical time: scale the load curves instead.
+    if (n.t1 > kMaxEndTime)
+      s["t_end"].fail("must be at most " + fmt(kMaxEndTime) +
+                      " (pseudo-time; scale the load curves instead)");
+  }
   n.initial_step = s.has("initial_step") ? positive(s["initial_step"]) : 0.1 * n.t1;
   n.max_step = s.has("max_step") ? positive(s["max_step"]) : n.t1;
   n.min_step = s.has("min_step") ? positive(s["min_step"]) : 1e-6 * n.t1;
@@ -420,6 +453,8 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   }
   if (s.has("tol_residual_rel")) n.tol_residual_rel = positive(s["tol_residual_rel"]);
   if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
+  if (s.has("tol_residual_scaled"))
+    n.tol_residual_scaled = positive(s["tol_residual_scaled"], true);
   if (s.has("tol_energy_rel")) n.tol_energy_rel = positive(s["tol_energy_rel"], true);
   if (s.has("divergence_ratio")) {  // a step fails when |R_k| > divergence_ratio |R_0|
     const JsonCursor c = s["divergence_ratio"];
@@ -440,8 +475,12 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
   if (s.has("growth_factor")) n.growth_factor = positive(s["growth_factor"]);
   if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);
   if (s.has("hit_times")) {  // times the steps land on (snapshots)
-    s["hit_times"].expect_array();
-    n.hit_times = s["hit_times"].as_numbers();
+    const JsonCursor h = s["hit_times"];
+    h.expect_array();
+    n.hit_times = h.as_numbers();
+    for (std::size_t k = 0; k < n.hit_times.size(); ++k)
+      if (!(n.hit_times[k] > n.t0 && n.hit_times[k] < n.t1))
+        h[k].fail("must lie inside (0, t_end) = (0, " + fmt(n.t1) + ")");
   }
   try {
     n.validate();
@@ -491,12 +530,6 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
     if (out.samples_per_element < 1 || out.samples_per_element > 1000) c.fail("must be in 1..1000");
   }
   return out;
-}
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
 }
 
 }  // namespace
@@ -602,6 +635,10 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
                      "points_per_direction", "search_distance", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
+    for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
+      if (piece == ctx.surface)
+        c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
+                        "\"; the rigid surface must be another surface");
     SurfaceContactParameters cp;
     penalty_and_friction(c, cp);
     if (c.has("strategy"))
@@ -685,6 +722,10 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     a.problem_ = std::move(p);
   }
   if (root.has("solver")) a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_);
+  // Every load curve, used or not (steps.csv has a column for each), must stay finite over the
+  // run's pseudo-time.
+  for (const auto& [name, curve] : a.curves_)
+    check_finite_curve(root["load_curves"][name], curve, a.settings_);
   if (root.has("output")) a.output_ = parse_output(root["output"], ctx);
   if (a.output_.samples_per_element == 0)
     a.output_.samples_per_element = ctx.kind == BodyKind::kRod ? 16 : 4;
@@ -771,23 +812,35 @@ std::vector<Vector3d> Analysis::reactions(const VectorXd& u, double t) {
 
 namespace {
 
-/// The rod's centre line sampled per element, with axial force and curvature.
+/// The rod's centre line sampled per element, with axial force and curvature. A sample where
+/// the strains cannot be evaluated (a zero tangent, e.g. at an end whose first two control
+/// points coincide) gets zero force and curvature and the flag singular = 1.
 void write_rod_vtk(const std::string& path, const KirchhoffRod& rod, const std::vector<Vector3d>& x,
                    int samples, const std::string& title) {
   std::vector<Vector3d> line;
-  std::vector<double> force, curvature;
+  std::vector<double> force, curvature, singular;
   for (int e = 0; e < rod.num_elements(); ++e) {
     const Interval I = rod.element_range(e);
     for (int k = (e == 0 ? 0 : 1); k <= samples; ++k) {
       const double xi = I.lo + (I.hi - I.lo) * k / samples;
       line.push_back(rod.point(xi, x));
-      const RodStrains s = rod.strains(xi, x);
-      force.push_back(s.axial_force);
-      curvature.push_back(s.curvature);
+      double n = 0.0, kappa = 0.0;
+      bool ok = true;
+      try {
+        const RodStrains st = rod.strains(xi, x);
+        n = st.axial_force;
+        kappa = st.curvature;
+        ok = std::isfinite(n) && std::isfinite(kappa);
+      } catch (const std::exception&) {
+        ok = false;
+      }
+      force.push_back(ok ? n : 0.0);
+      curvature.push_back(ok ? kappa : 0.0);
+      singular.push_back(ok ? 0.0 : 1.0);
     }
   }
   VtkPointData d;
-  d.scalars = {{"axial_force", force}, {"curvature", curvature}};
+  d.scalars = {{"axial_force", force}, {"curvature", curvature}, {"singular", singular}};
   write_vtk_polydata(path, line, true, d, title);
 }
 
@@ -800,27 +853,43 @@ std::vector<double> span_samples(const std::vector<double>& breaks, int samples)
   return s;
 }
 
-/// The shell's surface sampled per element, with displacement, normal and stress resultants.
+/// The shell's surface sampled per element, with displacement, normal and stress resultants. A
+/// sample where the normal or the stresses cannot be evaluated (a degenerate point: a collapsed
+/// edge, a pole) gets a zero normal and zero stresses and the flag singular = 1.
 void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
                      const std::vector<Vector3d>& x, int samples, const std::string& title) {
   const NurbsSurface& S = shell.reference();
   const std::vector<double> us = span_samples(S.knots_u().breaks(), samples);
   const std::vector<double> vs = span_samples(S.knots_v().breaks(), samples);
   std::vector<Vector3d> pts, disp, normal, nloc, mloc;
-  std::vector<double> von_mises;
+  std::vector<double> von_mises, singular;
   for (double v : vs)
     for (double u : us) {
       const Vector3d p = shell.point(u, v, x);
       pts.push_back(p);
       disp.push_back(p - S.point(u, v));
-      normal.push_back(shell.normal(u, v, x));
-      const ShellStresses st = shell.stresses(u, v, x);
-      nloc.push_back(st.membrane_force_local);
-      mloc.push_back(st.moment_local);
-      von_mises.push_back(st.von_mises);
+      Vector3d nrm = Vector3d::Zero(), nl = Vector3d::Zero(), ml = Vector3d::Zero();
+      double vm = 0.0;
+      bool ok = true;
+      try {
+        nrm = shell.normal(u, v, x);
+        const ShellStresses st = shell.stresses(u, v, x);
+        nl = st.membrane_force_local;
+        ml = st.moment_local;
+        vm = st.von_mises;
+        ok = nrm.allFinite() && nrm.norm() > 0.5 && nl.allFinite() && ml.allFinite() &&
+             std::isfinite(vm);
+      } catch (const std::exception&) {
+        ok = false;
+      }
+      normal.push_back(ok ? nrm : Vector3d::Zero());
+      nloc.push_back(ok ? nl : Vector3d::Zero());
+      mloc.push_back(ok ? ml : Vector3d::Zero());
+      von_mises.push_back(ok ? vm : 0.0);
+      singular.push_back(ok ? 0.0 : 1.0);
     }
   VtkPointData d;
-  d.scalars = {{"von_mises", von_mises}};
+  d.scalars = {{"von_mises", von_mises}, {"singular", singular}};
   d.vectors = {{"displacement", disp}, {"normal", normal},
                {"membrane_force_N11_N22_N12", nloc}, {"moment_M11_M22_M12", mloc}};
   write_vtk_grid(path, pts, static_cast<int>(us.size()), static_cast<int>(vs.size()), d, title);
@@ -912,6 +981,10 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   std::ofstream csv;
   std::unique_ptr<VtkCollection> pvd_body, pvd_contact;
   const std::string body_file = rod_ ? "rod" : "shell";
+  // An error after the start (output of a converged step, the problem's history update, the
+  // user's callback, the last ParaView files) ends the run with status `failed` and this message;
+  // summary.json and the rows written so far stay.
+  std::string error;
   if (!out_dir.empty()) {
     fs::create_directories(out_dir);
     csv.open(fs::path(out_dir) / "steps.csv");
@@ -922,11 +995,17 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     for (const AnalysisMonitor& m : output_.monitors)
       for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
     for (const auto& [name, curve] : curves_) csv << "," << name;
-    csv << "\n" << std::setprecision(12);
+    csv << "\n";
     if (output_.vtk != AnalysisOutput::Vtk::kNone) {
-      pvd_body = std::make_unique<VtkCollection>((fs::path(out_dir) / (body_file + ".pvd")).string());
-      if (has_contact()) pvd_contact = std::make_unique<VtkCollection>((fs::path(out_dir) / "contact.pvd").string());
-      write_rigid_vtk(out_dir, "rigid");
+      pvd_body =
+          std::make_unique<VtkCollection>((fs::path(out_dir) / (body_file + ".pvd")).string());
+      if (has_contact())
+        pvd_contact = std::make_unique<VtkCollection>((fs::path(out_dir) / "contact.pvd").string());
+      try {
+        write_rigid_vtk(out_dir, "rigid");
+      } catch (const std::exception& e) {
+        error = std::string("writing the rigid surface's ParaView file: ") + e.what();
+      }
     }
   }
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
@@ -936,54 +1015,84 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   };
   VectorXd u = VectorXd::Zero(problem_->num_dofs());
   auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
-    AnalysisStep st;
-    st.t = t;
-    st.iterations = at.iterations;
-    st.contact = contact_counts();
-    if (!output_.reactions.empty()) st.reactions = reactions(uc, t);
-    for (const AnalysisMonitor& m : output_.monitors) st.displacements.push_back(displacement(m, uc, t));
-    res.steps.push_back(st);
-    if (csv.is_open()) {
-      csv << res.steps.size() << "," << t << "," << st.iterations << "," << st.contact.active << ","
-          << st.contact.stick << "," << st.contact.slip;
-      for (const Vector3d& r : st.reactions) csv << "," << r.x() << "," << r.y() << "," << r.z() << "," << r.norm();
-      for (const Vector3d& d : st.displacements) csv << "," << d.x() << "," << d.y() << "," << d.z();
-      for (const auto& [name, curve] : curves_) csv << "," << curve(t);
-      csv << std::endl;  // flushed: a run that stops midway keeps its rows
-      if (output_.vtk == AnalysisOutput::Vtk::kAll)
-        vtk(uc, t, "step" + std::to_string(res.steps.size()));
-    }
-    if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
-      const bool sliding = contact_mu() == 0.0 ||
-                           (st.contact.active > 0 && st.contact.slip == st.contact.active);
-      if (sliding) {
-        res.full_slip = true;
-        if (log) *log << "full slip at t = " << t << ": stopping\n";
-        return false;
+    try {
+      AnalysisStep st;
+      st.t = t;
+      st.iterations = at.iterations;
+      st.contact = contact_counts();
+      if (!output_.reactions.empty()) st.reactions = reactions(uc, t);
+      for (const AnalysisMonitor& m : output_.monitors)
+        st.displacements.push_back(displacement(m, uc, t));
+      res.steps.push_back(st);
+      if (csv.is_open()) {
+        // csv_number: a non-finite value is an empty cell, never nan or inf.
+        csv << res.steps.size() << "," << csv_number(t) << "," << st.iterations << ","
+            << st.contact.active << "," << st.contact.stick << "," << st.contact.slip;
+        for (const Vector3d& r : st.reactions)
+          csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z())
+              << "," << csv_number(r.norm());
+        for (const Vector3d& d : st.displacements)
+          csv << "," << csv_number(d.x()) << "," << csv_number(d.y()) << "," << csv_number(d.z());
+        for (const auto& [name, curve] : curves_) csv << "," << csv_number(curve(t));
+        csv << std::endl;  // flushed: a run that stops midway keeps its rows
+        if (output_.vtk == AnalysisOutput::Vtk::kAll)
+          vtk(uc, t, "step" + std::to_string(res.steps.size()));
       }
+      if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
+        const bool sliding =
+            contact_mu() == 0.0 || (st.contact.active > 0 && st.contact.slip == st.contact.active);
+        if (sliding) {
+          res.full_slip = true;
+          if (log) *log << "full slip at t = " << t << ": stopping\n";
+          return false;
+        }
+      }
+      return user_callback ? user_callback(uc, t, st) : true;
+    } catch (const std::exception& e) {
+      error = "output of the step at t = " + fmt(t) + ": " + e.what();
+      return false;
     }
-    return user_callback ? user_callback(uc, t, st) : true;
   };
-  res.solver = solver.solve(*problem_, u, on_step);
+  if (error.empty()) {
+    try {
+      res.solver = solver.solve(*problem_, u, on_step);
+    } catch (const std::exception& e) {  // from commit(): u is the last converged state
+      error = e.what();
+      res.solver.t = res.steps.empty() ? settings_.t0 : res.steps.back().t;
+      res.solver.steps = static_cast<int>(res.steps.size());
+    }
+  }
   res.u = u;
   res.contact_time = contact_time();
+  if (!out_dir.empty() && error.empty() && output_.vtk == AnalysisOutput::Vtk::kLast &&
+      !res.steps.empty()) {
+    try {
+      vtk(u, res.solver.t, "last");
+    } catch (const std::exception& e) {
+      error = std::string("writing the ParaView files of the last step: ") + e.what();
+    }
+  }
+  if (!error.empty()) {
+    res.solver.status = NonlinearSolverStatus::failed;
+    res.solver.message = error + "; the state is the last converged one, t = " + fmt(res.solver.t);
+    if (log) *log << "run failed: " << res.solver.message << "\n";
+  }
   if (!out_dir.empty()) {
-    if (output_.vtk == AnalysisOutput::Vtk::kLast && !res.steps.empty()) vtk(u, res.solver.t, "last");
     Json s = Json::object();
     s["name"] = name_;
     s["body"] = rod_ ? "rod" : "shell";
     s["status"] = to_string(res.solver.status);
     s["message"] = res.solver.message;
-    s["t"] = res.solver.t;
+    s["t"] = json_number(res.solver.t);
     s["steps"] = res.solver.steps;
     s["cutbacks"] = res.solver.cutbacks;
     s["newton_iterations"] = res.solver.total_iterations;
     s["dofs"] = problem_->num_dofs();
     s["full_slip"] = res.full_slip;
-    s["time_total_s"] = res.solver.time_total;
-    s["time_assembly_s"] = res.solver.time_assembly;
-    s["time_contact_s"] = res.contact_time;
-    s["time_linear_solve_s"] = res.solver.time_linear_solve;
+    s["time_total_s"] = json_number(res.solver.time_total);
+    s["time_assembly_s"] = json_number(res.solver.time_assembly);
+    s["time_contact_s"] = json_number(res.contact_time);
+    s["time_linear_solve_s"] = json_number(res.solver.time_linear_solve);
     std::ofstream(fs::path(out_dir) / "summary.json") << format_json(s) << "\n";
   }
   return res;

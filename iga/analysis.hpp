@@ -112,7 +112,11 @@ class Analysis {
   /// Runs from the reference state over [settings.t0, settings.t1]. Progress lines go to `log`
   /// (may be null). With a non-empty `out_dir`: steps.csv (one row per converged step, written
   /// as it converges), rod/contact VTK files (+ .pvd collections) as requested, summary.json
-  /// at the end, whatever the outcome. Non-convergence is reported in result.solver.status.
+  /// at the end, whatever the outcome. Non-convergence is reported in result.solver.status;
+  /// an error during the run (writing a step's output or the last ParaView files, the problem's
+  /// history update, `on_step` throwing) ends it with status `failed` and the error in
+  /// result.solver.message, the state and rows of the converged steps kept. Numbers that are
+  /// not finite never reach the files (empty CSV cells, JSON null, VTK flag non_finite).
   /// `on_step` (optional) is called after each converged step.
   AnalysisResult run(std::ostream* log = nullptr, const std::string& out_dir = {},
                      const AnalysisStepCallback& on_step = {});

@@ -10,7 +10,6 @@
 
 namespace iga {
 
-
 CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
                            const ContactParameters& params, int points_per_element)
     : ref_(reference), rigid_(&rigid), params_(params) {
@@ -76,6 +75,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     }
   }
   std::size_t next_cold = 0;
+  near_.clear();
+  bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
     const BasisValues& Rb = basis_[i].R;
@@ -97,7 +98,11 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
     }
     cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history);
-    if (!cp.law.active) continue;
+    if (!cp.law.active) {
+      if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
+      continue;
+    }
+    any_active = true;
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
     for (int a = 0; a <= p; ++a) {
       const int A = first + a;
@@ -134,6 +139,25 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     cp.T = cp.law.T_vector.dot(tangent);  // (69)
     cp.B = cp.law.T_vector.dot(g);        // (70)
   }
+  // No point in contact, some a hair above the surface: the tangent gets their normal penalty
+  // stiffness eps_N n n^T (no force, so the residual and the converged state are unchanged).
+  // Without it a body held only by the contact (a rope pinned at one end, its Gauss points a
+  // round-off above the cylinder it is fitted to) has a rigid mode at the start, and the first
+  // Newton correction is huge (|R| ~ 1e21 with 2 points per element on data/capstan.json).
+  if (K && !any_active)
+    for (int i : near_) {
+      const CurveContactPoint& cp = points_[static_cast<std::size_t>(i)];
+      const BasisValues& Rb = basis_[static_cast<std::size_t>(i)].R;
+      const int first = basis_[static_cast<std::size_t>(i)].first;
+      const Matrix3d kn = params_.eps_n * cp.law.normal * cp.law.normal.transpose();
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= p; ++b) {
+          const Matrix3d k = cp.weight * Rb[a] * Rb[b] * kn;
+          for (int r = 0; r < 3; ++r)
+            for (int j = 0; j < 3; ++j)
+              K->emplace_back(3 * (first + a) + r, 3 * (first + b) + j, k(r, j));
+        }
+    }
 }
 
 void CurveContact::commit() {

@@ -23,12 +23,12 @@ namespace iga {
 
 /// One contact point's state for output.
 struct CurveContactPoint {
-  double eta = 0.0;      ///< curve parameter
-  double weight = 0.0;   ///< quadrature weight times reference ds/deta
-  Vector3d x = Vector3d::Zero();  ///< current position r_s
-  ProjectionResult foot;          ///< its projection (warm start of the next evaluation)
-  ContactPoint law;               ///< the point law's state
-  ContactHistory history;         ///< committed state of the last converged step
+  double eta = 0.0;                  ///< curve parameter
+  double weight = 0.0;               ///< quadrature weight times reference ds/deta
+  Vector3d x = Vector3d::Zero();     ///< current position r_s
+  ProjectionResult foot;             ///< its projection (warm start of the next evaluation)
+  ContactPoint law;                  ///< the point law's state
+  ContactHistory history;            ///< committed state of the last converged step
   double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
 };
 
@@ -61,6 +61,11 @@ class CurveContact {
   /// Default: rope radius + the longest reference element chord.
   double search_distance() const { return search_distance_; }
   void set_search_distance(double d) { search_distance_ = d; }
+  /// A point at most this far above the surface counts as near contact: while no point is in
+  /// contact, the near points add their normal penalty stiffness to the tangent (not to the
+  /// residual), so that a body held only by the contact has no rigid mode at the start.
+  /// 1e-3 of the search distance.
+  double near_distance() const { return 1e-3 * search_distance_; }
   /// Points projected through the broad phase in the last assembly (the others warm-started).
   int broad_phase_points() const { return broad_phase_points_; }
 
@@ -79,8 +84,9 @@ class CurveContact {
   std::vector<PointBasis> basis_;  ///< per point, parallel to points_
   double search_distance_ = 0.0;
   int broad_phase_points_ = 0;
-  std::vector<int> cold_;                 ///< work: points without a warm start
+  std::vector<int> cold_;  ///< work: points without a warm start
   std::vector<Vector3d> cold_x_;
+  std::vector<int> near_;  ///< work: points near contact (see near_distance)
 };
 
 }  // namespace iga

@@ -49,6 +49,8 @@ void NonlinearSolverSettings::validate() const {
   if (max_iterations < 1) bad_setting("max_iterations", ">= 1", max_iterations);
   if (!(tol_residual_rel >= 0.0)) bad_setting("tol_residual_rel", ">= 0", tol_residual_rel);
   if (!(tol_residual_abs >= 0.0)) bad_setting("tol_residual_abs", ">= 0", tol_residual_abs);
+  if (!(tol_residual_scaled >= 0.0))
+    bad_setting("tol_residual_scaled", ">= 0", tol_residual_scaled);
   if (!(tol_residual_rel > 0.0 || tol_residual_abs > 0.0))
     bad_setting("tol_residual_rel", "> 0 (or tol_residual_abs > 0)", tol_residual_rel);
   if (std::isnan(tol_energy_rel)) bad_setting("tol_energy_rel", "a number", tol_energy_rel);
@@ -61,7 +63,7 @@ void NonlinearSolverSettings::validate() const {
   if (max_residual_increases < 0)
     bad_setting("max_residual_increases", ">= 0", max_residual_increases);
   for (double h : hit_times)
-    if (!std::isfinite(h)) bad_setting("hit_times", "finite", h);
+    if (!(h > t0 && h < t1)) bad_setting("hit_times", "inside (t0, t1)", h);
 }
 
 const char* to_string(NewtonOutcome o) {
@@ -76,6 +78,8 @@ const char* to_string(NewtonOutcome o) {
       return "max_iterations";
     case NewtonOutcome::linear_solve_failed:
       return "linear_solve_failed";
+    case NewtonOutcome::assembly_failed:
+      return "assembly_failed";
   }
   return "?";
 }
@@ -90,6 +94,8 @@ const char* to_string(NonlinearSolverStatus s) {
       return "max_steps_reached";
     case NonlinearSolverStatus::stopped:
       return "stopped";
+    case NonlinearSolverStatus::failed:
+      return "failed";
   }
   return "?";
 }
@@ -119,9 +125,18 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
   linear_.set_symmetric(problem.symmetric());
 
+  // Returns |R|, or -1 with `error` set when the problem threw.
+  std::string error;
   const auto assemble = [&] {
     const Clock::time_point t0 = Clock::now();
-    problem.assemble(u, t, w.R, &w.K);
+    try {
+      problem.assemble(u, t, w.R, &w.K);
+    } catch (const std::exception& e) {
+      r.time_assembly += seconds_since(t0);
+      ++r.assemblies;
+      error = e.what();
+      return -1.0;
+    }
     r.time_assembly += seconds_since(t0);
     ++r.assemblies;
     if (w.R.size() != w.n || w.K.rows() != w.n || w.K.cols() != w.n)
@@ -137,6 +152,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   };
 
   const double r0 = assemble();
+  if (r0 < 0.0) return finish(NewtonOutcome::assembly_failed, "assembly of R_0: " + error);
   // Divergence is judged against the run's force scale, not only this step's |R_0|: after a
   // cutback |R_0| shrinks with dt, but a contact point that closes in the step adds a force of
   // the size of the penalty times its gap at once, however small dt is.
@@ -144,7 +160,9 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   const double r_div = s.divergence_ratio * w.r0_max;
   a.residual_norms.push_back(r0);
   if (!std::isfinite(r0)) return finish(NewtonOutcome::not_finite, "|R_0| is not finite");
-  if (r0 <= s.tol_residual_abs) return finish(NewtonOutcome::converged, {});
+  // The absolute residual test, scaled to the run's forces (a floor for unloaded starts).
+  const auto r_abs = [&] { return std::max(s.tol_residual_abs, s.tol_residual_scaled * w.r0_max); };
+  if (r0 <= r_abs()) return finish(NewtonOutcome::converged, {});
 
   const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
   double e1 = 0.0;
@@ -178,11 +196,14 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
 
     u += w.du;
     const double rk = assemble();
+    if (rk < 0.0)
+      return finish(NewtonOutcome::assembly_failed,
+                    format("iteration %d: assembly: %s", k, error.c_str()));
     a.residual_norms.push_back(rk);
     if (!std::isfinite(rk))
       return finish(NewtonOutcome::not_finite, format("iteration %d: |R| is not finite", k));
 
-    const bool residual_ok = rk <= s.tol_residual_abs || rk <= s.tol_residual_rel * r0;
+    const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * r0;
     const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
     if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
 

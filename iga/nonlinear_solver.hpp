@@ -31,16 +31,21 @@ struct NonlinearSolverSettings {
   double max_step = 1.0;      ///< steps never grow beyond this
   int max_steps = 100000;     ///< limit on attempted steps (converged and failed)
   int max_iterations = 20;    ///< Newton iterations per step before a cutback
-  /// Residual test: |R_k| <= tol_residual_rel |R_0| or |R_k| <= tol_residual_abs.
+  /// Residual test: |R_k| <= tol_residual_rel |R_0| or |R_k| <= max(tol_residual_abs,
+  /// tol_residual_scaled F), where F is the run's force scale: the largest |R_0| of its steps
+  /// so far (the load or reaction increments, in the problem's units). The scaled part makes
+  /// the test independent of units (round-off in R grows with the forces); tol_residual_abs is
+  /// the floor for unloaded starts (F = 0).
   double tol_residual_rel = 1e-8;
   double tol_residual_abs = 1e-12;
+  double tol_residual_scaled = 1e-10;
   /// Energy test: E_k <= tol_energy_rel E_1 or E_k <= tol_energy_abs; both <= 0: the test is
   /// off. E_k measures the correction already applied, one iteration behind |R_k|: with
   /// quadratic convergence E_k / E_1 is of the order of |R_k| / |R_0| (often 10-100 times
   /// larger), so a tight energy tolerance costs an extra iteration per step. The default guards
   /// against a small residual after a large last correction (soft modes) without that cost.
   /// A step has converged when the residual test and the energy test hold; a step whose |R_0|
-  /// already meets tol_residual_abs is converged with 0 iterations.
+  /// already meets the absolute residual test is converged with 0 iterations.
   double tol_energy_rel = 1e-6;
   double tol_energy_abs = 0.0;
   int easy_iterations = 4;      ///< a step converged in <= this many iterations grows the next
@@ -68,6 +73,8 @@ enum class NewtonOutcome {
   not_finite,           ///< NaN or Inf in the residual or the correction
   max_iterations,       ///< no convergence within max_iterations
   linear_solve_failed,  ///< singular tangent or non-finite entries in it
+  assembly_failed,      ///< the problem threw while assembling (e.g. a non-finite state met by
+                        ///< the contact search); the step is cut back like any other failure
 };
 
 /// How the whole run ended.
@@ -76,6 +83,8 @@ enum class NonlinearSolverStatus {
   min_step_reached,   ///< a step of size min_step failed; u is the state at result.t
   max_steps_reached,  ///< settings.max_steps attempts; u is the state at result.t
   stopped,            ///< the step callback asked to stop; u is the state at result.t
+  failed,             ///< an error ended the run (set by callers such as Analysis::run when
+                      ///< writing a converged step's output fails); u is the state at result.t
 };
 
 const char* to_string(NewtonOutcome o);
@@ -131,8 +140,10 @@ using StepCallback = std::function<bool(const VectorXd& u, double t, const StepA
 /// produces NaN, fails the linear solve or needs more than max_iterations is undone (u restored)
 /// and retried with dt * cutback_factor; a failed step of size min_step ends the run with
 /// status min_step_reached and u at the last converged step. Prescribed values depend on t
-/// inside NonlinearProblem::assemble. Exceptions thrown by the problem propagate, with u
-/// restored to the last converged state.
+/// inside NonlinearProblem::assemble. An exception thrown by NonlinearProblem::assemble (a
+/// std::exception, e.g. the contact search meeting a non-finite state) fails the attempt
+/// (outcome assembly_failed, its message kept) and the step is cut back; exceptions of
+/// commit() and of the step callback propagate, with u restored to the last converged state.
 class NonlinearSolver {
  public:
   /// Throws std::invalid_argument for invalid settings.

@@ -1,6 +1,8 @@
 // Legacy VTK POLYDATA and PVD writers.
 #include "iga/vtk_writer.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <stdexcept>
@@ -22,12 +24,24 @@ void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, 
     if (v.size() != n)
       throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(v.size()) +
                                " values for " + std::to_string(n) + " points");
+  // No output file holds a non-finite number: such a value is written as 0 and its point gets
+  // the flag non_finite = 1 (a field added only when some point needs it).
+  std::vector<double> flag(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    bool ok = points[i].allFinite();
+    for (const auto& f : data.scalars) ok = ok && std::isfinite(f.second[i]);
+    for (const auto& f : data.vectors) ok = ok && f.second[i].allFinite();
+    if (!ok) flag[i] = 1.0;
+  }
+  const bool flagged = std::find(flag.begin(), flag.end(), 1.0) != flag.end();
+  const auto finite = [](double x) { return std::isfinite(x) ? x : 0.0; };
   std::ofstream os(path);
   if (!os) throw std::runtime_error("cannot write " + path);
   os << std::setprecision(12);
   os << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
   os << "POINTS " << n << " double\n";
-  for (const Eigen::Vector3d& p : points) os << p.x() << " " << p.y() << " " << p.z() << "\n";
+  for (const Eigen::Vector3d& p : points)
+    os << finite(p.x()) << " " << finite(p.y()) << " " << finite(p.z()) << "\n";
   if (cells == Cells::kQuads) {
     const int quads = (nu - 1) * (nv - 1);
     os << "POLYGONS " << quads << " " << 5 * quads << "\n";
@@ -44,15 +58,20 @@ void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, 
     os << "VERTICES " << n << " " << 2 * n << "\n";
     for (std::size_t i = 0; i < n; ++i) os << "1 " << i << "\n";
   }
-  if (n > 0 && (!data.scalars.empty() || !data.vectors.empty())) {
+  if (n > 0 && (!data.scalars.empty() || !data.vectors.empty() || flagged)) {
     os << "POINT_DATA " << n << "\n";
     for (const auto& [name, v] : data.scalars) {
       os << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-      for (double x : v) os << x << "\n";
+      for (double x : v) os << finite(x) << "\n";
+    }
+    if (flagged) {
+      os << "SCALARS non_finite double 1\nLOOKUP_TABLE default\n";
+      for (double x : flag) os << x << "\n";
     }
     for (const auto& [name, v] : data.vectors) {
       os << "VECTORS " << name << " double\n";
-      for (const Eigen::Vector3d& x : v) os << x.x() << " " << x.y() << " " << x.z() << "\n";
+      for (const Eigen::Vector3d& x : v)
+        os << finite(x.x()) << " " << finite(x.y()) << " " << finite(x.z()) << "\n";
     }
   }
   if (!os) throw std::runtime_error("error while writing " + path);

@@ -17,6 +17,9 @@ struct VtkPointData {
   std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> vectors;
 };
 
+/// No file holds a non-finite number: a non-finite coordinate or field value is written as 0
+/// and its point gets the scalar field non_finite = 1 (present only when some point needs it).
+///
 /// Writes points as a polyline (`connect` = true: a curve such as a rope's centre line) or as
 /// independent vertices (contact points). Throws std::runtime_error if the file cannot be
 /// written or a field's length differs from the number of points.

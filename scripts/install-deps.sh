@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages this project builds with, only those that are missing.
 # Runs apt-get only when something is missing (as root, or through sudo).
+#   scripts/install-deps.sh          what the build, the tests and the apps need
+#   scripts/install-deps.sh --fuzz   clang and its libFuzzer runtime (scripts/fuzz.sh)
 set -euo pipefail
 
 packages=(
@@ -9,6 +11,7 @@ packages=(
   catch2 libcli11-dev libbenchmark-dev
   python3 python3-matplotlib
 )
+[[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plots helix.csv (columns case,mu,phi,pitch,T_ratio,exact,rel_error) in the style of the
+"""Plots helix.csv (columns case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,status) in the style of the
 paper's Fig. 14: computed T/T0 against the pitch H with the 3-D Euler formula (83)
 exp(mu phi R / sqrt(R^2 + (H/2pi)^2)) and the 2-D formula (82) exp(mu phi).
 
@@ -18,8 +18,10 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 def main(src, dst):
     rows = list(csv.DictReader(open(src)))
+    # Cases without full slip have an empty T_ratio (status other than full_slip).
+    rows = [r for r in rows if r["T_ratio"] != ""]
     if not rows:
-        sys.exit(f"{src}: no rows")
+        sys.exit(f"{src}: no rows with a result")
     mu, phi = float(rows[0]["mu"]), float(rows[0]["phi"])
     H = [float(r["pitch"]) for r in rows]
     # R from a row with H != 0: exact = exp(mu phi R / sqrt(R^2 + c^2)) -> R = c q / sqrt(1 - q^2)

@@ -172,6 +172,16 @@ TEST_CASE("saddle: bad input exits 1 naming the file and JSON path", "[apps][sad
   CHECK_THAT(log, Catch::Contains("saddle.json: /contact/0/stratgy: unknown key \"stratgy\""));
   CHECK(saddle("--quick --strategy sideways --out \"" + out.string() + "\"", log) ==
         2);  // command line
+  // The block model is read before any run: no saddle.csv, no run lines.
+  fs::remove_all(out);
+  CHECK(saddle("--quick --set /app/block_model='\"no_such_block.json\"' --out \"" + out.string() +
+                   "\"",
+               log) == 1);
+  CHECK_THAT(log, Catch::Contains("no_such_block.json"));
+  CHECK_FALSE(fs::exists(out / "saddle.csv"));
+  // Snapshots outside (0, t_end] name their path.
+  CHECK(saddle("--quick --set /app/snapshots=[250,2000] --out \"" + out.string() + "\"", log) == 1);
+  CHECK_THAT(log, Catch::Contains("saddle.json: /app/snapshots/1: must lie in (0, t_end]"));
   fs::remove_all(out);
 }
 

@@ -162,7 +162,9 @@ TEST_CASE("analytic surfaces: derivs(order) fills exactly the requested orders",
   CHECK(d1.Svv.isZero(0.0));
   const SurfaceDerivs d2 = t.derivs(0.3, 0.4, 2);
   CHECK(d2.order == 2);
-  CHECK((d2.S - d0.S).norm() == 0.0);
+  // The same point whatever the order asked for, to round-off (the compiler may fuse the
+  // multiply-adds of the two code paths differently: never bit for bit).
+  CHECK((d2.S - d0.S).norm() <= 1e-15 * std::max(1.0, d0.S.norm()));
   CHECK(d2.Suu.norm() > 0.0);
 }
 

@@ -107,6 +107,9 @@ TEST_CASE("curve_frame: straight line has zero curvature, no normal/binormal, ze
   d.d[3] = Vector3d(1, -1, 4);
   const CurveFrame f = curve_frame(d);
   CHECK((f.tangent - d.d[1].normalized()).norm() <= 1e-15);
+  // Exact zeros by design, not by arithmetic: |d1 x d2| is only round-off (with fused
+  // multiply-adds it is a product's rounding error, not 0), below curve_frame's relative
+  // threshold, which then leaves curvature and torsion at their initial 0.
   CHECK(f.curvature == 0.0);
   CHECK(f.torsion == 0.0);
   CHECK(f.normal.isZero(0.0));

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -19,16 +20,26 @@ namespace {
 
 const std::string kData = std::string(IGA_SOURCE_DIR) + "/data/";
 
+/// Largest difference between two knot vectors of the same length (infinity otherwise).
+double knot_distance(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return std::numeric_limits<double>::infinity();
+  double d = 0.0;
+  for (std::size_t i = 0; i < a.size(); ++i) d = std::max(d, std::abs(a[i] - b[i]));
+  return d;
+}
+
 /// Largest distance between the control points of two surfaces of the same net (and their
-/// weights' largest difference, added).
+/// weights' largest difference, added). The models of data/ were written on some machine and
+/// are compared with the builders run on this one: glibc's libm (sin, cos, atan2, ...) rounds
+/// differently in the last bit on processors with and without FMA, so knots, points and
+/// weights agree to round-off, never bit for bit; the callers give the tolerance.
 double net_distance(const NurbsSurface& a, const NurbsSurface& b) {
   REQUIRE(a.num_u() == b.num_u());
   REQUIRE(a.num_v() == b.num_v());
   REQUIRE(a.degree_u() == b.degree_u());
   REQUIRE(a.degree_v() == b.degree_v());
-  CHECK(a.knots_u().knots() == b.knots_u().knots());
-  CHECK(a.knots_v().knots() == b.knots_v().knots());
-  double d = 0.0;
+  double d = std::max(knot_distance(a.knots_u().knots(), b.knots_u().knots()),
+                      knot_distance(a.knots_v().knots(), b.knots_v().knots()));
   for (std::size_t i = 0; i < a.control_points().size(); ++i)
     d = std::max(d, (a.control_points()[i] - b.control_points()[i]).norm() +
                         std::abs(a.weights()[i] - b.weights()[i]));
@@ -52,8 +63,9 @@ void check_linear_benchmark(const std::string& file, ShellBenchmark b, double to
   REQUIRE(p.num_dofs() == b.problem.num_dofs());
   REQUIRE(a.output().monitors.size() == 1);
   const AnalysisMonitor& m = a.output().monitors[0];
-  CHECK(m.u == b.u);
-  CHECK(m.v == b.v);
+  // The monitor's (u, v) in the file against the builder's: parameters of size 1, round-off.
+  CHECK(m.u == Approx(b.u).margin(1e-14));
+  CHECK(m.v == Approx(b.v).margin(1e-14));
   const VectorXd ub = solve_linear(b.problem, 1.0);
   const double w_builder = b.problem.displacement(b.u, b.v, ub, 1.0).dot(b.direction);
   const double linear_diff = (solve_linear(p, 1.0) / scale - ub).norm() / ub.norm();
@@ -73,18 +85,20 @@ void check_linear_benchmark(const std::string& file, ShellBenchmark b, double to
 
 }  // namespace
 
-TEST_CASE("analysis: data/scordelis_lo.json is make_scordelis_lo(16, 3) and reaches 0.3006 "
-          "within 0.1 %",
-          "[iga][analysis][shell]") {
+TEST_CASE(
+    "analysis: data/scordelis_lo.json is make_scordelis_lo(16, 3) and reaches 0.3006 "
+    "within 0.1 %",
+    "[iga][analysis][shell]") {
   // The arc's end angles are computed in degrees in the model, in radians in the builder: the
   // same problem to round-off. The run at 1e-5 of the load is linear to ~2e-6 (0.2 x the
   // scale). 0.1 %: the builder's test at 16 x 16, p = 3.
   check_linear_benchmark("scordelis_lo.json", make_scordelis_lo(16, 3), 1e-3);
 }
 
-TEST_CASE("analysis: data/pinched_cylinder.json is make_pinched_cylinder(32, 3) and reaches "
-          "1.8248e-5 within 0.5 %",
-          "[iga][analysis][shell]") {
+TEST_CASE(
+    "analysis: data/pinched_cylinder.json is make_pinched_cylinder(32, 3) and reaches "
+    "1.8248e-5 within 0.5 %",
+    "[iga][analysis][shell]") {
   // The run at the full load: w/h = 6e-6, linear to ~2e-6. 0.5 %: the builder's test at
   // 32 x 32, p = 3.
   check_linear_benchmark("pinched_cylinder.json", make_pinched_cylinder(32, 3), 5e-3);
@@ -109,13 +123,18 @@ int newton_polish(ShellProblem& p, VectorXd& u, double t, double tol) {
 
 }  // namespace
 
-TEST_CASE("analysis: data/slit_annular_plate.json is make_slit_annular_plate(4, 32, 3) and "
-          "reaches the Sze, Liu & Lo load-deflection points within 1 %",
-          "[iga][analysis][shell]") {
+TEST_CASE(
+    "analysis: data/slit_annular_plate.json is make_slit_annular_plate(4, 32, 3) and "
+    "reaches the Sze, Liu & Lo load-deflection points within 1 %",
+    "[iga][analysis][shell]") {
   Analysis a = Analysis::load(kData + "slit_annular_plate.json");
   SlitAnnularPlate b = make_slit_annular_plate(4, 32, 3);
-  // The explicit surface is the builder's fit, written with round-trip doubles: bit for bit.
-  CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) == 0.0);
+  // The explicit surface is the builder's fit, written with round-trip doubles on the machine
+  // that made the file; this machine's fit agrees to round-off of the coordinates (R_o = 10):
+  // 1e-13 R_o, as for the other benchmark models (never bit for bit: see net_distance).
+  const double R_outer = 10.0;
+  CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) <=
+        1e-13 * R_outer);
   REQUIRE(a.shell_problem().num_dofs() == b.problem.num_dofs());
   REQUIRE(a.output().monitors.size() == 2);
   struct Ref {

@@ -236,6 +236,7 @@ TEST_CASE("NonlinearSolver: Newton converges quadratically (observed order >= 1.
   s.max_step = 0.5;
   s.tol_residual_rel = 1e-14;
   s.tol_residual_abs = 1e-17;
+  s.tol_residual_scaled = 0.0;
   s.tol_energy_rel = 0.0;  // residual test only: the residual history runs to round-off
   s.tol_energy_abs = 0.0;
   s.max_iterations = 30;
@@ -470,6 +471,64 @@ TEST_CASE("NonlinearSolver: zero load increments converge without iterations", "
   REQUIRE(r.converged());
   CHECK(r.total_iterations == 0);
   CHECK(u.norm() == 0.0);
+}
+
+namespace {
+
+/// The spring chain of the tests above, whose assembly throws as the contact search does on a
+/// non-finite state ("broad_phase: ... -nan") whenever a step beyond t = 0.5 is longer than
+/// 0.2: the solver must cut such steps back, not end the run.
+class ThrowsOnLongSteps : public NonlinearProblem {
+ public:
+  ThrowsOnLongSteps() : chain_(SpringChain::Law::hardening_sinh, {1.0, 2.0}, 1.0) {}
+  int num_dofs() const override { return chain_.num_dofs(); }
+  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override {
+    if (t > 0.5 && t - committed_ > 0.2)
+      throw std::invalid_argument("broad_phase: points 3 is not finite: (-nan, 0, 0)");
+    chain_.assemble(u, t, R, K);
+  }
+  void commit(const VectorXd&, double t) override { committed_ = t; }
+
+ private:
+  SpringChain chain_;
+  double committed_ = 0.0;
+};
+
+}  // namespace
+
+TEST_CASE("NonlinearSolver: an exception in the assembly fails the attempt and cuts the step back",
+          "[iga][solver]") {
+  NonlinearSolverSettings s;
+  s.initial_step = 0.3;
+  s.max_step = 0.3;
+  ThrowsOnLongSteps p;
+  NonlinearSolver solver(s);
+  VectorXd u = VectorXd::Zero(p.num_dofs());
+  NonlinearSolverResult r;
+  REQUIRE_NOTHROW(r = solver.solve(p, u));
+  CHECK(r.converged());
+  CHECK(r.cutbacks >= 1);
+  bool seen = false;
+  for (const StepAttempt& a : r.attempts)
+    if (a.outcome == NewtonOutcome::assembly_failed) {
+      seen = true;
+      CHECK_THAT(a.message, Catch::Contains("broad_phase") && Catch::Contains("-nan"));
+    }
+  CHECK(seen);
+  CHECK(std::string(to_string(NewtonOutcome::assembly_failed)) == "assembly_failed");
+  CHECK(std::string(to_string(NonlinearSolverStatus::failed)) == "failed");
+}
+
+TEST_CASE("NonlinearSolver: hit_times outside (t0, t1) are refused", "[iga][solver]") {
+  NonlinearSolverSettings s;
+  s.hit_times = {0.5, 1.5};
+  CHECK_THROWS_WITH(NonlinearSolver(s),
+                    Catch::Contains("hit_times: must be inside (t0, t1), got 1.5"));
+  s.hit_times = {0.0};
+  CHECK_THROWS_WITH(NonlinearSolver(s), Catch::Contains("hit_times"));
+  s.tol_residual_scaled = -1.0;
+  s.hit_times = {};
+  CHECK_THROWS_WITH(NonlinearSolver(s), Catch::Contains("tol_residual_scaled"));
 }
 
 TEST_CASE("NonlinearSolver: invalid settings and state sizes throw with the field name",

@@ -1,8 +1,10 @@
 // The VTK writers produce files ParaView reads: structure and values checked by parsing back.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "iga/vtk_writer.hpp"
@@ -60,4 +62,27 @@ TEST_CASE("write_vtk_grid: quadrilaterals of a structured grid", "[iga][output]"
   CHECK_THROWS_WITH(write_vtk_grid((dir / "bad.vtk").string(), pts, 2, 2),
                     Catch::Contains("a grid of 2 x 2 needs that many points, got 6"));
   fs::remove_all(dir);
+}
+
+TEST_CASE("write_vtk_polydata: non-finite values are written as 0 with the flag non_finite",
+          "[iga][output]") {
+  const std::string path =
+      (fs::temp_directory_path() / ("iga_vtk_non_finite_" + std::to_string(::getpid()) + ".vtk"))
+          .string();
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<Eigen::Vector3d> pts = {{0, 0, 0}, {1, inf, 0}, {2, 0, 0}};
+  VtkPointData d;
+  d.scalars = {{"s", {1.0, 2.0, std::nan("")}}};
+  d.vectors = {
+      {"v", {Eigen::Vector3d(0, 0, -inf), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()}}};
+  write_vtk_polydata(path, pts, true, d);
+  const std::string text = iga::test::slurp(path);
+  for (const char* w : {"nan", "inf", "NaN", "Inf"}) CHECK(text.find(w) == std::string::npos);
+  CHECK(text.find("1 0 0\n") != std::string::npos);  // the point with y = inf
+  CHECK(text.find("SCALARS non_finite double 1\nLOOKUP_TABLE default\n1\n1\n1\n") !=
+        std::string::npos);
+  // Finite data: no flag field.
+  write_vtk_polydata(path, {{0, 0, 0}, {1, 0, 0}}, true, {});
+  CHECK(iga::test::slurp(path).find("non_finite") == std::string::npos);
+  std::filesystem::remove(path);
 }

@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# The suite must pass on any x86-64 processor. Results differ between processors in the last
+# bits because (1) glibc's libm picks FMA/AVX2 code paths for exp, log, sin, pow, ... by
+# processor, and (2) a compiler may fuse a*b+c into one rounding (-ffp-contract). This script
+# runs the whole suite under each variation this machine can produce:
+#   libm      the release build, run with glibc's FMA and AVX2 code paths masked
+#             (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4): the libm of an older processor
+#   fast-fma  a build with -ffp-contract=fast -mfma (needs a processor with FMA; skipped without)
+#   off       a build with -ffp-contract=off
+#   scripts/portability.sh [libm|fast-fma|off|all]...     default: all
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+modes=("$@")
+((${#modes[@]})) || modes=(all)
+[[ " ${modes[*]} " == *" all "* ]] && modes=(libm fast-fma off)
+
+"$root/scripts/install-deps.sh"
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+generator=()
+command -v ninja >/dev/null && generator=(-G Ninja)
+jobs=${IGA_JOBS:-$(nproc)}
+
+run_suite() {  # build dir, label, env...
+  local dir=$1 label=$2
+  shift 2
+  echo "portability: $label"
+  env "$@" ctest --test-dir "$dir" --output-on-failure --parallel "$(nproc)" --timeout 600
+}
+
+for mode in "${modes[@]}"; do
+  case "$mode" in
+    libm)
+      "$root/scripts/build.sh" release
+      run_suite "$root/build/release" "libm without FMA/AVX2 code paths" \
+        GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4
+      ;;
+    fast-fma | off)
+      if [[ "$mode" == fast-fma ]] && ! grep -qw fma /proc/cpuinfo; then
+        echo "portability: fast-fma skipped: this processor has no FMA instructions"
+        continue
+      fi
+      dir="$root/build/fp-$mode"
+      cmake -S "$root" -B "$dir" "${generator[@]}" -DCMAKE_BUILD_TYPE=Release \
+        -DIGA_FP_CONTRACT="$mode" -DIGA_BUILD_BENCH=OFF >/dev/null
+      cmake --build "$dir" --parallel "$jobs"
+      run_suite "$dir" "built with IGA_FP_CONTRACT=$mode"
+      ;;
+    *) echo "portability.sh: unknown mode '$mode' (libm|fast-fma|off|all)" >&2; exit 2 ;;
+  esac
+done
