@@ -24,7 +24,11 @@ int main(int argc, char** argv) {
   const iga::app::Action make = iga::app::add_make_command(app);
   const iga::app::Action project = iga::app::add_project_command(app);
   const iga::app::Action run = iga::app::add_run_command(app);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;  // --help, --version: 0; a bad command line: 2 (not 105...)
+  }
 
   // 2. Run the chosen subcommand; every library error ends here with a message.
   try {

@@ -1,7 +1,8 @@
 // `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any analysis model (rod or shell, with or without contact)
 // (docs/model_format.md, analysis sections): progress line per step, the solver's summary, and in
 // DIR steps.csv, summary.json, ParaView files, model_used.json.
-// Exit status: 0 converged (or stopped at full slip as asked), 2 the solver stopped early.
+// Exit status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the solver stopped
+// early (or a bad command line, from iga_main.cpp).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -43,7 +44,9 @@ int run_model(const RunOptions& o) {
 Action add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "Run an analysis model (rod or shell, with or without contact)");
-  cmd->add_option("model", o->file, "Model file (JSON)")->required()->check(CLI::ExistingFile);
+  // No CLI::ExistingFile check: a missing or unreadable model is bad input (exit 1, reported by
+  // the reader like every other model error), not a bad command line.
+  cmd->add_option("model", o->file, "Model file (JSON)")->required();
   cmd->add_option("--out,-o", o->out, "Output folder (default out/<model name>)");
   cmd->add_option("--set", o->sets, "Override a model value: /json/pointer=value (repeatable)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress lines");

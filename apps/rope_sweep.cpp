@@ -98,7 +98,7 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e);
+    return cli.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad command line: 2 (not CLI11's 105...)
   }
 
   // 2. Model: read, override, validate once (an error names the file and the JSON path).

@@ -14,7 +14,8 @@
 // included with an empty T_ratio. Command line:
 //   APP [MODEL.json] [--mu LIST] [--phi-deg LIST] [--pitch LIST] [--set /ptr=value]...
 //       [--out DIR] [--quick] [--max-error X] [--profile] [--verbose]
-// Exit status: 0 ok, 1 bad input, 2 a case did not reach full slip, 3 --max-error exceeded.
+// Exit status: 0 ok, 1 bad input, 2 a bad command line or a case that did not reach full slip,
+// 3 --max-error exceeded.
 #pragma once
 
 #include <string>

@@ -29,7 +29,8 @@
 //                         (scripts/plot_saddle.py)
 //   <run>/                steps.csv, summary.json, shell and contact .vtk + .pvd per snapshot,
 //                         rigid.vtk (ParaView)
-// Exit status: 0 all runs reached t_end, 1 bad input, 2 a run ended early (its rows are kept).
+// Exit status: 0 all runs reached t_end, 1 bad input, 2 a bad command line or a run that ended
+// early (its rows are kept).
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -312,7 +313,7 @@ int main(int argc, char** argv) try {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e);
+    return cli.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad command line: 2 (not CLI11's 105...)
   }
 
   // 1. Model: read, quick overrides, --set, validated once before any run.

@@ -7,6 +7,7 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -19,6 +20,22 @@ namespace iga {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Bounds on the values of a geometry file, checked where they are read (docs/model_format.md,
+// section 2). Doubles reach 1.8e308, but evaluation forms squares and products of lengths
+// (|x - y|^2, metric a_ij = rho_i . rho_j, Gauss curvature 1/R^2, w P): a coordinate of 1e308
+// is accepted by JSON and then makes every evaluation overflow. With every length and
+// coordinate in [1e-100, 1e100], products of up to three of them stay within 1e300 and
+// above 1e-300.
+constexpr double kMaxCoordinate = 1e100;  // |x|: coordinates, directions, domain bounds
+constexpr double kMinLength = 1e-100;     // radii and other positive lengths lie in
+constexpr double kMaxLength = 1e100;      //   [kMinLength, kMaxLength]
+// Weights: each in [1e-100, 1e100] (so w P stays finite), and max/min <= 1e10 in one entity:
+// rational derivatives grow with the weight ratio, and beyond 1e10 the patch is numerically a
+// lower-degree one (circles use ratios below 2, typical free forms below 100).
+constexpr double kMinWeight = 1e-100;
+constexpr double kMaxWeight = 1e100;
+constexpr double kMaxWeightRatio = 1e10;  // named "1e10" in the message
 
 /// Shortest text that reads back to x (the same digits the JSON output uses).
 std::string num(double x) {
@@ -33,11 +50,22 @@ int parse_degree(const JsonCursor& c) {
   return p;
 }
 
+/// A finite number with |x| <= kMaxCoordinate.
+double parse_coordinate(const JsonCursor& c) {
+  const double x = c.as_number();
+  if (!(std::abs(x) <= kMaxCoordinate))
+    c.fail("must lie within +-" + num(kMaxCoordinate) +
+           " (geometric values are bounded so that their squares and products stay finite)");
+  return x;
+}
+
 /// A clamped knot vector of degree p, checked element by element. n_cp >= 0 requires exactly
 /// n_cp + p + 1 knots (a curve); n_cp < 0 only the minimum 2 (p + 1) (a surface direction,
 /// whose control net size is derived from the knots).
 std::vector<double> parse_knots(const JsonCursor& c, int p, int n_cp) {
-  const std::vector<double> U = c.as_numbers();
+  c.expect_array();
+  std::vector<double> U(c.size());
+  for (std::size_t i = 0; i < U.size(); ++i) U[i] = parse_coordinate(c[i]);
   const std::size_t m = U.size(), np1 = static_cast<std::size_t>(p) + 1;
   for (std::size_t i = 1; i < m; ++i)
     if (U[i] < U[i - 1])
@@ -81,7 +109,7 @@ std::vector<double> parse_knots(const JsonCursor& c, int p, int n_cp) {
 
 Vector3d parse_vec3(const JsonCursor& c) {
   if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 coordinates [x, y, z]");
-  return Vector3d(c[0].as_number(), c[1].as_number(), c[2].as_number());
+  return Vector3d(parse_coordinate(c[0]), parse_coordinate(c[1]), parse_coordinate(c[2]));
 }
 
 std::vector<Vector3d> parse_points(const JsonCursor& c, std::size_t n_expected,
@@ -95,7 +123,8 @@ std::vector<Vector3d> parse_points(const JsonCursor& c, std::size_t n_expected,
   return P;
 }
 
-/// Optional "weights": one per control point, each > 0. Empty means all 1.
+/// Optional "weights": one per control point, each > 0 and within the bounds above. Empty
+/// means all 1.
 std::vector<double> parse_weights(const JsonCursor& e, std::size_t n) {
   if (!e.has("weights")) return {};
   const JsonCursor c = e["weights"];
@@ -103,8 +132,18 @@ std::vector<double> parse_weights(const JsonCursor& e, std::size_t n) {
   if (w.size() != n)
     c.fail_plain("expected " + std::to_string(n) + " weights (one per control point), got " +
                  std::to_string(w.size()));
-  for (std::size_t i = 0; i < n; ++i)
+  for (std::size_t i = 0; i < n; ++i) {
     if (!(w[i] > 0.0)) c[i].fail("weight must be > 0");
+    if (!(w[i] >= kMinWeight && w[i] <= kMaxWeight))
+      c[i].fail("weight must lie in [" + num(kMinWeight) + ", " + num(kMaxWeight) + "]");
+  }
+  if (n > 0) {
+    const auto [lo, hi] = std::minmax_element(w.begin(), w.end());
+    if (*hi > kMaxWeightRatio * *lo)
+      c[static_cast<std::size_t>(hi - w.begin())].fail(
+          "weights may differ by a factor of at most 1e10 in one entity; the smallest is " +
+          num(*lo) + " (index " + std::to_string(lo - w.begin()) + ")");
+  }
   return w;
 }
 
@@ -118,9 +157,13 @@ void parse_normal(const JsonCursor& e, Surface& s) {
     c.fail("normal must be \"outward\" or \"inward\"");
 }
 
+/// A length: > 0 and in [kMinLength, kMaxLength].
 double parse_positive(const JsonCursor& c) {
   const double x = c.as_number();
   if (!(x > 0.0)) c.fail("must be > 0");
+  if (!(x >= kMinLength && x <= kMaxLength))
+    c.fail("must lie in [" + num(kMinLength) + ", " + num(kMaxLength) +
+           "] (lengths are bounded so that their squares and inverses stay finite)");
   return x;
 }
 
@@ -150,8 +193,8 @@ Interval parse_interval(const JsonCursor& c) {
   if (!c.json().is_array() || c.json().size() != 2)
     c.fail_type("[lo, hi] (null for an unbounded end)");
   Interval I;
-  I.lo = c[0].json().is_null() ? -kInf : c[0].as_number();
-  I.hi = c[1].json().is_null() ? kInf : c[1].as_number();
+  I.lo = c[0].json().is_null() ? -kInf : parse_coordinate(c[0]);
+  I.hi = c[1].json().is_null() ? kInf : parse_coordinate(c[1]);
   if (!(I.lo < I.hi)) c.fail("expected lo < hi");
   return I;
 }
@@ -257,7 +300,7 @@ GeometryEntity parse_analytic(const JsonCursor& e, const std::string& type) {
   if (type == "hyperboloid") {
     e.expect_object({"type", "center", "axis", "ref_dir", "a", "domain", "normal"});
     const Placement pl = parse_placement(e, false, false);
-    const double a = e["a"].as_number();
+    const double a = parse_coordinate(e["a"]);
     return analytic<Hyperboloid>(e, [&](const Domain2& d) { return Hyperboloid(pl, a, d); });
   }
   // revolution
@@ -265,7 +308,8 @@ GeometryEntity parse_analytic(const JsonCursor& e, const std::string& type) {
   const Placement pl = parse_placement(e, false, false);
   const JsonCursor pc = e["profile"];
   pc.expect_array(1);
-  const std::vector<double> coeffs = pc.as_numbers();
+  std::vector<double> coeffs(pc.size());
+  for (std::size_t i = 0; i < coeffs.size(); ++i) coeffs[i] = parse_coordinate(pc[i]);
   return analytic<Revolution>(e, [&](const Domain2& d) { return Revolution(pl, coeffs, d); });
 }
 

@@ -1,24 +1,45 @@
 // JSON input with errors that name file, path, value and expectation; readable JSON output.
-// A first SAX pass over the text tracks the JSON path so that syntax errors, overflowing
-// numbers and duplicate keys are reported where they are; the document is then parsed into an
-// order-preserving nlohmann::ordered_json.
+// One SAX pass over the text tracks the JSON path so that syntax errors, overflowing numbers,
+// duplicate keys and the limits of json_reader.hpp (depth, number of values) are reported
+// where they are, and builds the order-preserving nlohmann::ordered_json on the way. Nothing
+// recursive sees a document before the pass accepted it.
 #include "geometry/json_reader.hpp"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
-#include <sstream>
+#include <system_error>
 #include <unordered_set>
 #include <utility>
 
 namespace iga {
 
+namespace {
+
+/// The first `head` and last `tail` bytes of s with "..." between them when s is longer,
+/// cut at UTF-8 character boundaries.
+std::string abbreviate(const std::string& s, std::size_t head, std::size_t tail) {
+  if (s.size() <= head + tail + 3) return s;
+  auto is_tail_byte = [&](std::size_t i) {
+    return (static_cast<unsigned char>(s[i]) & 0xC0) == 0x80;
+  };
+  std::size_t h = head, t = s.size() - tail;
+  while (h > 0 && is_tail_byte(h)) --h;
+  while (t < s.size() && is_tail_byte(t)) ++t;
+  return s.substr(0, h) + "..." + s.substr(t);
+}
+
+}  // namespace
+
+// A pointer into a deep or long-keyed document is shortened in what() (pointer() keeps it).
 ModelError::ModelError(std::string file, std::string pointer, const std::string& message)
-    : std::runtime_error(pointer.empty() ? file + ": " + message
-                                         : file + ": " + pointer + ": " + message),
+    : std::runtime_error(pointer.empty()
+                             ? file + ": " + message
+                             : file + ": " + abbreviate(pointer, 120, 80) + ": " + message),
       file_(std::move(file)),
       pointer_(std::move(pointer)),
       message_(message) {}
@@ -34,6 +55,9 @@ std::pair<std::size_t, std::size_t> line_column(const std::string& text, std::si
       ++line;
       line_start = i + 1;
     }
+  // A byte-order mark is no column (editors do not show it).
+  if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0)
+    line_start = std::min<std::size_t>(3, offset);
   std::size_t column = 1;
   for (std::size_t i = line_start; i < offset; ++i)
     if ((static_cast<unsigned char>(text[i]) & 0xC0) != 0x80) ++column;  // skip UTF-8 tails
@@ -54,8 +78,11 @@ std::string bare_message(const std::string& what) {
   return m;
 }
 
-/// SAX handler that builds nothing: it keeps the JSON path of the current position, rejects
-/// duplicate keys and records where a parse error happened.
+/// SAX handler that builds the document while it keeps the JSON path of the current position,
+/// rejects duplicate keys, enforces the limits (depth, number of values) and records where a
+/// parse error happened. Keys are appended to objects without the linear search of
+/// ordered_json's own insertion (duplicates are excluded here by a hash set), so an object
+/// with millions of keys costs linear, not quadratic, time.
 class PathTracker final : public nlohmann::json_sax<Json> {
  public:
   struct Frame {
@@ -64,17 +91,23 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     std::string key;        // current key of an object
     bool has_key = false;
     std::unordered_set<std::string> keys;
+    Json* value = nullptr;  // the array or object being filled
   };
 
-  bool null() override { return value(); }
-  bool boolean(bool) override { return value(); }
-  bool number_integer(number_integer_t) override { return value(); }
-  bool number_unsigned(number_unsigned_t) override { return value(); }
-  bool number_float(number_float_t, const string_t&) override { return value(); }
-  bool string(string_t&) override { return value(); }
-  bool binary(binary_t&) override { return value(); }
+  enum class Limit { none, depth, values };
+
+  bool null() override { return value(Json(nullptr)); }
+  bool boolean(bool b) override { return value(Json(b)); }
+  bool number_integer(number_integer_t x) override { return value(Json(x)); }
+  bool number_unsigned(number_unsigned_t x) override { return value(Json(x)); }
+  bool number_float(number_float_t x, const string_t&) override { return value(Json(x)); }
+  bool string(string_t& x) override { return value(Json(std::move(x))); }
+  bool binary(binary_t&) override { return value(Json(nullptr)); }  // not in JSON text
   bool start_object(std::size_t) override {
-    stack_.push_back(Frame{});
+    if (!enter()) return false;
+    Frame f;
+    f.value = insert(Json::object());
+    stack_.push_back(std::move(f));
     return true;
   }
   bool key(string_t& k) override {
@@ -90,17 +123,19 @@ class PathTracker final : public nlohmann::json_sax<Json> {
   }
   bool end_object() override {
     stack_.pop_back();
-    return value();
+    return advance();
   }
   bool start_array(std::size_t) override {
+    if (!enter()) return false;
     Frame f;
     f.array = true;
+    f.value = insert(Json::array());
     stack_.push_back(std::move(f));
     return true;
   }
   bool end_array() override {
     stack_.pop_back();
-    return value();
+    return advance();
   }
   bool parse_error(std::size_t position, const std::string& last_token,
                    const nlohmann::json::exception& ex) override {
@@ -110,6 +145,9 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     error_id_ = ex.id;
     return false;
   }
+
+  /// The document read (complete once sax_parse returned true).
+  Json take() { return std::move(root_); }
 
   JsonPointer pointer() const {
     JsonPointer p;
@@ -129,9 +167,50 @@ class PathTracker final : public nlohmann::json_sax<Json> {
   std::size_t error_position_ = 0;
   std::string error_token_, error_message_;
   int error_id_ = 0;
+  Limit limit_ = Limit::none;
 
  private:
-  bool value() {
+  /// Counts a new array or object; false when it would break a limit.
+  bool enter() {
+    if (stack_.size() >= kMaxJsonDepth) {
+      limit_ = Limit::depth;
+      return false;
+    }
+    return count();
+  }
+  bool count() {
+    if (++values_ > kMaxJsonValues) {
+      limit_ = Limit::values;
+      return false;
+    }
+    return true;
+  }
+  bool value(Json v) {
+    if (!count()) return false;
+    insert(std::move(v));
+    return advance();
+  }
+  /// Puts v where the parser is: the root, the next array element or the current key's value.
+  /// The pointers on the stack stay valid: a container only grows while it is the innermost.
+  Json* insert(Json v) {
+    if (stack_.empty()) {
+      root_ = std::move(v);
+      return &root_;
+    }
+    Frame& f = stack_.back();
+    if (f.array) {
+      auto& a = f.value->get_ref<Json::array_t&>();
+      a.push_back(std::move(v));
+      return &a.back();
+    }
+    // ordered_map is a vector of pairs: append, the hash set has excluded duplicates.
+    using Pairs = std::vector<std::pair<const std::string, Json>>;
+    Pairs& o = f.value->get_ref<Json::object_t&>();
+    o.emplace_back(f.key, std::move(v));
+    return &o.back().second;
+  }
+  /// One value of the enclosing array or object is complete.
+  bool advance() {
     if (!stack_.empty()) {
       Frame& f = stack_.back();
       if (f.array)
@@ -142,46 +221,132 @@ class PathTracker final : public nlohmann::json_sax<Json> {
     return true;
   }
   std::vector<Frame> stack_;
+  std::size_t values_ = 0;
+  Json root_;
 };
+
+/// Byte offset of the array or object that opens nesting level `depth` + 1 (the first level
+/// is 1), or text.size(). Brackets inside strings are skipped; the text up to there is valid
+/// JSON (the SAX pass stopped at that bracket), so this simple scan is exact.
+std::size_t offset_beyond_depth(const std::string& text, std::size_t depth) {
+  std::size_t level = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++level > depth) return i;
+    } else if (c == ']' || c == '}') {
+      --level;
+    }
+  }
+  return text.size();
+}
+
+/// Like line_column(text, offset) as "line L, column C".
+std::string where(const std::string& text, std::size_t offset) {
+  const auto [line, col] = line_column(text, offset);
+  return "line " + std::to_string(line) + ", column " + std::to_string(col);
+}
+
+constexpr char kBom[] = "\xEF\xBB\xBF";
 
 }  // namespace
 
 Json parse_json_text(const std::string& text, const std::string& file) {
+  // A UTF-8 byte-order mark (some editors write one) is skipped here, for every reader.
+  const std::size_t skip = text.rfind(kBom, 0) == 0 ? 3 : 0;
+  const char* const first = text.data() + skip;
+  const char* const last = text.data() + text.size();
   PathTracker tracker;
-  if (!Json::sax_parse(text, &tracker)) {
+  if (!Json::sax_parse(first, last, &tracker)) {
     const std::string at = tracker.pointer().to_string();
     if (tracker.duplicate_)
-      throw ModelError(
-          file, at,
-          "duplicate key \"" + tracker.duplicate_key_ + "\" (each key may appear once per object)");
+      throw ModelError(file, at,
+                       "duplicate key \"" + abbreviate(tracker.duplicate_key_, 60, 20) +
+                           "\" (each key may appear once per object)");
+    if (tracker.limit_ == PathTracker::Limit::depth)
+      throw ModelError(file, at,
+                       "arrays and objects nested deeper than " + std::to_string(kMaxJsonDepth) +
+                           " levels (" + where(text, offset_beyond_depth(text, kMaxJsonDepth)) +
+                           ")");
+    if (tracker.limit_ == PathTracker::Limit::values)
+      throw ModelError(file, at,
+                       "more than " + std::to_string(kMaxJsonValues) +
+                           " JSON values (the limit of a model file)");
     // nlohmann reports the position after the last character read. Its token text starts at
     // the last string or number scanned, so it is the offending token itself only when it is a
     // whole string or number ("ball" after a missing comma, 1e999): then point at its start.
     const std::string& token = tracker.error_token_;
-    const std::size_t end = tracker.error_position_;
+    const std::size_t end = skip + tracker.error_position_;
     const bool number =
         !token.empty() && token.find_first_not_of("0123456789+-.eE") == std::string::npos;
     const bool string = token.size() >= 2 && token.front() == '"' && token.back() == '"';
     const bool clean = (number || string) && token.size() <= end;
-    const auto [line, col] =
-        line_column(text, clean ? end - token.size() : (end > 0 ? end - 1 : 0));
-    const std::string where = "line " + std::to_string(line) + ", column " + std::to_string(col);
+    const std::string at_text = where(text, clean ? end - token.size() : (end > 0 ? end - 1 : 0));
     if (tracker.error_id_ == 406)  // out_of_range.406: number overflow
-      throw ModelError(file, at,
-                       "number " + token + " is out of range of a double (" + where + ")");
+      throw ModelError(
+          file, at,
+          "number " + abbreviate(token, 60, 20) + " is out of range of a double (" + at_text + ")");
     throw ModelError(file, at,
-                     "malformed JSON at " + where + ": " + bare_message(tracker.error_message_));
+                     "malformed JSON at " + at_text + ": " +
+                         abbreviate(bare_message(tracker.error_message_), 200, 20));
   }
-  return Json::parse(text);  // cannot fail after the SAX pass
+  return tracker.take();
+}
+
+std::string read_model_text(const std::string& path, std::size_t max_bytes) {
+  namespace fs = std::filesystem;
+  // Checked before opening: opening a FIFO blocks, and /dev/zero never ends.
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec || !fs::exists(st)) {
+    const int err = ec ? ec.value() : ENOENT;
+    throw ModelError(path, "", std::string("cannot open file: ") + std::strerror(err));
+  }
+  if (fs::is_directory(st)) throw ModelError(path, "", "is a directory, not a model file");
+  if (!fs::is_regular_file(st))
+    throw ModelError(path, "",
+                     "is not a regular file (a FIFO, socket or device); model files must be "
+                     "regular files");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) throw ModelError(path, "", "cannot read file: " + ec.message());
+  const std::string limit = std::to_string(max_bytes >> 20) + " MiB";
+  auto too_large = [&](std::uintmax_t bytes) {
+    return ModelError(
+        path, "",
+        "file of " + std::to_string(bytes) + " bytes is larger than the limit of " +
+            (max_bytes % (std::size_t{1} << 20) == 0 ? limit
+                                                     : std::to_string(max_bytes) + " bytes") +
+            " for a model file");
+  };
+  if (size > max_bytes) throw too_large(size);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ModelError(path, "", std::string("cannot open file: ") + std::strerror(errno));
+  // The size may change under us: read at most max_bytes + 1 bytes and check again.
+  std::string text(static_cast<std::size_t>(size), '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw ModelError(path, "", "cannot read file");
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (in) {  // the file grew: read the rest, within the limit
+    char buf[65536];
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+      text.append(buf, static_cast<std::size_t>(in.gcount()));
+      if (text.size() > max_bytes) throw too_large(text.size());
+    }
+    if (in.bad()) throw ModelError(path, "", "cannot read file");
+  }
+  return text;
 }
 
 Json read_json_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ModelError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw ModelError(path, "", "cannot read file");
-  return parse_json_text(text.str(), path);
+  return parse_json_text(read_model_text(path), path);
 }
 
 // ---- describing and writing values --------------------------------------------------------
@@ -245,8 +410,43 @@ void write_pretty(std::string& out, const Json& j, int indent) {
 
 }  // namespace
 
+namespace {
+
+/// Appends the compact dump of j to out, stopping soon after out exceeds `limit` characters:
+/// only what is shown is serialized (a large string is cut before it is escaped).
+void dump_bounded(std::string& out, const Json& j, std::size_t limit) {
+  if (out.size() > limit) return;
+  if (j.is_string()) {
+    const std::string& s = j.get_ref<const std::string&>();
+    std::size_t n = std::min(s.size(), limit - out.size() + 1);
+    while (n < s.size() && n > 0 && (static_cast<unsigned char>(s[n]) & 0xC0) == 0x80) --n;
+    out += Json(s.substr(0, n)).dump(-1, ' ', false, Json::error_handler_t::replace);
+    if (n < s.size()) out += "...";  // certainly over the limit: cut below
+    return;
+  }
+  if (is_scalar(j)) {
+    out += dump_scalar(j);
+    return;
+  }
+  out += j.is_array() ? '[' : '{';
+  bool first = true;
+  for (auto it = j.begin(); it != j.end() && out.size() <= limit; ++it) {
+    if (!first) out += ',';
+    first = false;
+    if (j.is_object()) {
+      dump_bounded(out, Json(it.key()), limit);
+      out += ':';
+    }
+    dump_bounded(out, it.value(), limit);
+  }
+  out += j.is_array() ? ']' : '}';
+}
+
+}  // namespace
+
 std::string short_dump(const Json& j, std::size_t max_chars) {
-  std::string s = is_scalar(j) ? dump_scalar(j) : j.dump();
+  std::string s;
+  dump_bounded(s, j, max_chars);
   if (s.size() > max_chars && max_chars > 3) {
     std::size_t cut = max_chars - 3;
     while (cut > 0 && (static_cast<unsigned char>(s[cut]) & 0xC0) == 0x80) --cut;  // UTF-8

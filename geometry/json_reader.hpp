@@ -32,16 +32,35 @@ class ModelError : public std::runtime_error {
   std::string file_, pointer_, message_;
 };
 
-/// Reads a whole file and parses it. Malformed JSON raises ModelError with line and column
-/// and the JSON path reached; numbers that overflow a double (1e999) and duplicate keys in an
-/// object are rejected the same way. A missing/unreadable file raises ModelError too.
+/// Limits of every JSON document read (docs/model_format.md, section 1). They bound what a
+/// hostile or broken file can cost before anything is built from it:
+/// - a model file is a regular file of at most 64 MiB (real models are kilobytes; a 10^6-point
+///   NURBS net is about 60 MB of text);
+/// - arrays and objects nest at most 256 deep (models need 5), so that no recursive code
+///   (writing, error messages) ever sees a deeper document;
+/// - a document holds at most 10 million JSON values (numbers, strings, arrays, objects...),
+///   so that the parsed document stays below about 1 GB even for a file of `[0,0,0,...]`.
+constexpr std::size_t kMaxModelFileBytes = std::size_t{64} << 20;
+constexpr std::size_t kMaxJsonDepth = 256;
+constexpr std::size_t kMaxJsonValues = 10'000'000;
+
+/// The whole text of a model file. Raises ModelError naming the file, before reading
+/// anything, unless `path` is a regular file (not a directory, FIFO or device) of at most
+/// `max_bytes` bytes; also when it cannot be opened or read. Every reader of model files goes
+/// through here.
+std::string read_model_text(const std::string& path, std::size_t max_bytes = kMaxModelFileBytes);
+/// read_model_text + parse_json_text. Malformed JSON raises ModelError with line and column
+/// and the JSON path reached; numbers that overflow a double (1e999), duplicate keys in an
+/// object, nesting deeper than kMaxJsonDepth and more than kMaxJsonValues values are rejected
+/// the same way. A UTF-8 byte-order mark at the start is skipped.
 Json read_json_file(const std::string& path);
 /// The same checks on text already in memory; `file` is used in messages only.
 Json parse_json_text(const std::string& text, const std::string& file);
 
 /// "string \"abc\"", "number 3", "null", "array [1,2]": type name and compact value.
 std::string describe_json(const Json& j);
-/// Compact dump, cut to about `max_chars` characters with "..." (doubles round-trip).
+/// Compact dump, cut to about `max_chars` characters with "..." (doubles round-trip). Only the
+/// part shown is serialized: a huge or deep value costs no more than a small one.
 std::string short_dump(const Json& j, std::size_t max_chars = 60);
 /// Indented dump that keeps arrays of scalars on one line ("[0.0, 1.0, 2.5]"); doubles are
 /// written with round-trip precision. Ends without a newline.

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 namespace iga {
@@ -53,6 +54,25 @@ void check_homogeneous(const std::vector<Vector4d>& pw) {
                           " must be finite with weight > 0");
 }
 
+void make_storable(std::vector<Vector4d>& pw) {
+  for (Vector4d& q : pw) {
+    const double w = q.w();
+    if (w == 1.0) continue;
+    for (int k = 0; k < 3; ++k) {
+      const double y = q[k], x0 = y / w;
+      // Any x with fl(w x) == y lies within two ulps of x0 (|w x - y| <= ulp(y) / 2).
+      bool storable = w * x0 == y;
+      double up = x0, down = x0;
+      for (int i = 0; i < 3 && !storable; ++i) {
+        up = std::nextafter(up, std::numeric_limits<double>::infinity());
+        down = std::nextafter(down, -std::numeric_limits<double>::infinity());
+        storable = w * up == y || w * down == y;
+      }
+      if (!storable) q[k] = w * x0;
+    }
+  }
+}
+
 NurbsCurve::NurbsCurve(int degree, std::vector<double> knots, const std::vector<Vector3d>& points,
                        const std::vector<double>& weights) {
   validate_knots(degree, knots, static_cast<int>(points.size()));
@@ -64,6 +84,7 @@ NurbsCurve::NurbsCurve(KnotVector knots, std::vector<Vector4d> pw)
     : knots_(std::move(knots)), pw_(std::move(pw)) {
   validate_knots(knots_.degree(), knots_.span(), static_cast<int>(pw_.size()));
   check_homogeneous(pw_);
+  make_storable(pw_);
 }
 
 Vector3d NurbsCurve::control_point(int i) const {

@@ -55,5 +55,11 @@ std::vector<double> weights_of(const std::vector<Vector4d>& pw);
 bool any_weight_not_one(const std::vector<Vector4d>& pw);
 /// Throws GeometryError unless every point is finite with weight > 0.
 void check_homogeneous(const std::vector<Vector4d>& pw);
+/// Makes every homogeneous coordinate y = w P one that a file can hold. A file holds the
+/// Cartesian P and w, and reading gives fl(w P); for a y computed in homogeneous form
+/// (refinement, constructions) there is often no double P with fl(w P) == y. Such a y becomes
+/// fl(w fl(y / w)), within an ulp of y: exactly what writing and reading it back gives, so that
+/// save -> load reproduces the curve or surface bit for bit. Idempotent; weights unchanged.
+void make_storable(std::vector<Vector4d>& pw);
 
 }  // namespace iga

@@ -30,6 +30,7 @@ NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v, std::vector<V
     throw GeometryError("control net size must be " + std::to_string(num_u() * num_v()) +
                         ", got " + std::to_string(pw_.size()));
   check_homogeneous(pw_);
+  make_storable(pw_);
   detect_closed();
 }
 

@@ -154,9 +154,12 @@ class Analysis {
   double stop_full_slip_after_ = -1.0;
 };
 
-/// --set /json/pointer=value for the apps: the value is JSON text (a number, "string", [list]);
-/// the pointer must name an existing entry, so that a typo is an error rather than a silently
-/// ignored key. Throws ModelError / std::invalid_argument.
+/// --set /json/pointer=value for the apps: the value is JSON text (a number, "string", [list]).
+/// The pointer names an existing entry (replaced) or a new key of an existing object (added);
+/// a typo in a key is then rejected by the loader's own validation ("unknown key"), with the
+/// allowed keys. Throws ModelError naming the pointer for a malformed assignment or pointer
+/// (RFC 6901: "/a/b", "~0" for '~', "~1" for '/') and for a pointer whose parent is missing or
+/// is not an object.
 void apply_override(Json& doc, const std::string& file, const std::string& assignment);
 
 /// A JSON pointer given as a string at `c` (e.g. an app section's "/contact/0/mu") that names an

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include <sys/stat.h>
 #include <sys/wait.h>
+#include <unistd.h>
 #include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
@@ -26,21 +28,26 @@ struct Run {
 
 using iga::test::slurp;
 
-// Runs `iga ARGS`, capturing standard output and error in temporary files.
-Run run_iga(const std::string& args) {
+// Runs `EXE ARGS`, capturing standard output and error in temporary files.
+Run run_program(const std::string& exe, const std::string& args) {
   static int counter = 0;
   const fs::path dir = fs::temp_directory_path() / ("iga_tool_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path out = dir / ("out" + std::to_string(counter) + ".txt");
   const fs::path err = dir / ("err" + std::to_string(counter++) + ".txt");
-  const std::string cmd = std::string("\"") + IGA_EXE + "\" " + args + " >\"" + out.string() +
-                          "\" 2>\"" + err.string() + "\" </dev/null";
+  const std::string cmd = "\"" + exe + "\" " + args + " >\"" + out.string() + "\" 2>\"" +
+                          err.string() + "\" </dev/null";
   const int raw = std::system(cmd.c_str());
   Run r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+// Runs `iga ARGS`.
+Run run_iga(const std::string& args) {
+  return run_program(IGA_EXE, args);
 }
 
 // The geometry models of data/ (app models such as capstan.json have a format of their own).
@@ -516,4 +523,194 @@ TEST_CASE("iga info: every line ends with a newline, patch groups included", "[a
                                      r.out.find('\n', r.out.find("patch_group")) != std::string::npos;
     CHECK(newline_after_group);
   }
+
+// ---- issue 11: command-line contract, --set, limits of the reader ---------------------------
+
+namespace {
+
+/// A fresh scratch folder for one test case.
+fs::path scratch(const std::string& name) {
+  const fs::path d =
+      fs::temp_directory_path() / ("iga_tool_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(d);
+  fs::create_directories(d);
+  return d;
+}
+
+std::string quoted(const fs::path& p) {
+  return "\"" + p.string() + "\"";
+}
+
+const std::string kCapstan = std::string(IGA_SOURCE_DIR) + "/data/capstan.json";
+
+}  // namespace
+
+TEST_CASE("iga and the apps exit 2 on a bad command line, 1 on bad input, 0 on --help",
+          "[apps][iga][errors]") {
+  // CLI11's own codes were 105 (unknown option), 106 (missing required), 109 (extra), ...
+  const std::vector<std::string> bad_lines = {"",
+                                              "frobnicate",
+                                              "--bogus",
+                                              "eval",
+                                              "info",
+                                              "run",
+                                              "run \"" + kCapstan + "\" --bogus",
+                                              "run \"" + kCapstan + "\" extra_argument",
+                                              "eval \"" + kCapstan + "\" --grid abc",
+                                              "project \"" + kCapstan + "\""};
+  for (const std::string& args : bad_lines) {
+    const Run r = run_iga(args);
+    INFO("iga " << args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(!r.err.empty());
+  }
+  for (const char* args : {"--help", "run --help", "--version"}) {
+    INFO(args);
+    CHECK(run_iga(args).status == 0);
+  }
+  // A missing model file is bad input, reported by the reader: 1, not a command-line error.
+  const Run missing = run_iga("run /nonexistent/model.json --quiet");
+  CHECK(missing.status == 1);
+  CHECK_THAT(missing.err, Catch::Contains("/nonexistent/model.json: cannot open file"));
+  // The apps.
+  for (const auto& [exe, args] :
+       std::vector<std::pair<std::string, std::string>>{{CAPSTAN_EXE, "--bogus"},
+                                                        {CAPSTAN_EXE, "--mu abc"},
+                                                        {HELIX_EXE, "--pitch"},
+                                                        {HELIX_EXE, "a.json b.json"},
+                                                        {SADDLE_EXE, "--strategy sideways"},
+                                                        {SADDLE_EXE, "--frobnicate"}}) {
+    const Run r = run_program(exe, args);
+    INFO(exe << " " << args << "\n" << r.err);
+    CHECK(r.status == 2);
+  }
+  for (const char* exe : {CAPSTAN_EXE, HELIX_EXE, SADDLE_EXE})
+    CHECK(run_program(exe, "--help").status == 0);
+  const Run bad_model = run_program(CAPSTAN_EXE, "/nonexistent/capstan.json");
+  CHECK(bad_model.status == 1);
+  CHECK_THAT(bad_model.err, Catch::Contains("/nonexistent/capstan.json: cannot open file"));
+}
+
+TEST_CASE("iga run --set adds a key whose parent object exists and names a bad pointer itself",
+          "[apps][iga][run][errors]") {
+  const fs::path out = scratch("set");
+  // /solver has no max_steps in capstan.json: it is added, and the run stops after 2 steps.
+  const Run added = run_iga("run \"" + kCapstan + "\" --quiet --out " + quoted(out) +
+                            " --set /solver/max_steps=2");
+  INFO(added.out << added.err);
+  CHECK(added.status == 2);  // the solver stopped early, as asked
+  CHECK(added.err.empty());
+  CHECK(slurp(out / "model_used.json").find("\"max_steps\": 2") != std::string::npos);
+  CHECK(slurp(out / "summary.json").find("\"steps\": 2") != std::string::npos);
+  struct Case {
+    std::string set, message;
+  };
+  const std::vector<Case> cases = {
+      // a new key the schema does not know: the loader's own message, with the allowed keys
+      {"/solver/max_stepz=3",
+       "capstan.json: /solver/max_stepz: unknown key \"max_stepz\" (allowed here: t_end"},
+      {"/solver/a~2b=1",
+       "iga: error: --set: \"/solver/a~2b\" is not a JSON pointer: '~' must be followed by 0 or 1"},
+      {"/solver/a~=1", "--set: \"/solver/a~\" is not a JSON pointer"},
+      {"solver/max_steps=3",
+       "iga: error: --set: expected /json/pointer=value (e.g. /solver/max_steps=50), got "
+       "\"solver/max_steps=3\""},
+      {"/solver/max_steps", "--set: expected /json/pointer=value"},
+      {"/nosuch/key=1",
+       "capstan.json: /nosuch/key: --set: no such entry, and its parent /nosuch does not exist "
+       "either"},
+      {"/contact/7=1",
+       "capstan.json: /contact/7: --set: no such entry; a new key can only be added to an object, "
+       "and /contact is array"},
+      {"/contact/99999999999999999999999=1",
+       "capstan.json: /contact/99999999999999999999999: --set: no such entry; a new key"},
+      {"/solver/max_steps=[", "--set /solver/max_steps: /0: malformed JSON at line 1, column 2"},
+  };
+  for (const Case& c : cases) {
+    const Run r =
+        run_iga("run \"" + kCapstan + "\" --quiet --out " + quoted(out) + " --set '" + c.set + "'");
+    INFO(c.set << "\n" << r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find(c.message) != std::string::npos);
+    CHECK(r.err.find("json.exception") == std::string::npos);  // never the library's message
+  }
+  // The apps share the override: a new key is taken, a bad pointer gets the same message.
+  const Run app =
+      run_program(CAPSTAN_EXE, "--mu 0.3 --phi-deg 90 --out " + quoted(out / "capstan") +
+                                   " --set /solver/max_steps=2");
+  INFO(app.out << app.err);
+  CHECK(app.status == 2);  // the case did not reach full slip in 2 steps
+  CHECK(app.err.find("error") == std::string::npos);
+  CHECK(slurp(out / "capstan" / "model_used.json").find("\"max_steps\": 2") != std::string::npos);
+  const Run app_bad =
+      run_program(CAPSTAN_EXE, "--out " + quoted(out / "capstan") + " --set '/solver/a~2b=1'");
+  CHECK(app_bad.status == 1);
+  CHECK_THAT(app_bad.err,
+             Catch::Contains("capstan: error: --set: \"/solver/a~2b\" is not a JSON pointer"));
+  const Run app_unknown = run_program(
+      HELIX_EXE, "--quick --out " + quoted(out / "helix") + " --set /geometry/rope/pich=1");
+  CHECK(app_unknown.status == 1);
+  CHECK_THAT(app_unknown.err,
+             Catch::Contains("helix.json: /geometry/rope/pich: unknown key \"pich\""));
+  fs::remove_all(out);
+}
+
+TEST_CASE(
+    "iga: deep nesting, non-regular files and a byte-order mark end in a message, not a crash",
+    "[apps][iga][errors][limits]") {
+  const fs::path d = scratch("limits");
+  auto write = [&](const std::string& name, const std::string& text) {
+    std::ofstream(d / name, std::ios::binary) << text;
+    return quoted(d / name);
+  };
+  auto nested = [](std::size_t levels, bool closed) {
+    return std::string(levels, '[') + "0" + (closed ? std::string(levels, ']') : std::string());
+  };
+  const std::string head =
+      "{\"format\": \"iga-contact-model\", \"version\": 1, \"geometry\": {}, \"app\": ";
+  struct Case {
+    std::string command, message;
+  };
+  const std::vector<Case> cases = {
+      // crashed (exit 139) writing model_used.json, in the error message, and while loading
+      {"run " + write("app40k.json", head + nested(40000, true) + "}") + " --quiet --out " +
+           quoted(d / "o"),
+       "app40k.json: /app/0/0/0/0/0/0/0/0"},
+      {"info " + write("root60k.json", nested(60000, true)), "root60k.json: /0/0/0/0/"},
+      {"eval " + write("app300k.json", head + nested(300000, true) + "}") + " --center",
+       "app300k.json: /app/0/0"},
+      {"info " + write("unclosed.json", nested(std::size_t{1} << 20, false)),
+       "unclosed.json: /0/0/0/0"},
+      {"info " + quoted(d), ": is a directory, not a model file"},
+      {"eval /dev/zero --center", "/dev/zero: is not a regular file"},
+  };
+  for (const Case& c : cases) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Run r = run_iga(c.command);
+    INFO(c.command.substr(0, 200) << "\n" << r.err);
+    CHECK(r.status == 1);
+    CHECK(r.err.find(c.message) != std::string::npos);
+    if (c.message.find("/0/0") != std::string::npos)
+      CHECK(r.err.find("nested deeper than 256 levels") != std::string::npos);
+    CHECK(r.err.size() < 1000);
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 10.0);
+  }
+  // A FIFO blocked forever when opened: it is refused before (timeout: a regression fails, not
+  // hangs).
+  const fs::path fifo = d / "fifo.json";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  const Run f = run_program("timeout",
+                            "20 \"" + std::string(IGA_EXE) + "\" run " + quoted(fifo) + " --quiet");
+  CHECK(f.status == 1);
+  CHECK_THAT(f.err, Catch::Contains("fifo.json: is not a regular file"));
+  // A UTF-8 byte-order mark: accepted by info, eval and run alike.
+  const std::string bom = write("bom.json", "\xEF\xBB\xBF" + slurp(kCapstan));
+  CHECK(run_iga("info " + bom).status == 0);
+  CHECK(run_iga("eval " + bom + " --center").status == 0);
+  const Run run =
+      run_iga("run " + bom + " --quiet --out " + quoted(d / "bom") + " --set /solver/max_steps=1");
+  INFO(run.err);
+  CHECK(run.status == 2);  // read and run; stopped after the one step asked for
+  CHECK(run.err.empty());
+  fs::remove_all(d);
 }

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "iga/model.hpp"
@@ -155,4 +156,36 @@ TEST_CASE("model: a missing file and an unwritable path are reported", "[iga][io
   CHECK(e.file() == missing);
   CHECK(e.message().find("cannot open file") != std::string::npos);
   CHECK_THROWS_AS(save_model(Model{}, kData + "no_such_dir/x.json"), std::runtime_error);
+}
+
+TEST_CASE("model: save -> load is bit for bit for every model in data/", "[iga][io][model]") {
+  // data/pinched_cylinder.json lost an ulp in 263 of 1225 control points: its rational net is
+  // computed in homogeneous form, and not every w P is fl(w x) for some double x. The
+  // constructed net is now stored so that it is (make_storable), and the writer finds that x.
+  // Within one machine this is a property of the I/O code, so the comparison is exact.
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(IGA_SOURCE_DIR) / "data")) {
+    if (entry.path().extension() != ".json") continue;
+    const std::string path = entry.path().string();
+    INFO(path);
+    const Model m1 = load_model(path);
+    const std::string first = scratch("data_1_" + entry.path().filename().string());
+    save_model(m1, first);
+    const Model m2 = load_model(first);
+    CHECK(m2 == m1);
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < m1.geometry.entities.size(); ++i) {
+      const auto* s1 = std::get_if<NurbsSurface>(&m1.geometry.entities[i].second);
+      const auto* s2 = std::get_if<NurbsSurface>(&m2.geometry.entities[i].second);
+      if (s1 == nullptr || s2 == nullptr) continue;
+      for (std::size_t k = 0; k < s1->homogeneous().size(); ++k)
+        if (s1->homogeneous()[k] != s2->homogeneous()[k]) ++differing;
+    }
+    CHECK(differing == 0);
+    const std::string second = scratch("data_2_" + entry.path().filename().string());
+    save_model(m2, second);
+    CHECK(iga::test::slurp(second) == iga::test::slurp(first));
+    ++count;
+  }
+  CHECK(count >= 15);
 }
