@@ -327,13 +327,11 @@ PatchGroup parse_patch_group(const JsonCursor& e) {
 double optional_number(const JsonCursor& e, const char* key, double fallback) {
   return e.has(key) ? e[key].as_number() : fallback;
 }
-/// Lengths and coordinates of a construction: at most kMaxLength in magnitude, so that squares
-/// of distances (and the homogeneous w P) stay far from overflow.
-constexpr double kMaxLength = 1e100;
+/// Lengths and coordinates of a construction: the bound of every geometric value
+/// (parse_coordinate), so that squares of distances and the homogeneous w P stay finite.
 constexpr double kMaxAngleDeg = 1e6;
 void check_length(const JsonCursor& c) {
-  if (!(std::abs(c.as_number()) <= kMaxLength))
-    c.fail("must be at most " + num(kMaxLength) + " in magnitude");
+  (void)parse_coordinate(c);
 }
 void check_point(const JsonCursor& c) {
   for (std::size_t i = 0; i < c.size(); ++i) check_length(c[i]);
@@ -472,11 +470,11 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     const Interval x = parse_interval(e["x_range"]), y = parse_interval(e["y_range"]);
     if (!std::isfinite(x.lo) || !std::isfinite(x.hi)) e["x_range"].fail("must be finite");
     if (!std::isfinite(y.lo) || !std::isfinite(y.hi)) e["y_range"].fail("must be finite");
-    if (!(std::max(std::abs(x.lo), std::abs(x.hi)) <= kMaxLength))
-      e["x_range"].fail("must lie within +-" + num(kMaxLength));
-    if (!(std::max(std::abs(y.lo), std::abs(y.hi)) <= kMaxLength))
-      e["y_range"].fail("must lie within +-" + num(kMaxLength));
-    if (!(std::abs(a) <= kMaxLength)) e["a"].fail("must lie within +-" + num(kMaxLength));
+    if (!(std::max(std::abs(x.lo), std::abs(x.hi)) <= kMaxCoordinate))
+      e["x_range"].fail("must lie within +-" + num(kMaxCoordinate));
+    if (!(std::max(std::abs(y.lo), std::abs(y.hi)) <= kMaxCoordinate))
+      e["y_range"].fail("must lie within +-" + num(kMaxCoordinate));
+    if (!(std::abs(a) <= kMaxCoordinate)) e["a"].fail("must lie within +-" + num(kMaxCoordinate));
     return finish_surface(
         e, construct(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
   }
@@ -508,8 +506,8 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     w.angle = ac.as_number() * kDeg;
     if (!(w.angle > 0.0 && w.angle <= 4.0 * std::numbers::pi)) ac.fail("must be in (0, 720]");
     w.pitch = optional_number(e, "pitch", 0.0);
-    if (!std::isfinite(w.pitch) || std::abs(w.pitch) > kMaxLength)
-      e["pitch"].fail("must lie within +-" + num(kMaxLength));
+    if (!std::isfinite(w.pitch) || std::abs(w.pitch) > kMaxCoordinate)
+      e["pitch"].fail("must lie within +-" + num(kMaxCoordinate));
     w.span_length = parse_positive(e["span_length"]);
     check_length(e["span_length"]);
     w.arc_elements = parse_count(e["arc_elements"], 1, kMaxCurveElements);

@@ -523,6 +523,7 @@ TEST_CASE("iga info: every line ends with a newline, patch groups included", "[a
                                      r.out.find('\n', r.out.find("patch_group")) != std::string::npos;
     CHECK(newline_after_group);
   }
+}
 
 // ---- issue 11: command-line contract, --set, limits of the reader ---------------------------
 

@@ -718,7 +718,7 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
   // The largest allowed surface builds.
   const GeometryModel m = parse_geometry(
       parse_json_text(R"({"shell": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
-      "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [24, 93]}}})",
+      "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [48, 186]}}})",
                       "g.json"),
       "g.json", JsonPointer("/geometry"));
   const auto& shell = std::get<NurbsSurface>(m.entities.at(0).second);
