@@ -26,6 +26,7 @@ struct Run {
   std::string out, err;
 };
 
+using iga::test::csv_rows;
 using iga::test::slurp;
 
 // Runs `EXE ARGS`, capturing standard output and error in temporary files.
@@ -68,19 +69,6 @@ Run run_data_model(const std::string& model, const fs::path& out, const std::str
              out.string() + "\" " + extra);
 }
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::istringstream ls(line);
-    std::string cell;
-    while (std::getline(ls, cell, ',')) cells.push_back(cell);
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 }  // namespace
 

@@ -18,6 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using iga::test::csv_rows;
 using iga::test::slurp;
 
 struct Result {
@@ -44,20 +45,6 @@ fs::path fresh(const std::string& name) {
   return d;
 }
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::string line;
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    std::istringstream ls(line);
-    std::string cell;
-    while (std::getline(ls, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 bool has_non_finite_text(const std::string& s) {
   for (const char* w : {"nan", "inf", "NaN", "Inf"})

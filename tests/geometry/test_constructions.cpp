@@ -23,6 +23,7 @@
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
 #include "geometry/knot_vector.hpp"
+#include "tests/support/geometry_error.hpp"
 #include "tests/support/geometry_checks.hpp"
 
 using namespace iga;
@@ -549,16 +550,6 @@ std::vector<Vector3d> dense_fit(const std::vector<Vector3d>& Q, const std::vecto
   return cp;
 }
 
-/// The ModelError of parsing `text` as the geometry section of g.json.
-ModelError construction_error(const std::string& text) {
-  try {
-    parse_geometry(parse_json_text(text, "g.json"), "g.json", JsonPointer("/geometry"));
-  } catch (const ModelError& e) {
-    return e;
-  }
-  FAIL("no ModelError for " << text);
-  return ModelError("", "", "");
-}
 
 std::string rope(const std::string& radius, const std::string& arc, const std::string& span = "3",
                  const std::string& span_length = "1.0") {
@@ -681,38 +672,38 @@ TEST_CASE("make_wrap_path: bad inputs are named by their key before any fitting"
 TEST_CASE("geometry_io: construction errors name the key at fault and state the limits",
           "[geometry][constructions][errors]") {
   // Tiny radius: the key, not an internal knot.
-  ModelError e = construction_error(rope("1e-12", "10"));
+  ModelError e = iga::test::geometry_error(rope("1e-12", "10"));
   CHECK(e.pointer() == "/geometry/rope/radius");
   CHECK_THAT(e.message(), Catch::Contains("too small"));
   CHECK_THAT(e.message(), !Catch::Contains("knot"));
   // Too many elements: the limit is stated at the key.
-  e = construction_error(rope("1.0", "100000"));
+  e = iga::test::geometry_error(rope("1.0", "100000"));
   CHECK(e.pointer() == "/geometry/rope/arc_elements");
   CHECK_THAT(e.message(), Catch::Contains("100000"));
-  e = construction_error(rope("1.0", "1e5"));
+  e = iga::test::geometry_error(rope("1.0", "1e5"));
   CHECK(e.pointer() == "/geometry/rope/arc_elements");
-  e = construction_error(rope("1.0", "10", "3", "1e-13"));
+  e = iga::test::geometry_error(rope("1.0", "10", "3", "1e-13"));
   CHECK(e.pointer() == "/geometry/rope/span_length");
-  e = construction_error(rope("1e300", "10"));
+  e = iga::test::geometry_error(rope("1e300", "10"));
   CHECK(e.pointer() == "/geometry/rope/radius");
   // A refined surface above the control point limit: at "refine", with the count and limit.
-  e = construction_error(R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
       "radius": 1, "refine": {"subdivide": 1024}}})");
   CHECK(e.pointer() == "/geometry/shell/refine");
   CHECK_THAT(e.message(), Catch::Contains(std::to_string(kMaxSurfaceControlPoints)));
-  e = construction_error(R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
       "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 2}})");
   CHECK(e.pointer() == "/geometry/t/minor_radius");
-  e = construction_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 90, "end_deg": 45}})");
   CHECK(e.pointer() == "/geometry/c/end_deg");
-  e = construction_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 0, "end_deg": 400}})");
   CHECK(e.pointer() == "/geometry/c/end_deg");
-  e = construction_error(R"({"p": {"type": "construction", "shape": "plane", "origin": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"p": {"type": "construction", "shape": "plane", "origin": [0, 0, 0],
       "du": [1, 0, 0], "dv": [2, 0, 0]}})");
   CHECK(e.pointer() == "/geometry/p/dv");
-  e = construction_error(R"({"l": {"type": "construction", "shape": "line", "start": [0, 0, 0],
+  e = iga::test::geometry_error(R"({"l": {"type": "construction", "shape": "line", "start": [0, 0, 0],
       "end": [1, 0, 0], "elements": 200000}})");
   CHECK(e.pointer() == "/geometry/l/elements");
   // The largest allowed surface builds.

@@ -17,6 +17,7 @@
 
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
+#include "tests/support/geometry_error.hpp"
 
 using namespace iga;
 
@@ -37,16 +38,6 @@ GeometryModel text_round_trip(const GeometryModel& m) {
                         JsonPointer("/geometry"));
 }
 
-/// The ModelError message of parsing `text` as a geometry section (empty if none is thrown).
-ModelError geometry_error(const std::string& text) {
-  try {
-    parse_geometry(parse_json_text(text, "g.json"), "g.json", JsonPointer("/geometry"));
-  } catch (const ModelError& e) {
-    return e;
-  }
-  FAIL("no ModelError for " << text);
-  return ModelError("", "", "");
-}
 
 GeometryModel hand_built() {
   GeometryModel m;
@@ -354,36 +345,36 @@ TEST_CASE("json_reader: type errors say what was expected and what came",
 
 TEST_CASE("geometry_io: errors in memory name the element and not just the entity",
           "[geometry][io][errors]") {
-  const ModelError e1 = geometry_error(R"({"s": {"type": "nurbs_surface", "degree": [2, 1],
+  const ModelError e1 = iga::test::geometry_error(R"({"s": {"type": "nurbs_surface", "degree": [2, 1],
       "knots": {"u": [0, 0, 0, 1, 1, 1], "v": [0, 0, 1, 1]},
       "control_points": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0]]}})");
   CHECK(e1.pointer() == "/geometry/s/control_points");
   CHECK(e1.message().find("expected 6 control points") != std::string::npos);
   CHECK(e1.message().find("got 5") != std::string::npos);
 
-  const ModelError e2 = geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 2,
+  const ModelError e2 = iga::test::geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 2,
       "knots": [0, 0, 0.5, 1, 1, 1], "control_points": [[0,0,0],[1,0,0],[2,0,0]]}})");
   CHECK(e2.pointer() == "/geometry/c/knots/2");
   CHECK(e2.message().find("clamped") != std::string::npos);
 
-  const ModelError e3 = geometry_error(R"({"k": {"type": "cone", "center": [0,0,0],
+  const ModelError e3 = iga::test::geometry_error(R"({"k": {"type": "cone", "center": [0,0,0],
       "axis": [0,0,1], "alpha": 1.6}})");
   CHECK(e3.pointer() == "/geometry/k/alpha");
   CHECK(e3.message() == "must be in (0, pi/2) radians, got 1.6");
 
-  const ModelError e4 = geometry_error(R"({"p": {"type": "plane", "center": [0,0,0],
+  const ModelError e4 = iga::test::geometry_error(R"({"p": {"type": "plane", "center": [0,0,0],
       "axis": [0,0,2], "ref_dir": [0,0,-1]}})");
   CHECK(e4.pointer() == "/geometry/p/ref_dir");
 
-  const ModelError e5 = geometry_error(R"({"g": {"type": "patch_group", "patches": ["g"]}})");
+  const ModelError e5 = iga::test::geometry_error(R"({"g": {"type": "patch_group", "patches": ["g"]}})");
   CHECK(e5.pointer() == "/geometry/g/patches/0");
   CHECK(e5.message().find("is a patch_group") != std::string::npos);
 
-  const ModelError e6 = geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 11,
+  const ModelError e6 = iga::test::geometry_error(R"({"c": {"type": "nurbs_curve", "degree": 11,
       "knots": [0, 1], "control_points": []}})");
   CHECK(e6.message() == "degree must be in 1..10, got 11");
 
-  const ModelError e7 = geometry_error(R"([1, 2])");
+  const ModelError e7 = iga::test::geometry_error(R"([1, 2])");
   CHECK(e7.pointer() == "/geometry");
   CHECK(e7.message().find("got array [1,2]") != std::string::npos);
 }
@@ -416,10 +407,10 @@ TEST_CASE("geometry_io: a construction's \"refine\" takes one count or a pair [u
       CHECK((a.point(u, v) - base.point(u, v)).norm() <= 1e-14);
       CHECK((b.point(u, v) - base.point(u, v)).norm() <= 1e-14);
     }
-  const ModelError e = geometry_error("{\"s\": " + cyl + R"(, "refine": {"elevate": [1, 2, 3]}}})");
+  const ModelError e = iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"elevate": [1, 2, 3]}}})");
   CHECK(e.pointer() == "/geometry/s/refine/elevate");
   CHECK_THAT(std::string(e.what()), Catch::Contains("expected a count or a pair [u, v]"));
-  const ModelError f = geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
+  const ModelError f = iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
   CHECK(f.pointer() == "/geometry/s/refine/subdivide/1");
   CHECK_THAT(std::string(f.what()), Catch::Contains("must be in 1..1024, got 0"));
 }
@@ -659,7 +650,7 @@ TEST_CASE("geometry_io: coordinates, lengths, weights and domains are bounded at
   };
   for (const Case& c : cases) {
     INFO(c.entity);
-    const ModelError e = geometry_error("{\"s\": " + c.entity + "}");
+    const ModelError e = iga::test::geometry_error("{\"s\": " + c.entity + "}");
     INFO(e.what());
     CHECK(e.pointer() == c.pointer);
     CHECK(e.message().find(c.fragment) != std::string::npos);
