@@ -1,6 +1,7 @@
-// Benchmarks of the NURBS kernel: basis functions with derivatives (A2.3) and bicubic rational
-// surface evaluation with second derivatives (A4.4). Items per second = evaluations per
-// second. Run: build/release/bench/bench_nurbs --benchmark_repetitions=5
+// Benchmarks of the NURBS kernel: basis functions with derivatives (A2.3), bicubic rational
+// surface evaluation with second derivatives (A4.4), and the least-squares fit of a rope's
+// wrap path (constructions.hpp) against its element count. Items per second = evaluations
+// (fits: elements) per second. Run: build/release/bench/bench_nurbs --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "geometry/bspline_basis.hpp"
+#include "geometry/constructions.hpp"
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/nurbs_surface.hpp"
 
@@ -96,6 +98,20 @@ void BM_CubicCurveDerivs(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_CubicCurveDerivs);
+
+// make_wrap_path: the capstan's rope (a half turn on a unit cylinder between two straight
+// spans) fitted with n arc elements and n/10 + 1 elements per span.
+void BM_WrapPathFit(benchmark::State& state) {
+  WrapPathSpec w;
+  w.arc_elements = static_cast<int>(state.range(0));
+  w.span_elements = w.arc_elements / 10 + 1;
+  for (auto _ : state) {
+    WrapPath path = make_wrap_path(w);
+    benchmark::DoNotOptimize(path);
+  }
+  state.SetItemsProcessed(state.iterations() * state.range(0));
+}
+BENCHMARK(BM_WrapPathFit)->Arg(100)->Arg(1000)->Arg(3000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

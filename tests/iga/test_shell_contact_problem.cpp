@@ -159,7 +159,10 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
         const double w1 = s1->displacements[0].z(), w4 = s4->displacements[0].z();
         INFO("t = " << t << ": centre u_z " << w1 << " (one patch), " << w4 << " (2 x 2)");
         CHECK(std::abs(w1 - w4) <= 1e-5 * std::abs(w1));
-        CHECK(s1->contact.active == s4->contact.active);
+        // The points on the rim of the contact zone have gaps within that difference: their
+        // count may differ (94 against 90 at t = 750 when built with -ffp-contract=fast -mfma,
+        // equal without); within 10 %, as master against slave above.
+        CHECK(s1->contact.active == Approx(s4->contact.active).epsilon(0.1));
       }
     }
   }
