@@ -246,7 +246,8 @@ int run_eval(const EvalOptions& o) {
   const Model m = load_model(o.file);
   const int modes = (!o.uv.empty()) + o.has_u + o.center + (o.grid > 0);
   if (modes != 1)
-    throw std::invalid_argument("give exactly one of --uv U,V (surfaces), --u U (curves), --center, --grid N");
+    throw std::invalid_argument(
+        "give exactly one of --uv U,V (surfaces), --u U (curves), --center, --grid N");
   // Entities to evaluate: the one named, or every curve and surface (groups are skipped,
   // their members are entities of their own).
   std::vector<std::pair<std::string, const GeometryEntity*>> todo;

@@ -233,7 +233,8 @@ Action add_project_command(CLI::App& app) {
   cmd->add_option("model", o->file, "Model file (JSON)")->required();
   cmd->add_option("--points,-p", o->points, "CSV of points x,y,z (one per row)")->required();
   cmd->add_option("--ray", o->rays, "CSV of ray directions, one per point: project along them");
-  cmd->add_option("--entity,-e", o->entity, "Surface or patch group (default: the first group, else the first surface)");
+  cmd->add_option("--entity,-e", o->entity,
+                  "Surface or patch group (default: the first group, else the first surface)");
   cmd->add_option("--out,-o", o->out, "Result CSV (default: standard output)");
   cmd->add_flag("--warm", o->warm, "Warm-start each point from the previous one's foot point");
   cmd->add_option("--search-distance", o->search_distance,

@@ -1,8 +1,8 @@
-// `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any analysis model (rod or shell, with or without contact)
-// (docs/model_format.md, analysis sections): progress line per step, the solver's summary, and in
-// DIR steps.csv, summary.json, ParaView files, model_used.json.
-// Exit status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the solver stopped
-// early (or a bad command line, from iga_main.cpp).
+// `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any analysis model (rod or shell,
+// with or without contact) (docs/model_format.md, analysis sections): progress line per step, the
+// solver's summary, and in DIR steps.csv, summary.json, ParaView files, model_used.json. Exit
+// status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the solver stopped early
+// (or a bad command line, from iga_main.cpp).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -25,16 +25,19 @@ int run_model(const RunOptions& o) {
   Json doc = read_json_file(o.file);
   for (const std::string& s : o.sets) apply_override(doc, o.file, s);
   Analysis a = Analysis::from_json(doc, o.file);
-  const std::string out = o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
+  const std::string out =
+      o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
   std::filesystem::create_directories(out);
   std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
   std::cout << "iga run: " << o.file << ": " << a.describe() << "\n";
   const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out);
   std::cout << "iga run: results in " << out << " (steps.csv, summary.json"
             << (a.output().vtk == AnalysisOutput::Vtk::kNone ? ""
-                : a.body_kind() == BodyKind::kRod ? ", rod.pvd" : ", shell.pvd")
+                : a.body_kind() == BodyKind::kRod            ? ", rod.pvd"
+                                                             : ", shell.pvd")
             << ")\n";
-  const bool ok = r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
+  const bool ok =
+      r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
   if (!ok) std::cout << "iga run: the run ended early: " << r.solver.message << "\n";
   return ok ? 0 : 2;
 }
@@ -43,7 +46,8 @@ int run_model(const RunOptions& o) {
 
 Action add_run_command(CLI::App& app) {
   auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "Run an analysis model (rod or shell, with or without contact)");
+  CLI::App* cmd =
+      app.add_subcommand("run", "Run an analysis model (rod or shell, with or without contact)");
   // No CLI::ExistingFile check: a missing or unreadable model is bad input (exit 1, reported by
   // the reader like every other model error), not a bad command line.
   cmd->add_option("model", o->file, "Model file (JSON)")->required();

@@ -85,7 +85,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   std::string out = std::string("out/").append(ra.name);
   bool quick = false, profile = false, verbose = false;
   double max_error = -1.0;
-  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")->capture_default_str();
+  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")
+      ->capture_default_str();
   cli.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.5,1)")->delimiter(',');
   cli.add_option("--phi-deg", phi_list, "Wrap angles in degrees (a list)")->delimiter(',');
   cli.add_option("--pitch", pitch_list, "Helix pitches H, rise per turn (a list)")->delimiter(',');
@@ -93,7 +94,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
   cli.add_flag("--quick", quick, "Run the model's reduced sweep (app/quick)");
   cli.add_option("--max-error", max_error, "Exit with status 3 if some |rel_error| exceeds this");
-  cli.add_flag("--profile", profile, "Report the time shares: assembly (rod, contact), linear solves");
+  cli.add_flag("--profile", profile,
+               "Report the time shares: assembly (rod, contact), linear solves");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
   try {
     cli.parse(argc, argv);
@@ -105,7 +107,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   Json doc = read_json_file(model_file);
   for (const std::string& s : sets) apply_override(doc, model_file, s);
   const JsonCursor root(doc, model_file);
-  if (!root.has("app")) root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");
+  if (!root.has("app"))
+    root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");
   const JsonCursor app = root["app"];
   app.expect_object({"T0", "mu", "phi_deg", "pitch", "centre_radius", "reaction_point", "pull",
                      "max_pull", "sweeps", "quick", "description"});
@@ -236,24 +239,30 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
               << " rel_error " << std::showpos << rel << std::noshowpos << "   steps "
               << r.solver.steps << ", Newton " << r.solver.total_iterations << "\n";
   }
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  const double secs =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 
   // 5. Plot and summary.
-  const std::string cmd = "/usr/bin/python3 \"" + ra.plot_script + "\" \"" + (dir / (ra.name + ".csv")).string() +
-                          "\" \"" + (dir / (ra.name + ".png")).string() + "\" 2>&1";
-  if (std::system(cmd.c_str()) != 0) std::cout << ra.name << ": warning: the plot failed (" << cmd << ")\n";
-  std::cout << ra.name << ": " << cases.size() - failed << "/" << cases.size() << " cases, max |rel_error| "
-            << worst << ", " << steps_total << " steps, "
+  const std::string cmd = "/usr/bin/python3 \"" + ra.plot_script + "\" \"" +
+                          (dir / (ra.name + ".csv")).string() + "\" \"" +
+                          (dir / (ra.name + ".png")).string() + "\" 2>&1";
+  if (std::system(cmd.c_str()) != 0)
+    std::cout << ra.name << ": warning: the plot failed (" << cmd << ")\n";
+  std::cout << ra.name << ": " << cases.size() - failed << "/" << cases.size()
+            << " cases, max |rel_error| " << worst << ", " << steps_total << " steps, "
             << static_cast<double>(iterations_total) / std::max(steps_total, 1)
             << " Newton iterations per step, " << secs << " s; results in " << dir.string() << "\n";
   if (profile && t_solver > 0.0)
-    std::cout << ra.name << ": profile: solver " << t_solver << " s = assembly " << 100 * t_assembly / t_solver
-              << " % (of which contact " << 100 * t_contact / t_solver << " %, rod and loads "
-              << 100 * (t_assembly - t_contact) / t_solver << " %), linear solves " << 100 * t_linear / t_solver
-              << " %, other " << 100 * (t_solver - t_assembly - t_linear) / t_solver << " %\n";
+    std::cout << ra.name << ": profile: solver " << t_solver << " s = assembly "
+              << 100 * t_assembly / t_solver << " % (of which contact "
+              << 100 * t_contact / t_solver << " %, rod and loads "
+              << 100 * (t_assembly - t_contact) / t_solver << " %), linear solves "
+              << 100 * t_linear / t_solver << " %, other "
+              << 100 * (t_solver - t_assembly - t_linear) / t_solver << " %\n";
   if (failed > 0) return 2;
   if (max_error >= 0.0 && worst > max_error) {
-    std::cout << ra.name << ": max |rel_error| " << worst << " exceeds --max-error " << max_error << "\n";
+    std::cout << ra.name << ": max |rel_error| " << worst << " exceeds --max-error " << max_error
+              << "\n";
     return 3;
   }
   return 0;

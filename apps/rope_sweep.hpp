@@ -23,11 +23,11 @@
 namespace iga::app {
 
 struct RopeApp {
-  std::string name;          ///< "capstan" or "helix": program name, CSV and plot names
-  std::string title;         ///< one-line description for --help
-  std::string default_model; ///< data/<name>.json
-  bool pitch_column = false; ///< the CSV has the column "pitch" (helix)
-  std::string plot_script;   ///< scripts/plot_<name>.py
+  std::string name;           ///< "capstan" or "helix": program name, CSV and plot names
+  std::string title;          ///< one-line description for --help
+  std::string default_model;  ///< data/<name>.json
+  bool pitch_column = false;  ///< the CSV has the column "pitch" (helix)
+  std::string plot_script;    ///< scripts/plot_<name>.py
 };
 
 int run_rope_app(const RopeApp& app, int argc, char** argv);

@@ -80,7 +80,8 @@ std::string run_name(double mu) {
 
 AppSection read_app(const Json& doc, const std::string& file) {
   const JsonCursor root(doc, file);
-  if (!root.has("app")) root.fail_plain("missing required key \"app\" (the runs of the saddle app)");
+  if (!root.has("app"))
+    root.fail_plain("missing required key \"app\" (the runs of the saddle app)");
   const JsonCursor app = root["app"];
   app.expect_object({"mu", "eps_T", "strategy", "a", "load", "load_curve", "centre_monitor", "runs",
                      "snapshots", "quick", "block_model", "description"});
@@ -103,7 +104,12 @@ AppSection read_app(const Json& doc, const std::string& file) {
     spec.name = run_name(spec.mu);
     // a second run with the same mu (another eps_T) is told apart by its eps_T
     for (const RunSpec& o : s.runs)
-      if (o.name == spec.name) spec.name += "_epsT" + [&] { std::ostringstream e; e << spec.eps_t; return e.str(); }();
+      if (o.name == spec.name)
+        spec.name += "_epsT" + [&] {
+          std::ostringstream e;
+          e << spec.eps_t;
+          return e.str();
+        }();
     for (const RunSpec& o : s.runs)
       if (o.name == spec.name) r.fail_plain("the same run (mu and eps_T) is listed twice");
     s.runs.push_back(spec);
@@ -197,10 +203,11 @@ BlockModel read_block_model(const std::string& file) {
   b.file = file;
   b.doc = read_json_file(file);
   const JsonCursor root(b.doc, file);
-  if (!root.has("app")) root.fail_plain("missing required key \"app\" (where the saddle app moves the block)");
+  if (!root.has("app"))
+    root.fail_plain("missing required key \"app\" (where the saddle app moves the block)");
   const JsonCursor app = root["app"];
-  app.expect_object({"block", "a", "thickness", "mu", "eps_T", "strategy", "half_size", "gap", "direction_deg",
-                     "radii", "description"});
+  app.expect_object({"block", "a", "thickness", "mu", "eps_T", "strategy", "half_size", "gap",
+                     "direction_deg", "radii", "description"});
   b.block = pointer(app, "block", b.doc);
   b.a = pointer(app, "a", b.doc);
   b.thickness = pointer(app, "thickness", b.doc);
@@ -228,15 +235,15 @@ struct BlockResult {
   /// holds, the points of least pressure slip: N varies over the block, whose friction acts at
   /// its lower face, h/2 below the load), "no contact"
   std::string state;
-  std::string status; ///< the solver's
+  std::string status;  ///< the solver's
   bool converged = false;
 };
 
 /// The block at radius fraction * mu / a (along bm.direction), on the saddle z = a x y: the
 /// bilinear patch with corners on the saddle is the saddle itself, written with degree 2 and
 /// lifted so that its lower face (h/2 along the normal) lies bm.gap above it.
-BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t, const std::string& strategy,
-                      double fraction) {
+BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t,
+                      const std::string& strategy, double fraction) {
   BlockResult res;
   res.fraction = fraction;
   res.r_start = fraction * mu / a;
@@ -260,7 +267,9 @@ BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t, c
                  {"control_points", pts}};
   Analysis an = Analysis::from_json(d, bm.file);
   const ShellContactProblem* contact = an.shell_contact_problem();
-  if (contact == nullptr) throw std::invalid_argument(bm.file + ": the block check needs a shell body with a surface_to_rigid contact pair");
+  if (contact == nullptr)
+    throw std::invalid_argument(
+        bm.file + ": the block check needs a shell body with a surface_to_rigid contact pair");
   const AnalysisResult r = an.run();
   res.converged = r.solver.converged();
   res.status = r.solver.message;
@@ -293,22 +302,28 @@ BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t, c
 }  // namespace
 
 int main(int argc, char** argv) try {
-  CLI::App cli{"saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. 6.1-6.2)"};
+  CLI::App cli{
+      "saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. "
+      "6.1-6.2)"};
   std::string model_file = std::string(IGA_SOURCE_DIR) + "/data/saddle.json";
   std::vector<double> mu_list;
   std::vector<std::string> sets;
   std::string strategy, out = "out/saddle";
   bool quick = false, verbose = false, blocks_only = false;
-  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")->capture_default_str();
-  cli.add_option("--mu", mu_list, "Friction coefficients (a list: 0,0.125); eps_T = eps_N when mu > 0")
+  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")
+      ->capture_default_str();
+  cli.add_option("--mu", mu_list,
+                 "Friction coefficients (a list: 0,0.125); eps_T = eps_N when mu > 0")
       ->delimiter(',');
-  cli.add_option("--strategy", strategy, "Penetration strategy: the rigid surface as master (closest point) or slave (ray)")
+  cli.add_option("--strategy", strategy,
+                 "Penetration strategy: the rigid surface as master (closest point) or slave (ray)")
       ->check(CLI::IsMember({"master", "slave"}));
   cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
   cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
   cli.add_flag("--quick", quick, "Coarse version: apply the model's app/quick overrides first");
   cli.add_flag("--blocks-only", blocks_only,
-               "Only the sticking-circle check (79)-(81): the small block of app/block_model at radii around mu/a");
+               "Only the sticking-circle check (79)-(81): the small block of app/block_model at "
+               "radii around mu/a");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
   try {
     cli.parse(argc, argv);
@@ -320,10 +335,12 @@ int main(int argc, char** argv) try {
   Json doc = read_json_file(model_file);
   if (quick) {
     const JsonCursor root(doc, model_file);
-    if (!root.has("app") || !root["app"].has("quick")) root.fail_plain("--quick: the model has no \"app\"/\"quick\" overrides");
+    if (!root.has("app") || !root["app"].has("quick"))
+      root.fail_plain("--quick: the model has no \"app\"/\"quick\" overrides");
     const JsonCursor q = root["app"]["quick"];
     if (!q.json().is_object()) q.fail_type("an object {\"/json/pointer\": value}");
-    for (const std::string& k : q.keys()) apply_override(doc, model_file, k + "=" + q[k].json().dump());
+    for (const std::string& k : q.keys())
+      apply_override(doc, model_file, k + "=" + q[k].json().dump());
   }
   for (const std::string& s : sets) apply_override(doc, model_file, s);
   AppSection app = read_app(doc, model_file);
@@ -332,7 +349,8 @@ int main(int argc, char** argv) try {
     const double eps_n = doc.at(JsonPointer("/contact/0/eps_N")).get<double>();
     app.runs.clear();
     for (double mu : mu_list) {
-      if (!(mu >= 0.0)) throw std::invalid_argument("--mu: must be >= 0, got " + std::to_string(mu));
+      if (!(mu >= 0.0))
+        throw std::invalid_argument("--mu: must be >= 0, got " + std::to_string(mu));
       app.runs.push_back({mu, mu > 0.0 ? eps_n : 0.0, run_name(mu)});
     }
   }
@@ -358,15 +376,20 @@ int main(int argc, char** argv) try {
   const double t_end = probe.solver_settings().t1;
   const double a = doc.at(app.a).get<double>();
   const std::vector<double> load_vec = doc.at(app.load).get<std::vector<double>>();
-  const double q_final = std::sqrt(std::inner_product(load_vec.begin(), load_vec.end(), load_vec.begin(), 0.0));
+  const double q_final =
+      std::sqrt(std::inner_product(load_vec.begin(), load_vec.end(), load_vec.begin(), 0.0));
   int centre = -1;
   for (std::size_t k = 0; k < probe.output().monitors.size(); ++k)
     if (probe.output().monitors[k].name == app.centre_monitor) centre = static_cast<int>(k);
-  if (centre < 0) throw std::invalid_argument(model_file + ": app/centre_monitor: no output monitor named '" + app.centre_monitor + "'");
+  if (centre < 0)
+    throw std::invalid_argument(model_file + ": app/centre_monitor: no output monitor named '" +
+                                app.centre_monitor + "'");
   LoadCurve lambda;
   for (const auto& [name, curve] : probe.load_curves())
     if (name == app.load_curve) lambda = curve;
-  if (!lambda) throw std::invalid_argument(model_file + ": app/load_curve: no load curve named '" + app.load_curve + "'");
+  if (!lambda)
+    throw std::invalid_argument(model_file + ": app/load_curve: no load curve named '" +
+                                app.load_curve + "'");
 
   // 2. Output folder.
   const fs::path dir(out);
@@ -374,7 +397,8 @@ int main(int argc, char** argv) try {
   std::ofstream(dir / "model_used.json") << format_json(doc) << "\n";
   std::ofstream csv(dir / "saddle.csv");
   if (!csv) throw std::runtime_error("cannot write " + (dir / "saddle.csv").string());
-  csv << "run,mu,t,load,centre_deflection,contact_points,sticking_points,sliding_points,iterations\n"
+  csv << "run,mu,t,load,centre_deflection,contact_points,sticking_points,sliding_points,"
+         "iterations\n"
       << std::setprecision(10);
   std::cout << "saddle: " << probe.describe() << "\n";
   std::cout << "saddle: " << app.runs.size() << " run(s), strategy "
@@ -394,7 +418,9 @@ int main(int argc, char** argv) try {
     d[app.eps_t] = run.eps_t;
     Analysis an = Analysis::from_json(d, model_file);
     ShellContactProblem* contact = an.shell_contact_problem();
-    if (contact == nullptr) throw std::invalid_argument(model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");
+    if (contact == nullptr)
+      throw std::invalid_argument(
+          model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");
     const fs::path run_dir = dir / run.name;
     fs::create_directories(run_dir);
     std::ofstream points(dir / ("contact_" + run.name + ".csv"));
@@ -402,7 +428,8 @@ int main(int argc, char** argv) try {
     VtkCollection pvd_shell((run_dir / "snapshots_shell.pvd").string());
     VtkCollection pvd_contact((run_dir / "snapshots_contact.pvd").string());
     Json snaps = Json::array();
-    std::cout << "saddle: run " << run.name << " (mu = " << run.mu << ", eps_T = " << run.eps_t << ")\n";
+    std::cout << "saddle: run " << run.name << " (mu = " << run.mu << ", eps_T = " << run.eps_t
+              << ")\n";
     auto on_step = [&](const VectorXd& u, double t, const AnalysisStep& st) {
       const double w = -st.displacements[static_cast<std::size_t>(centre)].z();
       csv << run.name << "," << run.mu << "," << t << "," << q_final * lambda(t) << "," << w << ","
@@ -412,9 +439,9 @@ int main(int argc, char** argv) try {
         if (std::abs(t - ts) > 1e-9 * t_end) continue;
         for (const SurfaceContactPoint& cp : contact->contact().points())
           if (cp.active)
-            points << t << "," << cp.x.x() << "," << cp.x.y() << "," << cp.x.z() << "," << cp.foot.uv.x()
-                   << "," << cp.foot.uv.y() << "," << cp.N << "," << (contact->contact().sticks(cp) ? 1 : 0)
-                   << "\n";
+            points << t << "," << cp.x.x() << "," << cp.x.y() << "," << cp.x.z() << ","
+                   << cp.foot.uv.x() << "," << cp.foot.uv.y() << "," << cp.N << ","
+                   << (contact->contact().sticks(cp) ? 1 : 0) << "\n";
         points.flush();
         std::ostringstream stem;
         stem << "t" << t;
@@ -425,9 +452,10 @@ int main(int argc, char** argv) try {
         z["t"] = t;
         z["centre_deflection"] = w;
         snaps.push_back(z);
-        std::cout << "  t = " << std::setw(6) << t << "  q = " << std::setw(8) << q_final * lambda(t)
-                  << "  centre deflection " << std::setw(9) << w << "  contact " << st.contact.active
-                  << " (stick " << st.contact.stick << ", slide " << st.contact.slip << ")\n";
+        std::cout << "  t = " << std::setw(6) << t << "  q = " << std::setw(8)
+                  << q_final * lambda(t) << "  centre deflection " << std::setw(9) << w
+                  << "  contact " << st.contact.active << " (stick " << st.contact.stick
+                  << ", slide " << st.contact.slip << ")\n";
       }
       return true;
     };
@@ -453,21 +481,23 @@ int main(int argc, char** argv) try {
     j["time_contact_s"] = r.contact_time;
     j["time_linear_solve_s"] = s.time_linear_solve;
     j["time_per_iteration_s"] = s.time_total / std::max(s.total_iterations, 1);
-    j["centre_deflection"] = r.steps.empty() ? 0.0 : -r.steps.back().displacements[static_cast<std::size_t>(centre)].z();
+    j["centre_deflection"] =
+        r.steps.empty() ? 0.0 : -r.steps.back().displacements[static_cast<std::size_t>(centre)].z();
     j["snapshots"] = snaps;
     summary["runs"].push_back(j);
     std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";  // after each run
-    std::cout << "  " << run.name << ": " << to_string(s.status) << " at t = " << s.t << ", " << s.steps
-              << " steps, " << s.total_iterations << " Newton iterations ("
+    std::cout << "  " << run.name << ": " << to_string(s.status) << " at t = " << s.t << ", "
+              << s.steps << " steps, " << s.total_iterations << " Newton iterations ("
               << static_cast<double>(s.total_iterations) / std::max(s.steps, 1) << " per step), "
-              << s.time_total << " s: assembly " << 100 * s.time_assembly / s.time_total << " % (contact "
-              << 100 * r.contact_time / s.time_total << " %), linear solves "
+              << s.time_total << " s: assembly " << 100 * s.time_assembly / s.time_total
+              << " % (contact " << 100 * r.contact_time / s.time_total << " %), linear solves "
               << 100 * s.time_linear_solve / s.time_total << " %\n";
     if (run.mu > 0.0)
       std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points ("
                 << zone.first_contact << " in their first step of contact), radius "
-                << zone.radius_fit << " (fit), " << zone.radius_area << " (area), mu/a = " << run.mu / a
-                << ", centroid (" << zone.centroid.x() << ", " << zone.centroid.y() << ")\n";
+                << zone.radius_fit << " (fit), " << zone.radius_area
+                << " (area), mu/a = " << run.mu / a << ", centroid (" << zone.centroid.x() << ", "
+                << zone.centroid.y() << ")\n";
     if (!s.converged()) {
       ++failed;
       std::cout << "saddle: run " << run.name << " ended early: " << s.message << "\n";
@@ -479,7 +509,8 @@ int main(int argc, char** argv) try {
     const BlockModel& bm = *block_model;
     const std::string strat = doc.at(app.strategy).get<std::string>();
     std::ofstream bcsv(dir / "saddle_blocks.csv");
-    bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_points,state,"
+    bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_"
+            "points,state,"
             "T_over_N,theory,converged\n"
          << std::setprecision(10);
     summary["block_model"] = app.block_model;
@@ -489,9 +520,12 @@ int main(int argc, char** argv) try {
     std::vector<RunSpec> checks;
     for (const RunSpec& run : app.runs) {
       if (!(run.mu > 0.0 && run.eps_t > 0.0)) continue;
-      auto same = std::find_if(checks.begin(), checks.end(), [&](const RunSpec& c) { return c.mu == run.mu; });
-      if (same == checks.end()) checks.push_back(run);
-      else same->eps_t = std::max(same->eps_t, run.eps_t);
+      auto same = std::find_if(checks.begin(), checks.end(),
+                               [&](const RunSpec& c) { return c.mu == run.mu; });
+      if (same == checks.end())
+        checks.push_back(run);
+      else
+        same->eps_t = std::max(same->eps_t, run.eps_t);
     }
     for (const RunSpec& run : checks) {
       Json c = Json::object();
@@ -503,20 +537,31 @@ int main(int argc, char** argv) try {
       Json blocks = Json::array();
       for (double f : bm.radii) {
         const BlockResult b = run_block(bm, a, run.mu, run.eps_t, strat, f);
-        bcsv << run.mu << "," << run.eps_t << "," << f << "," << b.r_start << "," << b.r << "," << b.tan_gamma << ","
-             << b.active << "," << b.stick << "," << b.slip << "," << b.state << "," << b.ratio << "," << b.theory
-             << "," << (b.converged ? 1 : 0) << std::endl;
+        bcsv << run.mu << "," << run.eps_t << "," << f << "," << b.r_start << "," << b.r << ","
+             << b.tan_gamma << "," << b.active << "," << b.stick << "," << b.slip << "," << b.state
+             << "," << b.ratio << "," << b.theory << "," << (b.converged ? 1 : 0) << std::endl;
         if (!b.converged) ++failed;
         const bool holds = b.active > 0 && b.state != "slide";
         if (holds) hold_max = std::max(hold_max, b.r);
         if (b.state == "slide") slide_min = std::min(slide_min, b.r);
-        // a mass point sticks inside the circle, slides outside (radii exactly on it are not judged)
-        if ((f < 1.0 && !holds) || (f > 1.0 && b.state != "slide") || !b.converged) consistent = false;
-        if (b.active > 0 && b.theory > 0.0) err = std::max(err, std::abs(b.ratio - b.theory) / b.theory);
-        blocks.push_back({{"radius_fraction", f}, {"r_start", b.r_start}, {"r", b.r}, {"tan_gamma", b.tan_gamma},
-                          {"contact_points", b.active}, {"sticking_points", b.stick}, {"sliding_points", b.slip},
-                          {"state", b.state}, {"T_over_N", b.ratio}, {"theory_min_tan_gamma_mu", b.theory},
-                          {"converged", b.converged}, {"message", b.status}});
+        // a mass point sticks inside the circle, slides outside (radii exactly on it are not
+        // judged)
+        if ((f < 1.0 && !holds) || (f > 1.0 && b.state != "slide") || !b.converged)
+          consistent = false;
+        if (b.active > 0 && b.theory > 0.0)
+          err = std::max(err, std::abs(b.ratio - b.theory) / b.theory);
+        blocks.push_back({{"radius_fraction", f},
+                          {"r_start", b.r_start},
+                          {"r", b.r},
+                          {"tan_gamma", b.tan_gamma},
+                          {"contact_points", b.active},
+                          {"sticking_points", b.stick},
+                          {"sliding_points", b.slip},
+                          {"state", b.state},
+                          {"T_over_N", b.ratio},
+                          {"theory_min_tan_gamma_mu", b.theory},
+                          {"converged", b.converged},
+                          {"message", b.status}});
       }
       c["holds_up_to_r"] = hold_max;
       c["slides_from_r"] = std::isfinite(slide_min) ? Json(slide_min) : Json(nullptr);
@@ -524,17 +569,19 @@ int main(int argc, char** argv) try {
       c["max_relative_error_T_over_N"] = err;
       c["blocks"] = blocks;
       summary["sticking_circle"].push_back(c);
-      std::cout << "saddle: sticking circle, mu = " << run.mu << " (mu/a = " << run.mu / a << "): the block holds up to r = "
-                << hold_max << ", slides from r = " << slide_min << (consistent ? " (as (79)-(81))" : " (NOT as (79)-(81))")
+      std::cout << "saddle: sticking circle, mu = " << run.mu << " (mu/a = " << run.mu / a
+                << "): the block holds up to r = " << hold_max << ", slides from r = " << slide_min
+                << (consistent ? " (as (79)-(81))" : " (NOT as (79)-(81))")
                 << "; T/N vs min(a r, mu) within " << 100.0 * err << " %\n";
     }
     std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";
   }
 
   // 5. Plots.
-  const std::string cmd = "/usr/bin/python3 \"" + std::string(IGA_SOURCE_DIR) + "/scripts/plot_saddle.py\" \"" +
-                          dir.string() + "\" 2>&1";
-  if (std::system(cmd.c_str()) != 0) std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";
+  const std::string cmd = "/usr/bin/python3 \"" + std::string(IGA_SOURCE_DIR) +
+                          "/scripts/plot_saddle.py\" \"" + dir.string() + "\" 2>&1";
+  if (std::system(cmd.c_str()) != 0)
+    std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";
   return failed > 0 ? 2 : 0;
 } catch (const std::exception& e) {
   std::cerr << "saddle: error: " << e.what() << "\n";

@@ -519,9 +519,9 @@ GeometryEntity parse_construction(const JsonCursor& e) {
       "wrap_path)");
 }
 
-constexpr const char* kEntityTypes[] = {"nurbs_curve", "nurbs_surface", "plane", "sphere",
-                                        "cylinder",    "torus",         "cone",  "hyperboloid",
-                                        "revolution",  "patch_group", "construction"};
+constexpr const char* kEntityTypes[] = {
+    "nurbs_curve", "nurbs_surface", "plane",      "sphere",      "cylinder",    "torus",
+    "cone",        "hyperboloid",   "revolution", "patch_group", "construction"};
 
 GeometryEntity parse_entity(const JsonCursor& e) {
   if (!e.json().is_object()) e.fail_type("an object with a \"type\" key");

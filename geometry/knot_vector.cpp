@@ -2,8 +2,8 @@
 #include "geometry/knot_vector.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <charconv>
+#include <cmath>
 
 #include "geometry/bspline_basis.hpp"
 
@@ -76,7 +76,9 @@ KnotVector KnotVector::uniform(int degree, int n_elements, double a, double b, i
   return KnotVector(degree, std::move(U));
 }
 
-std::pair<double, double> KnotVector::domain() const { return {U_[p_], U_[U_.size() - 1 - p_]}; }
+std::pair<double, double> KnotVector::domain() const {
+  return {U_[p_], U_[U_.size() - 1 - p_]};
+}
 
 std::vector<double> KnotVector::breaks() const {
   std::vector<double> b;
@@ -92,7 +94,9 @@ int KnotVector::multiplicity(double u) const {
   return static_cast<int>(hi - lo);
 }
 
-int KnotVector::find_span(double u) const { return iga::find_span(num_basis(), p_, u, U_); }
+int KnotVector::find_span(double u) const {
+  return iga::find_span(num_basis(), p_, u, U_);
+}
 
 std::vector<double> KnotVector::greville() const {
   std::vector<double> g(static_cast<std::size_t>(num_basis()));

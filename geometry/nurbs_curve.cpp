@@ -16,8 +16,8 @@ constexpr double kBinomial[kMaxDerivOrder + 1][kMaxDerivOrder + 1] = {
 
 std::vector<Vector4d> to_homogeneous(const std::vector<Vector3d>& P, const std::vector<double>& w) {
   if (!w.empty() && w.size() != P.size())
-    throw GeometryError("weights count " + std::to_string(w.size()) +
-                        " != control point count " + std::to_string(P.size()));
+    throw GeometryError("weights count " + std::to_string(w.size()) + " != control point count " +
+                        std::to_string(P.size()));
   std::vector<Vector4d> pw(P.size());
   for (std::size_t i = 0; i < P.size(); ++i) {
     const double wi = w.empty() ? 1.0 : w[i];
@@ -100,14 +100,18 @@ std::vector<double> NurbsCurve::weights() const {
   return weights_of(pw_);
 }
 
-bool NurbsCurve::is_rational() const { return any_weight_not_one(pw_); }
+bool NurbsCurve::is_rational() const {
+  return any_weight_not_one(pw_);
+}
 
 Interval NurbsCurve::domain() const {
   const auto [a, b] = knots_.domain();
   return {a, b};
 }
 
-Vector3d NurbsCurve::point(double u) const { return derivs(u, 0).d[0]; }
+Vector3d NurbsCurve::point(double u) const {
+  return derivs(u, 0).d[0];
+}
 
 CurveDerivs NurbsCurve::derivs(double u, int order) const {
   // A4.2 (p. 127): derivatives of the homogeneous curve A(u), w(u), then
@@ -124,7 +128,8 @@ CurveDerivs NurbsCurve::derivs(double u, int order) const {
   for (int k = 0; k <= order; ++k) {
     A[k].setZero();
     if (k > p) continue;
-    for (int j = 0; j <= p; ++j) A[k].noalias() += N[k][j] * pw_[static_cast<std::size_t>(span - p + j)];
+    for (int j = 0; j <= p; ++j)
+      A[k].noalias() += N[k][j] * pw_[static_cast<std::size_t>(span - p + j)];
   }
   CurveDerivs out;
   out.order = order;

@@ -8,7 +8,6 @@
 
 namespace iga {
 
-
 NurbsSurface::NurbsSurface(int degree_u, std::vector<double> knots_u, int degree_v,
                            std::vector<double> knots_v, const std::vector<Vector3d>& points,
                            const std::vector<double>& weights) {
@@ -27,8 +26,8 @@ NurbsSurface::NurbsSurface(int degree_u, std::vector<double> knots_u, int degree
 NurbsSurface::NurbsSurface(KnotVector knots_u, KnotVector knots_v, std::vector<Vector4d> pw)
     : ku_(std::move(knots_u)), kv_(std::move(knots_v)), pw_(std::move(pw)) {
   if (static_cast<std::size_t>(num_u()) * static_cast<std::size_t>(num_v()) != pw_.size())
-    throw GeometryError("control net size must be " + std::to_string(num_u() * num_v()) +
-                        ", got " + std::to_string(pw_.size()));
+    throw GeometryError("control net size must be " + std::to_string(num_u() * num_v()) + ", got " +
+                        std::to_string(pw_.size()));
   check_homogeneous(pw_);
   make_storable(pw_);
   detect_closed();
@@ -38,7 +37,8 @@ void NurbsSurface::detect_closed() {
   // A clamped direction is closed when its first and last rows of control points coincide
   // (then S(lo, v) == S(hi, v) for all v). Tolerance relative to the net's size.
   double scale = 0.0;
-  for (const Vector4d& q : pw_) scale = std::max(scale, (q.head<3>() / q.w()).cwiseAbs().maxCoeff());
+  for (const Vector4d& q : pw_)
+    scale = std::max(scale, (q.head<3>() / q.w()).cwiseAbs().maxCoeff());
   const double tol = 1e-12 * std::max(scale, 1.0);
   closed_u_ = closed_v_ = true;
   for (int j = 0; j < num_v(); ++j)
@@ -60,7 +60,9 @@ std::vector<double> NurbsSurface::weights() const {
   return weights_of(pw_);
 }
 
-bool NurbsSurface::is_rational() const { return any_weight_not_one(pw_); }
+bool NurbsSurface::is_rational() const {
+  return any_weight_not_one(pw_);
+}
 
 Domain2 NurbsSurface::domain() const {
   const auto [u0, u1] = ku_.domain();
@@ -72,12 +74,13 @@ namespace {
 
 // A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
 // S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
-//           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) / w
+//           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) /
+//           w
 // The order O, and for the common degrees also PF = p and QF = q (0: known at run time only),
 // are template parameters so that the loops unroll.
 template <int O, int PF, int QF>
-SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p_rt, int q_rt,
-                          int su, int sv, int nu, const std::vector<Vector4d>& pw) {
+SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p_rt, int q_rt, int su,
+                          int sv, int nu, const std::vector<Vector4d>& pw) {
   const int p = PF > 0 ? PF : p_rt;
   const int q = QF > 0 ? QF : q_rt;
   // First the u-sums of every row of the element's net, T[k] = sum_r Nu[k][r] Pw[.][.], then
@@ -146,9 +149,12 @@ SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
   ders_basis_funs(su, u, p, order, U, Nu);
   ders_basis_funs(sv, v, q, order, V, Nv);
   switch (order) {
-    case 0: return dispatch_degrees<0>(Nu, Nv, p, q, su, sv, num_u(), pw_);
-    case 1: return dispatch_degrees<1>(Nu, Nv, p, q, su, sv, num_u(), pw_);
-    default: return dispatch_degrees<2>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    case 0:
+      return dispatch_degrees<0>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    case 1:
+      return dispatch_degrees<1>(Nu, Nv, p, q, su, sv, num_u(), pw_);
+    default:
+      return dispatch_degrees<2>(Nu, Nv, p, q, su, sv, num_u(), pw_);
   }
 }
 

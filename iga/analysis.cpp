@@ -73,7 +73,8 @@ std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names
 
 LoadCurve parse_load_curve(const JsonCursor& c) {
   c.expect_object({"type", "points", "scale", "rate", "value", "description"});
-  const std::string type = one_of(c["type"], {"ramp", "constant", "piecewise_linear", "exponential"});
+  const std::string type =
+      one_of(c["type"], {"ramp", "constant", "piecewise_linear", "exponential"});
   if (type == "ramp") {
     c.expect_object({"type", "scale", "description"});
     const double a = number_or(c, "scale", 1.0);
@@ -180,8 +181,8 @@ std::vector<int> point_list(const JsonCursor& pc, const Context& ctx) {
     } else {
       points = {0, ctx.n_points - 1};
     }
-  } else if (pc.json().is_array() && !(ctx.kind == BodyKind::kShell && pc.size() == 2 &&
-                                       pc[0].json().is_number())) {
+  } else if (pc.json().is_array() &&
+             !(ctx.kind == BodyKind::kShell && pc.size() == 2 && pc[0].json().is_number())) {
     pc.expect_array(1);
     for (std::size_t k = 0; k < pc.size(); ++k) points.push_back(point_index(pc[k], ctx));
   } else {
@@ -217,14 +218,16 @@ Vector3d outward_tangent(const NurbsCurve& C, bool at_end) {
 Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& ctx, int where) {
   if (o.has(vec_key)) {
     if (o.has("magnitude") || o.has("direction"))
-      o.fail_plain(std::string("give either \"") + vec_key + "\" or \"magnitude\" and \"direction\"");
+      o.fail_plain(std::string("give either \"") + vec_key +
+                   "\" or \"magnitude\" and \"direction\"");
     return vec3(o[vec_key]);
   }
   const double m = o["magnitude"].as_number();
   const JsonCursor d = o["direction"];
   if (d.json().is_string() && ctx.kind == BodyKind::kRod) {
     one_of(d, {"outward_tangent"});
-    if (where != 0 && where != 1) d.fail("\"outward_tangent\" needs the point \"start\" or \"end\"");
+    if (where != 0 && where != 1)
+      d.fail("\"outward_tangent\" needs the point \"start\" or \"end\"");
     return m * outward_tangent(*ctx.curve, where == 1);
   }
   const Vector3d v = vec3(d);
@@ -269,8 +272,8 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodPr
       const std::string e = one_of(o["end"], {"start", "end"});
       p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
     } else {
-      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
-                       "description"});
+      o.expect_object(
+          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
       const int i = point_index(o["point"], ctx);
       const Vector3d d = vector_value(o, "value", ctx, end_of(o["point"]));
       p.prescribe(i, d, curve_of(o, ctx));
@@ -286,8 +289,8 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   check_body(o, ctx);
   auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
   if (type == "point_force") {
-    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
-                     "description"});
+    o.expect_object(
+        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
     p.add_point_load(at(o["at"]), vector_value(o, "force", ctx, end_of(o["at"])), curve_of(o, ctx));
   } else if (type == "line_load") {
     o.expect_object({"type", "name", "body", "q", "curve", "description"});
@@ -310,7 +313,7 @@ std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const Ge
 
 SurfaceEdge parse_edge(const JsonCursor& c) {
   const std::string e = one_of(c, {"u_min", "u_max", "v_min", "v_max"});
-  return e == "u_min" ? SurfaceEdge::kUMin
+  return e == "u_min"   ? SurfaceEdge::kUMin
          : e == "u_max" ? SurfaceEdge::kUMax
          : e == "v_min" ? SurfaceEdge::kVMin
                         : SurfaceEdge::kVMax;
@@ -325,7 +328,8 @@ Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S) {
   for (int k = 0; k < 2; ++k)
     if (uv[k] < I[k].lo || uv[k] > I[k].hi)
       c[static_cast<std::size_t>(k)].fail("parameter must lie in the surface's domain [" +
-                                          std::to_string(I[k].lo) + ", " + std::to_string(I[k].hi) + "]");
+                                          std::to_string(I[k].lo) + ", " + std::to_string(I[k].hi) +
+                                          "]");
   return {uv[0], uv[1]};
 }
 
@@ -338,9 +342,10 @@ void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, She
     if (type == "fix") {
       fix_points(o, ctx, p);
     } else if (type == "displacement") {
-      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
-                       "description"});
-      p.prescribe(point_index(o["point"], ctx), vector_value(o, "value", ctx, -1), curve_of(o, ctx));
+      o.expect_object(
+          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
+      p.prescribe(point_index(o["point"], ctx), vector_value(o, "value", ctx, -1),
+                  curve_of(o, ctx));
     } else if (type == "simply_supported") {
       o.expect_object({"type", "body", "edge", "components", "description"});
       const std::vector<int> c = components(o);
@@ -374,7 +379,8 @@ void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, She
 
 void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = one_of(o["type"], {"surface_load", "pressure", "edge_load", "point_force"});
+  const std::string type =
+      one_of(o["type"], {"surface_load", "pressure", "edge_load", "point_force"});
   check_body(o, ctx);
   if (type == "surface_load") {  // dead force per reference area
     o.expect_object({"type", "name", "body", "q", "curve", "description"});
@@ -386,8 +392,8 @@ void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) 
     o.expect_object({"type", "name", "body", "edge", "q", "curve", "description"});
     p.add_edge_load(parse_edge(o["edge"]), vec3(o["q"]), curve_of(o, ctx));
   } else {
-    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
-                     "description"});
+    o.expect_object(
+        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
     const Vector2d uv = surface_parameters(o["at"], *ctx.surface);
     p.add_point_load(uv[0], uv[1], vector_value(o, "force", ctx, -1), curve_of(o, ctx));
   }
@@ -496,7 +502,7 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
   AnalysisOutput out;
   if (o.has("vtk")) {
     const std::string v = one_of(o["vtk"], {"none", "last", "all"});
-    out.vtk = v == "none" ? AnalysisOutput::Vtk::kNone
+    out.vtk = v == "none"  ? AnalysisOutput::Vtk::kNone
               : v == "all" ? AnalysisOutput::Vtk::kAll
                            : AnalysisOutput::Vtk::kLast;
   }
@@ -569,10 +575,10 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   RodOptions opt;
   opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
   if (b.has("bending"))
-    opt.bending = one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) ==
-                          "transported_frame"
-                      ? BendingMeasure::kTransportedFrame
-                      : BendingMeasure::kCurvatureMagnitude;
+    opt.bending =
+        one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
+            ? BendingMeasure::kTransportedFrame
+            : BendingMeasure::kCurvatureMagnitude;
   std::optional<KirchhoffRod> rod;
   try {
     rod.emplace(*ctx.curve, section, opt);
@@ -601,14 +607,16 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   } else {
     problem = std::make_unique<RodProblem>(std::move(*rod));
   }
-  for_each_entry(root, "boundary_conditions", [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "boundary_conditions",
+                 [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
   for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
   return problem;
 }
 
 /// The shell body, its contact pair, boundary conditions, springs and loads.
 std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                          const GeometryModel& geometry, const JsonCursor& materials,
+                                          const GeometryModel& geometry,
+                                          const JsonCursor& materials,
                                           std::shared_ptr<const RigidSurface>& rigid_out,
                                           ShellContactProblem*& contact_out) {
   b.expect_object({"type", "surface", "material", "quadrature_points", "description"});
@@ -659,9 +667,12 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
                         : SurfaceContactStrategy::kRigidSlave;
     if (c.has("face")) {
       const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
-      cp.face = f == "lower" ? ShellFace::kLower : f == "upper" ? ShellFace::kUpper : ShellFace::kMid;
+      cp.face = f == "lower"   ? ShellFace::kLower
+                : f == "upper" ? ShellFace::kUpper
+                               : ShellFace::kMid;
     }
-    cp.points_per_direction = int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
+    cp.points_per_direction =
+        int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
     try {
       auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
@@ -673,7 +684,8 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   } else {
     problem = std::make_unique<ShellProblem>(std::move(*shell));
   }
-  for_each_entry(root, "boundary_conditions", [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "boundary_conditions",
+                 [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
   for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
   return problem;
 }
@@ -698,7 +710,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     }
   }
   const Json no_materials = Json::object();
-  const JsonCursor materials = root.has("materials") ? root["materials"] : JsonCursor(no_materials, file);
+  const JsonCursor materials =
+      root.has("materials") ? root["materials"] : JsonCursor(no_materials, file);
   if (!materials.json().is_object()) materials.fail_type("an object of named materials");
   for (const std::string& k : materials.keys()) {  // every entry is checked, used or not
     const JsonCursor m = materials[k];
@@ -741,7 +754,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   if (root.has("output")) a.output_ = parse_output(root["output"], ctx);
   if (a.output_.samples_per_element == 0)
     a.output_.samples_per_element = ctx.kind == BodyKind::kRod ? 16 : 4;
-  if (a.problem_->num_dofs() == 0) root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
+  if (a.problem_->num_dofs() == 0)
+    root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
 }
 
@@ -762,21 +776,23 @@ ShellProblem& Analysis::shell_problem() {
 std::string Analysis::describe() const {
   std::ostringstream s;
   if (rod_) {
-    s << "rod of " << rod_->rod().num_elements() << " elements (degree " << rod_->rod().degree() << ", ";
+    s << "rod of " << rod_->rod().num_elements() << " elements (degree " << rod_->rod().degree()
+      << ", ";
   } else {
     const NurbsSurface& S = shell_->shell().reference();
-    s << "shell of " << shell_->shell().num_elements() << " elements (degree " << S.degree_u() << " x "
-      << S.degree_v() << ", ";
+    s << "shell of " << shell_->shell().num_elements() << " elements (degree " << S.degree_u()
+      << " x " << S.degree_v() << ", ";
   }
-  s << problem_->num_control_points() << " control points), " << problem_->num_dofs() << " unknowns";
+  s << problem_->num_control_points() << " control points), " << problem_->num_dofs()
+    << " unknowns";
   if (rod_contact_)
     s << ", CTRS contact with a rigid surface of " << rigid_->num_patches() << " piece(s), "
       << rod_contact_->contact().points().size() << " contact points";
   if (shell_contact_) {
     const SurfaceContactParameters& p = shell_contact_->contact().parameters();
     s << ", STAS contact (rigid "
-      << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave") << ", mu = " << p.mu
-      << ") with a rigid surface of " << rigid_->num_patches() << " piece(s), "
+      << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave")
+      << ", mu = " << p.mu << ") with a rigid surface of " << rigid_->num_patches() << " piece(s), "
       << shell_contact_->contact().points().size() << " contact points";
   }
   s << ", t in [" << settings_.t0 << ", " << settings_.t1 << "]";
@@ -902,8 +918,10 @@ void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
     }
   VtkPointData d;
   d.scalars = {{"von_mises", von_mises}, {"singular", singular}};
-  d.vectors = {{"displacement", disp}, {"normal", normal},
-               {"membrane_force_N11_N22_N12", nloc}, {"moment_M11_M22_M12", mloc}};
+  d.vectors = {{"displacement", disp},
+               {"normal", normal},
+               {"membrane_force_N11_N22_N12", nloc},
+               {"moment_M11_M22_M12", mloc}};
   write_vtk_grid(path, pts, static_cast<int>(us.size()), static_cast<int>(vs.size()), d, title);
 }
 
@@ -916,7 +934,8 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   std::vector<std::string> files;
   if (rod_) {
     files.push_back(stem + "_rod.vtk");
-    write_rod_vtk((fs::path(dir) / files[0]).string(), rod_->rod(), x, n, name_ + " rod, t = " + fmt(t));
+    write_rod_vtk((fs::path(dir) / files[0]).string(), rod_->rod(), x, n,
+                  name_ + " rod, t = " + fmt(t));
   } else {
     files.push_back(stem + "_shell.vtk");
     write_shell_vtk((fs::path(dir) / files[0]).string(), shell_->shell(), x, n,
@@ -978,7 +997,8 @@ bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) 
         pts.push_back(S.derivs(D.u.lo + (D.u.hi - D.u.lo) * k / (n - 1),
                                D.v.lo + (D.v.hi - D.v.lo) * j / (n - 1), 0)
                           .S);
-    const std::string file = rigid_->num_patches() == 1 ? stem + ".vtk" : stem + "_" + std::to_string(i) + ".vtk";
+    const std::string file =
+        rigid_->num_patches() == 1 ? stem + ".vtk" : stem + "_" + std::to_string(i) + ".vtk";
     write_vtk_grid((fs::path(dir) / file).string(), pts, n, n, {}, name_ + " rigid surface");
     ++written;
   }

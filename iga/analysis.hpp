@@ -33,8 +33,8 @@ struct AnalysisMonitor {
 /// Output requests of the "output" section.
 struct AnalysisOutput {
   enum class Vtk { kNone, kLast, kAll };
-  Vtk vtk = Vtk::kLast;          ///< ParaView files: none, the last step, every step
-  std::vector<int> reactions;    ///< control points whose reactions go to steps.csv
+  Vtk vtk = Vtk::kLast;                   ///< ParaView files: none, the last step, every step
+  std::vector<int> reactions;             ///< control points whose reactions go to steps.csv
   std::vector<AnalysisMonitor> monitors;  ///< displacements that go to steps.csv
   /// Points per element (per direction for shells) in the VTK files; 0: 16 for rods, 4 for
   /// shells.
@@ -63,9 +63,9 @@ using AnalysisStepCallback =
 struct AnalysisResult {
   NonlinearSolverResult solver;
   std::vector<AnalysisStep> steps;
-  VectorXd u;                ///< state at the last converged step (time solver.t)
-  bool full_slip = false;    ///< the run stopped at the onset of full slip
-  double contact_time = 0.0; ///< seconds in the contact integral (part of the assembly)
+  VectorXd u;                 ///< state at the last converged step (time solver.t)
+  bool full_slip = false;     ///< the run stopped at the onset of full slip
+  double contact_time = 0.0;  ///< seconds in the contact integral (part of the assembly)
 };
 
 class Analysis {

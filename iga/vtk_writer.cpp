@@ -13,8 +13,8 @@ namespace {
 
 enum class Cells { kVertices, kPolyline, kQuads };
 
-void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, Cells cells,
-           int nu, int nv, const VtkPointData& data, const std::string& title) {
+void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, Cells cells, int nu,
+           int nv, const VtkPointData& data, const std::string& title) {
   const std::size_t n = points.size();
   for (const auto& [name, v] : data.scalars)
     if (v.size() != n)
@@ -86,9 +86,11 @@ void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector
 
 void write_vtk_grid(const std::string& path, const std::vector<Eigen::Vector3d>& points, int nu,
                     int nv, const VtkPointData& data, const std::string& title) {
-  if (nu < 2 || nv < 2 || points.size() != static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv))
-    throw std::runtime_error(path + ": a grid of " + std::to_string(nu) + " x " + std::to_string(nv) +
-                             " needs that many points, got " + std::to_string(points.size()));
+  if (nu < 2 || nv < 2 ||
+      points.size() != static_cast<std::size_t>(nu) * static_cast<std::size_t>(nv))
+    throw std::runtime_error(path + ": a grid of " + std::to_string(nu) + " x " +
+                             std::to_string(nv) + " needs that many points, got " +
+                             std::to_string(points.size()));
   write(path, points, Cells::kQuads, nu, nv, data, title);
 }
 

@@ -66,9 +66,8 @@ std::vector<fs::path> data_models() {
 Run run_data_model(const std::string& model, const fs::path& out, const std::string& extra = "") {
   fs::remove_all(out);
   return run_iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/" + model + "\" --out \"" +
-             out.string() + "\" " + extra);
+                 out.string() + "\" " + extra);
 }
-
 
 }  // namespace
 
@@ -149,10 +148,10 @@ TEST_CASE("iga eval: bad models exit 1 with file, JSON path and value on stderr"
 
 TEST_CASE("iga eval: bad command lines are rejected", "[apps][iga][errors]") {
   const std::string model = std::string(IGA_SOURCE_DIR) + "/data/torus_patch.json";
-  CHECK(run_iga("eval \"" + model + "\"").status != 0);                    // no mode
-  CHECK(run_iga("eval \"" + model + "\" --uv 0.5").status != 0);          // one value
-  CHECK(run_iga("eval \"" + model + "\" --uv 99,0.5").status == 1);       // outside domain
-  CHECK(run_iga("eval \"" + model + "\" --u 0.5").status == 1);           // surface needs --uv
+  CHECK(run_iga("eval \"" + model + "\"").status != 0);              // no mode
+  CHECK(run_iga("eval \"" + model + "\" --uv 0.5").status != 0);     // one value
+  CHECK(run_iga("eval \"" + model + "\" --uv 99,0.5").status == 1);  // outside domain
+  CHECK(run_iga("eval \"" + model + "\" --u 0.5").status == 1);      // surface needs --uv
   CHECK(run_iga("eval \"" + model + "\" --uv 0.5,0.5 --entity nope").status == 1);
   CHECK(run_iga("frobnicate").status != 0);
   CHECK(run_iga("").status != 0);
@@ -162,7 +161,8 @@ TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]"
   const fs::path dir = fs::temp_directory_path() / ("iga_make_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string torus = (dir / "torus.json").string();
-  REQUIRE(run_iga("make torus --major-radius 3 --minor-radius 1 --out \"" + torus + "\"").status == 0);
+  REQUIRE(run_iga("make torus --major-radius 3 --minor-radius 1 --out \"" + torus + "\"").status ==
+          0);
   const Run r = run_iga("eval \"" + torus + "\" --grid 9");
   REQUIRE(r.status == 0);
   const auto rows = csv_rows(r.out);
@@ -180,10 +180,12 @@ TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]"
   fs::remove_all(dir);
 }
 
-TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[apps][iga][project]") {
+TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder",
+          "[apps][iga][project]") {
   const fs::path dir = fs::temp_directory_path() / ("iga_project_" + std::to_string(::getpid()));
   fs::create_directories(dir);
-  const std::string model = std::string(IGA_SOURCE_DIR) + "/data/cylinder_4patch.json";  // R = 1, z in [0, 4]
+  const std::string model =
+      std::string(IGA_SOURCE_DIR) + "/data/cylinder_4patch.json";  // R = 1, z in [0, 4]
   {
     std::ofstream pts(dir / "pts.csv");
     pts.precision(17);
@@ -199,7 +201,8 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
       dirs << std::cos(a) << "," << std::sin(a) << ",0\n";  // radial: the ray meets the cylinder
     }
   }
-  const Run r = run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\"");
+  const Run r =
+      run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\"");
   REQUIRE(r.status == 0);
   const auto rows = csv_rows(r.out);
   REQUIRE(rows.size() == 51);
@@ -210,22 +213,24 @@ TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder", "[ap
     CHECK(std::stod(row[8]) == Approx(rad - 1.0).margin(1e-10));  // (B.10): p = |d| - R
     CHECK(row[9] == "interior");
   }
-  const Run ray = run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() +
-                      "\" --ray \"" + (dir / "dirs.csv").string() + "\" --out \"" +
-                      (dir / "ray.csv").string() + "\"");
+  const Run ray =
+      run_iga("project \"" + model + "\" --points \"" + (dir / "pts.csv").string() + "\" --ray \"" +
+              (dir / "dirs.csv").string() + "\" --out \"" + (dir / "ray.csv").string() + "\"");
   REQUIRE(ray.status == 0);
   const auto ray_rows = csv_rows(slurp(dir / "ray.csv"));
   REQUIRE(ray_rows.size() == 51);
   for (int k = 0; k < 50; ++k) {
     const double rad = 0.3 + 0.05 * k;
-    CHECK(std::stod(ray_rows[static_cast<std::size_t>(k + 1)][8]) == Approx(1.0 - rad).margin(1e-10));
+    CHECK(std::stod(ray_rows[static_cast<std::size_t>(k + 1)][8]) ==
+          Approx(1.0 - rad).margin(1e-10));
   }
   // bad input: a row with two values names the file and the line
   {
     std::ofstream bad(dir / "bad.csv");
     bad << "x,y,z\n1,2,3\n4,5\n";
   }
-  const Run b = run_iga("project \"" + model + "\" --points \"" + (dir / "bad.csv").string() + "\"");
+  const Run b =
+      run_iga("project \"" + model + "\" --points \"" + (dir / "bad.csv").string() + "\"");
   CHECK(b.status == 1);
   CHECK_THAT(b.err, Catch::Contains("bad.csv:3"));
   fs::remove_all(dir);
@@ -235,7 +240,8 @@ TEST_CASE("iga info validates and summarizes the analysis sections", "[apps][iga
   const Run r = run_iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\"");
   INFO(r.out << r.err);
   CHECK(r.status == 0);
-  CHECK(r.out.find("analysis: rod of 16 elements (degree 3, 21 control points)") != std::string::npos);
+  CHECK(r.out.find("analysis: rod of 16 elements (degree 3, 21 control points)") !=
+        std::string::npos);
   CHECK(r.out.find("48 contact points") != std::string::npos);
 }
 
@@ -255,7 +261,8 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   const auto col = std::find(rows[0].begin(), rows[0].end(), "R20_norm");
   REQUIRE(col != rows[0].end());
   CHECK(rows[0].back() == "pull");  // one column per load curve, after the reactions
-  const double T_ratio = std::stod(rows.back()[static_cast<std::size_t>(col - rows[0].begin())]) / 10.0;
+  const double T_ratio =
+      std::stod(rows.back()[static_cast<std::size_t>(col - rows[0].begin())]) / 10.0;
   CHECK(std::abs(T_ratio / std::exp(0.2 * M_PI) - 1.0) < 0.005);
   CHECK(slurp(out / "model_used.json").find("\"mu\": 0.2") != std::string::npos);
   CHECK(slurp(out / "summary.json").find("\"full_slip\": true") != std::string::npos);
@@ -299,17 +306,24 @@ TEST_CASE("iga run: bad analysis input exits 1 naming the file, JSON path and va
   const std::vector<Case> cases = {
       {"/materials/rope/EA=0", "/materials/rope/EA: must be > 0, got 0"},
       {"/contact/0/rigid=\\\"rope\\\"", "/contact/0/rigid: not a rigid surface"},
-      {"/bodies/rope/material=\\\"steel\\\"", "/bodies/rope/material: names no entry of \\\"materials\\\""},
-      {"/loads/0/curve=\\\"hold2\\\"", "/loads/0/curve: names no entry of \\\"load_curves\\\", got \\\"hold2\\\""},
-      {"/loads/0/at=0.5", "/loads/0/direction: \\\"outward_tangent\\\" needs the point \\\"start\\\" or \\\"end\\\""},
-      {"/boundary_conditions/0/components=[3]", "/boundary_conditions/0/components/0: component must be 0, 1 or 2, got 3"},
-      {"/load_curves/pull/points=[[1,0],[1,1]]", "/load_curves/pull/points/1/0: times must increase, got 1"},
+      {"/bodies/rope/material=\\\"steel\\\"",
+       "/bodies/rope/material: names no entry of \\\"materials\\\""},
+      {"/loads/0/curve=\\\"hold2\\\"",
+       "/loads/0/curve: names no entry of \\\"load_curves\\\", got \\\"hold2\\\""},
+      {"/loads/0/at=0.5",
+       "/loads/0/direction: \\\"outward_tangent\\\" needs the point \\\"start\\\" or \\\"end\\\""},
+      {"/boundary_conditions/0/components=[3]",
+       "/boundary_conditions/0/components/0: component must be 0, 1 or 2, got 3"},
+      {"/load_curves/pull/points=[[1,0],[1,1]]",
+       "/load_curves/pull/points/1/0: times must increase, got 1"},
       {"/solver/max_step=-1", "/solver/max_step: must be > 0, got -1"},
       {"/geometry/rope/arc_elements=0", "/geometry/rope/arc_elements: must be in 1..100000, got 0"},
-      {"/output/vtk=\\\"some\\\"", "/output/vtk: expected one of \\\"none\\\", \\\"last\\\", \\\"all\\\", got \\\"some\\\""},
+      {"/output/vtk=\\\"some\\\"",
+       "/output/vtk: expected one of \\\"none\\\", \\\"last\\\", \\\"all\\\", got \\\"some\\\""},
   };
   for (const Case& c : cases) {
-    const Run r = run_iga("run \"" + model + "\" --quiet --out /tmp/iga_bad_run --set \"" + c.set + "\"");
+    const Run r =
+        run_iga("run \"" + model + "\" --quiet --out /tmp/iga_bad_run --set \"" + c.set + "\"");
     INFO(c.set << "\n" << r.out << r.err);
     CHECK(r.status == 1);
     std::string msg = c.message;
@@ -344,8 +358,10 @@ const std::string kAnalytic = std::string(IGA_SOURCE_DIR) + "/data/analytic_surf
 
 }  // namespace
 
-TEST_CASE("iga project: only a line of the expected names is a header, bad rows are errors with file and line",
-          "[apps][iga][project][errors]") {
+TEST_CASE(
+    "iga project: only a line of the expected names is a header, bad rows are errors with file and "
+    "line",
+    "[apps][iga][project][errors]") {
   const fs::path dir = temp_dir("iga_project_input");
   const std::string model = "project \"" + kAnalytic + "\" --entity ball --points ";
   auto project = [&](const std::string& name, const std::string& text) {
@@ -395,8 +411,10 @@ TEST_CASE("iga project: only a line of the expected names is a header, bad rows 
 TEST_CASE("iga project: far points and bad rays are per-point statuses, never inf in the output",
           "[apps][iga][project]") {
   const fs::path dir = temp_dir("iga_project_far");
-  write_file(dir / "far.csv", "x,y,z\n1e154,1e154,1e154\n-1e154,3e153,2\n1e300,-1e300,1e300\n0,0,3\n");
-  for (const std::string e : {"ball", "drum", "ring", "funnel", "saddle", "bowl", "floor", "roof"}) {
+  write_file(dir / "far.csv",
+             "x,y,z\n1e154,1e154,1e154\n-1e154,3e153,2\n1e300,-1e300,1e300\n0,0,3\n");
+  for (const std::string e :
+       {"ball", "drum", "ring", "funnel", "saddle", "bowl", "floor", "roof"}) {
     const Run r = run_iga("project \"" + kAnalytic + "\" --entity " + e + " --points \"" +
                           (dir / "far.csv").string() + "\"");
     INFO(e << ": " << r.out << r.err);
@@ -425,9 +443,9 @@ TEST_CASE("iga project: far points and bad rays are per-point statuses, never in
   write_file(dir / "pts.csv", "x,y,z\n0,0,3\n0,0,3\n0,0,3\n5,5,5\n");
   write_file(dir / "dirs.csv", "dx,dy,dz\n0,0,0\n0,0,-1e300\n0,0,-1\n1,0,0\n");
   for (const std::string e : {"ball", "roof", "obstacle"}) {
-    const Run r = run_iga("project \"" + kAnalytic + "\" --entity " + e + " --points \"" +
-                          (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() +
-                          "\"");
+    const Run r =
+        run_iga("project \"" + kAnalytic + "\" --entity " + e + " --points \"" +
+                (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() + "\"");
     INFO(e << ": " << r.out << r.err);
     REQUIRE(r.status == 0);
     CHECK(all_finite_cells(r.out));
@@ -439,8 +457,9 @@ TEST_CASE("iga project: far points and bad rays are per-point statuses, never in
     CHECK((rr[4][9] == "miss" || rr[4][9] == "tangent"));  // the floor plane is parallel
     for (int c = 0; c < 9; ++c) CHECK(rr[4][static_cast<std::size_t>(c)].empty());
   }
-  const Run ray = run_iga("project \"" + kAnalytic + "\" --entity ball --points \"" +
-                          (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() + "\"");
+  const Run ray =
+      run_iga("project \"" + kAnalytic + "\" --entity ball --points \"" +
+              (dir / "pts.csv").string() + "\" --ray \"" + (dir / "dirs.csv").string() + "\"");
   CHECK(std::stod(csv_rows(ray.out)[2][8]) == Approx(0.5).epsilon(1e-12));  // z = 3 to z = 2.5
   fs::remove_all(dir);
 }
@@ -448,7 +467,8 @@ TEST_CASE("iga project: far points and bad rays are per-point statuses, never in
 TEST_CASE("iga eval: singular points (poles, apex, axis) are written with a flag, the grid goes on",
           "[apps][iga]") {
   const fs::path dir = temp_dir("iga_eval_singular");
-  const Run r = run_iga("eval \"" + kAnalytic + "\" --grid 5 --out \"" + (dir / "g.csv").string() + "\"");
+  const Run r =
+      run_iga("eval \"" + kAnalytic + "\" --grid 5 --out \"" + (dir / "g.csv").string() + "\"");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const std::string text = slurp(dir / "g.csv");
@@ -507,8 +527,9 @@ TEST_CASE("iga info: every line ends with a newline, patch groups included", "[a
     CHECK(r.status == 0);
     REQUIRE(!r.out.empty());
     CHECK(r.out.back() == '\n');
-    const bool newline_after_group = r.out.find("patch_group") == std::string::npos ||
-                                     r.out.find('\n', r.out.find("patch_group")) != std::string::npos;
+    const bool newline_after_group =
+        r.out.find("patch_group") == std::string::npos ||
+        r.out.find('\n', r.out.find("patch_group")) != std::string::npos;
     CHECK(newline_after_group);
   }
 }

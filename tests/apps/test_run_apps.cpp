@@ -45,7 +45,6 @@ fs::path fresh(const std::string& name) {
   return d;
 }
 
-
 bool has_non_finite_text(const std::string& s) {
   for (const char* w : {"nan", "inf", "NaN", "Inf"})
     if (s.find(w) != std::string::npos) return true;
@@ -90,7 +89,8 @@ TEST_CASE("capstan: --mu/--phi-deg lists name each case in the CSV and keep fail
   CHECK(rows[1][1] == "c");
   CHECK(rows[2].back() == "full_slip");
 
-  // Every case fails (one Newton iteration per step allowed): each keeps its row with the solver's status and no ratio.
+  // Every case fails (one Newton iteration per step allowed): each keeps its row with the solver's
+  // status and no ratio.
   r = run(CAPSTAN_EXE, "--mu 0.3 --phi-deg 90,180 --set /solver/max_iterations=1" + coarse +
                            " --out \"" + out.string() + "\"");
   INFO(r.out);

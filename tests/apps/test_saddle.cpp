@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <sys/wait.h>
+#include <nlohmann/json.hpp>
 #include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
@@ -25,8 +25,10 @@ namespace {
 using iga::test::slurp;
 
 int saddle(const std::string& args, std::string& output) {
-  const fs::path log = fs::temp_directory_path() / ("saddle_test_" + std::to_string(::getpid()) + ".txt");
-  const std::string cmd = std::string("\"") + SADDLE_EXE + "\" " + args + " >\"" + log.string() + "\" 2>&1 </dev/null";
+  const fs::path log =
+      fs::temp_directory_path() / ("saddle_test_" + std::to_string(::getpid()) + ".txt");
+  const std::string cmd =
+      std::string("\"") + SADDLE_EXE + "\" " + args + " >\"" + log.string() + "\" 2>&1 </dev/null";
   const int raw = std::system(cmd.c_str());
   output = slurp(log);
   fs::remove(log);
@@ -67,16 +69,18 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
   const int status = saddle("--quick --out \"" + out.string() + "\"", log);
   INFO(log);
   REQUIRE(status == 0);
-  for (const char* f : {"saddle.csv", "saddle_summary.json", "model_used.json", "contact_mu0.csv",
-                        "contact_mu0.125.csv", "saddle_load_deflection.png", "saddle_contact_mu0.png",
-                        "saddle_contact_mu0.125.png", "mu0/rigid.vtk", "mu0/t1000_shell.vtk",
-                        "mu0/t1000_contact.vtk", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv",
-                        "saddle_blocks.csv", "saddle_sticking_circle.png", "contact_mu0.125_epsT250.csv",
-                        "saddle_contact_mu0.125_epsT250.png"})
+  for (const char* f :
+       {"saddle.csv", "saddle_summary.json", "model_used.json", "contact_mu0.csv",
+        "contact_mu0.125.csv", "saddle_load_deflection.png", "saddle_contact_mu0.png",
+        "saddle_contact_mu0.125.png", "mu0/rigid.vtk", "mu0/t1000_shell.vtk",
+        "mu0/t1000_contact.vtk", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv",
+        "saddle_blocks.csv", "saddle_sticking_circle.png", "contact_mu0.125_epsT250.csv",
+        "saddle_contact_mu0.125_epsT250.png"})
     CHECK(fs::exists(out / f));
   const auto rows = read_csv(out / "saddle.csv");
   const nlohmann::json summary = nlohmann::json::parse(slurp(out / "saddle_summary.json"));
-  REQUIRE(summary["runs"].size() == 3);  // mu = 0; mu = 0.125 with eps_T = eps_N and with eps_T = 250
+  REQUIRE(summary["runs"].size() ==
+          3);  // mu = 0; mu = 0.125 with eps_T = eps_N and with eps_T = 250
   for (const auto& run : summary["runs"]) {
     const std::string name = run["name"];
     INFO(name);
@@ -98,7 +102,8 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
   int n = 0;
   for (const auto& r : rows) {
     CHECK(std::stod(r.at("load")) == Approx(2.756 * std::stod(r.at("t")) / 1000.0));
-    CHECK(std::stoi(r.at("sticking_points")) + std::stoi(r.at("sliding_points")) == std::stoi(r.at("contact_points")));
+    CHECK(std::stoi(r.at("sticking_points")) + std::stoi(r.at("sliding_points")) ==
+          std::stoi(r.at("contact_points")));
     ++n;
   }
   int steps = 0;
@@ -119,14 +124,19 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
 // take the part of the load that moves the block by the elastic slip T/eps_T, at most
 // k / (eps_T area) = 80 / (2.5e5 * 0.04) = 0.8 %; in slip |sum T| <= mu sum |N| with near-parallel
 // tangential forces, 1e-4.
-TEST_CASE("saddle --blocks-only: a block sticks inside the circle mu/a and slides outside it, the circle grows with mu",
-          "[apps][saddle][friction]") {
+TEST_CASE(
+    "saddle --blocks-only: a block sticks inside the circle mu/a and slides outside it, the circle "
+    "grows with mu",
+    "[apps][saddle][friction]") {
   for (const std::string strategy : {"master", "slave"}) {
     INFO(strategy);
-    const fs::path out = fs::temp_directory_path() / ("saddle_blocks_" + strategy + std::to_string(::getpid()));
+    const fs::path out =
+        fs::temp_directory_path() / ("saddle_blocks_" + strategy + std::to_string(::getpid()));
     fs::remove_all(out);
     std::string log;
-    const int status = saddle("--blocks-only --mu 0.125,0.25 --strategy " + strategy + " --out \"" + out.string() + "\"", log);
+    const int status = saddle(
+        "--blocks-only --mu 0.125,0.25 --strategy " + strategy + " --out \"" + out.string() + "\"",
+        log);
     INFO(log);
     REQUIRE(status == 0);
     const nlohmann::json summary = nlohmann::json::parse(slurp(out / "saddle_summary.json"));
@@ -143,7 +153,8 @@ TEST_CASE("saddle --blocks-only: a block sticks inside the circle mu/a and slide
       REQUIRE(c["blocks"].size() == 7);
       for (const auto& b : c["blocks"]) {
         const double f = b["radius_fraction"], tan_gamma = b["tan_gamma"], ratio = b["T_over_N"];
-        INFO("r/R = " << f << ", state " << b["state"] << ", T/N = " << ratio << ", tan gamma = " << tan_gamma);
+        INFO("r/R = " << f << ", state " << b["state"] << ", T/N = " << ratio
+                      << ", tan gamma = " << tan_gamma);
         CHECK(b["converged"] == true);
         CHECK(b["contact_points"].get<int>() == 49);  // 7 x 7, the whole block
         if (f <= 0.75) CHECK(b["state"] == "stick");
@@ -164,8 +175,10 @@ TEST_CASE("saddle --blocks-only: a block sticks inside the circle mu/a and slide
 TEST_CASE("saddle: bad input exits 1 naming the file and JSON path", "[apps][saddle][errors]") {
   const fs::path out = fs::temp_directory_path() / ("saddle_bad_" + std::to_string(::getpid()));
   std::string log;
-  CHECK(saddle("--quick --set /materials/plate/thickness=-0.2 --out \"" + out.string() + "\"", log) == 1);
-  CHECK_THAT(log, Catch::Contains("saddle.json: /materials/plate/thickness: must be > 0, got -0.2"));
+  CHECK(saddle("--quick --set /materials/plate/thickness=-0.2 --out \"" + out.string() + "\"",
+               log) == 1);
+  CHECK_THAT(log,
+             Catch::Contains("saddle.json: /materials/plate/thickness: must be > 0, got -0.2"));
   CHECK(saddle("--quick --set '/contact/0/stratgy=\"slave\"' --out \"" + out.string() + "\"",
                log) == 1);
   // --set adds the key; the loader rejects it as unknown, with the allowed keys.
@@ -190,13 +203,19 @@ TEST_CASE("saddle: bad input exits 1 naming the file and JSON path", "[apps][sad
 // (With eps_T = eps_N, as in the paper, no point of the plate sticks at these mu: the plate's
 // membrane strain keeps changing with the load and moves it by more than the elastic tangential
 // compliance mu |N| / eps_T; see the saddle app's notes.)
-TEST_CASE("saddle --quick with a soft tangential penalty: the plate's sticking zone is central and grows with mu",
-          "[apps][saddle][friction]") {
+TEST_CASE(
+    "saddle --quick with a soft tangential penalty: the plate's sticking zone is central and grows "
+    "with mu",
+    "[apps][saddle][friction]") {
   const fs::path out = fs::temp_directory_path() / ("saddle_soft_" + std::to_string(::getpid()));
   fs::remove_all(out);
   std::string log;
-  const int status = saddle("--quick --set '/app/runs=[{\"mu\": 0.0625, \"eps_T\": 250}, {\"mu\": 0.125, \"eps_T\": 250}]' "
-                            "--out \"" + out.string() + "\"", log);
+  const int status = saddle(
+      "--quick --set '/app/runs=[{\"mu\": 0.0625, \"eps_T\": 250}, {\"mu\": 0.125, \"eps_T\": "
+      "250}]' "
+      "--out \"" +
+          out.string() + "\"",
+      log);
   INFO(log);
   REQUIRE(status == 0);
   const nlohmann::json summary = nlohmann::json::parse(slurp(out / "saddle_summary.json"));
@@ -220,7 +239,8 @@ TEST_CASE("saddle --quick with a soft tangential penalty: the plate's sticking z
     REQUIRE(n_slide > 0);
     CHECK(n_stick == run["sticking_points"].get<int>());
     CHECK(r_stick / n_stick < 0.85 * (r_slide / n_slide));  // measured 4.9 vs 7.6 and 6.3 vs 8.1
-    CHECK(std::hypot(run["sticking_centroid"][0].get<double>(), run["sticking_centroid"][1].get<double>()) < 0.1);
+    CHECK(std::hypot(run["sticking_centroid"][0].get<double>(),
+                     run["sticking_centroid"][1].get<double>()) < 0.1);
     stick.push_back(n_stick);
     radius.push_back(run["sticking_radius_area"]);
   }

@@ -7,10 +7,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <string>
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <Eigen/Cholesky>
@@ -23,8 +23,8 @@
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
 #include "geometry/knot_vector.hpp"
-#include "tests/support/geometry_error.hpp"
 #include "tests/support/geometry_checks.hpp"
+#include "tests/support/geometry_error.hpp"
 
 using namespace iga;
 using namespace iga::test;
@@ -442,7 +442,8 @@ TEST_CASE("fit_curve: reproduces a spline exactly and approximates a circle arc 
           "[geometry][fitting]") {
   // a cubic B-spline sampled densely is recovered exactly (it lies in the space)
   const std::vector<double> U = {0, 0, 0, 0, 0.3, 0.5, 0.8, 1, 1, 1, 1};
-  const std::vector<Vector3d> P = {{0, 0, 0}, {1, 2, 0}, {2, -1, 1}, {3, 0, 2}, {4, 1, 0}, {5, 3, 1}, {6, 0, 0}};
+  const std::vector<Vector3d> P = {{0, 0, 0}, {1, 2, 0}, {2, -1, 1}, {3, 0, 2},
+                                   {4, 1, 0}, {5, 3, 1}, {6, 0, 0}};
   const NurbsCurve c(3, U, P);
   std::vector<Vector3d> Q;
   std::vector<double> t;
@@ -526,8 +527,8 @@ namespace {
 
 /// The fit as it was computed before the banded solve: the dense m x n collocation matrix and
 /// a dense LDL^T of the normal equations, [PT97] (9.66). The reference for the sparse solve.
-std::vector<Vector3d> dense_fit(const std::vector<Vector3d>& Q, const std::vector<double>& t,
-                                int p, const std::vector<double>& knots) {
+std::vector<Vector3d> dense_fit(const std::vector<Vector3d>& Q, const std::vector<double>& t, int p,
+                                const std::vector<double>& knots) {
   const KnotVector K(p, knots);
   const int n = K.num_basis(), m = static_cast<int>(Q.size());
   Eigen::MatrixXd N = Eigen::MatrixXd::Zero(m, n);
@@ -539,17 +540,17 @@ std::vector<Vector3d> dense_fit(const std::vector<Vector3d>& Q, const std::vecto
   }
   Eigen::MatrixXd rhs(m, 3);
   for (int k = 0; k < m; ++k)
-    rhs.row(k) = (Q[static_cast<std::size_t>(k)] - N(k, 0) * Q.front() - N(k, n - 1) * Q.back())
-                     .transpose();
+    rhs.row(k) =
+        (Q[static_cast<std::size_t>(k)] - N(k, 0) * Q.front() - N(k, n - 1) * Q.back()).transpose();
   const Eigen::MatrixXd Ni = N.block(0, 1, m, n - 2);
-  const Eigen::MatrixXd P = Eigen::LDLT<Eigen::MatrixXd>(Ni.transpose() * Ni).solve(Ni.transpose() * rhs);
+  const Eigen::MatrixXd P =
+      Eigen::LDLT<Eigen::MatrixXd>(Ni.transpose() * Ni).solve(Ni.transpose() * rhs);
   std::vector<Vector3d> cp(static_cast<std::size_t>(n));
   cp.front() = Q.front();
   cp.back() = Q.back();
   for (int i = 1; i < n - 1; ++i) cp[static_cast<std::size_t>(i)] = P.row(i - 1).transpose();
   return cp;
 }
-
 
 std::string rope(const std::string& radius, const std::string& arc, const std::string& span = "3",
                  const std::string& span_length = "1.0") {
@@ -581,7 +582,9 @@ TEST_CASE("fit_curve: the banded solve gives the dense normal-equation fit to ro
       for (int j = 0; j < 16; ++j) t.push_back(U[k] + (U[k + 1] - U[k]) * j / 16.0);
   t.push_back(U.back());
   // Sample the fitted curve plus a wiggle, so that the least-squares residual is not zero.
-  for (double s : t) Q.push_back(r.curve.point(s) + 1e-3 * Vector3d(std::sin(7 * s), std::cos(5 * s), std::sin(3 * s)));
+  for (double s : t)
+    Q.push_back(r.curve.point(s) +
+                1e-3 * Vector3d(std::sin(7 * s), std::cos(5 * s), std::sin(3 * s)));
   const CurveFit f = fit_curve(Q, t, 3, U);
   const std::vector<Vector3d> ref = dense_fit(Q, t, 3, U);
   for (int i = 0; i < f.curve.num_control_points(); ++i)
@@ -687,30 +690,37 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
   e = iga::test::geometry_error(rope("1e300", "10"));
   CHECK(e.pointer() == "/geometry/rope/radius");
   // A refined surface above the control point limit: at "refine", with the count and limit.
-  e = iga::test::geometry_error(R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
       "radius": 1, "refine": {"subdivide": 1024}}})");
   CHECK(e.pointer() == "/geometry/shell/refine");
   CHECK_THAT(e.message(), Catch::Contains(std::to_string(kMaxSurfaceControlPoints)));
-  e = iga::test::geometry_error(R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
       "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 2}})");
   CHECK(e.pointer() == "/geometry/t/minor_radius");
-  e = iga::test::geometry_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 90, "end_deg": 45}})");
   CHECK(e.pointer() == "/geometry/c/end_deg");
-  e = iga::test::geometry_error(R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"c": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 0, 1], "radius": 1, "height": 1, "start_deg": 0, "end_deg": 400}})");
   CHECK(e.pointer() == "/geometry/c/end_deg");
-  e = iga::test::geometry_error(R"({"p": {"type": "construction", "shape": "plane", "origin": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"p": {"type": "construction", "shape": "plane", "origin": [0, 0, 0],
       "du": [1, 0, 0], "dv": [2, 0, 0]}})");
   CHECK(e.pointer() == "/geometry/p/dv");
-  e = iga::test::geometry_error(R"({"l": {"type": "construction", "shape": "line", "start": [0, 0, 0],
+  e = iga::test::geometry_error(
+      R"({"l": {"type": "construction", "shape": "line", "start": [0, 0, 0],
       "end": [1, 0, 0], "elements": 200000}})");
   CHECK(e.pointer() == "/geometry/l/elements");
   // The largest allowed surface builds.
   const GeometryModel m = parse_geometry(
-      parse_json_text(R"({"shell": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
+      parse_json_text(
+          R"({"shell": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [48, 186]}}})",
-                      "g.json"),
+          "g.json"),
       "g.json", JsonPointer("/geometry"));
   const auto& shell = std::get<NurbsSurface>(m.entities.at(0).second);
   CHECK(static_cast<long>(shell.num_u()) * shell.num_v() <= kMaxSurfaceControlPoints);

@@ -38,7 +38,6 @@ GeometryModel text_round_trip(const GeometryModel& m) {
                         JsonPointer("/geometry"));
 }
 
-
 GeometryModel hand_built() {
   GeometryModel m;
   const std::vector<Vector3d> P = {{0, 0, 0}, {1, 0.25, 0}, {2, 1, 0.5}, {3, 1, 0}};
@@ -345,7 +344,8 @@ TEST_CASE("json_reader: type errors say what was expected and what came",
 
 TEST_CASE("geometry_io: errors in memory name the element and not just the entity",
           "[geometry][io][errors]") {
-  const ModelError e1 = iga::test::geometry_error(R"({"s": {"type": "nurbs_surface", "degree": [2, 1],
+  const ModelError e1 =
+      iga::test::geometry_error(R"({"s": {"type": "nurbs_surface", "degree": [2, 1],
       "knots": {"u": [0, 0, 0, 1, 1, 1], "v": [0, 0, 1, 1]},
       "control_points": [[0,0,0],[1,0,0],[2,0,0],[0,1,0],[1,1,0]]}})");
   CHECK(e1.pointer() == "/geometry/s/control_points");
@@ -366,7 +366,8 @@ TEST_CASE("geometry_io: errors in memory name the element and not just the entit
       "axis": [0,0,2], "ref_dir": [0,0,-1]}})");
   CHECK(e4.pointer() == "/geometry/p/ref_dir");
 
-  const ModelError e5 = iga::test::geometry_error(R"({"g": {"type": "patch_group", "patches": ["g"]}})");
+  const ModelError e5 =
+      iga::test::geometry_error(R"({"g": {"type": "patch_group", "patches": ["g"]}})");
   CHECK(e5.pointer() == "/geometry/g/patches/0");
   CHECK(e5.message().find("is a patch_group") != std::string::npos);
 
@@ -379,9 +380,10 @@ TEST_CASE("geometry_io: errors in memory name the element and not just the entit
   CHECK(e7.message().find("got array [1,2]") != std::string::npos);
 }
 
-TEST_CASE("geometry_io: a construction's \"refine\" takes one count or a pair [u, v] and leaves "
-          "the surface unchanged",
-          "[geometry][io]") {
+TEST_CASE(
+    "geometry_io: a construction's \"refine\" takes one count or a pair [u, v] and leaves "
+    "the surface unchanged",
+    "[geometry][io]") {
   const std::string cyl = R"({"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
       "axis": [0, 1, 0], "ref_dir": [0, 0, 1], "radius": 2, "height": 3, "start_deg": -40,
       "end_deg": 40)";
@@ -407,10 +409,12 @@ TEST_CASE("geometry_io: a construction's \"refine\" takes one count or a pair [u
       CHECK((a.point(u, v) - base.point(u, v)).norm() <= 1e-14);
       CHECK((b.point(u, v) - base.point(u, v)).norm() <= 1e-14);
     }
-  const ModelError e = iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"elevate": [1, 2, 3]}}})");
+  const ModelError e =
+      iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"elevate": [1, 2, 3]}}})");
   CHECK(e.pointer() == "/geometry/s/refine/elevate");
   CHECK_THAT(std::string(e.what()), Catch::Contains("expected a count or a pair [u, v]"));
-  const ModelError f = iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
+  const ModelError f =
+      iga::test::geometry_error("{\"s\": " + cyl + R"(, "refine": {"subdivide": [2, 0]}}})");
   CHECK(f.pointer() == "/geometry/s/refine/subdivide/1");
   CHECK_THAT(std::string(f.what()), Catch::Contains("must be in 1..1024, got 0"));
 }
@@ -478,8 +482,10 @@ TEST_CASE("json_reader: nesting is limited to 256 levels with a located error",
   CHECK(parse_error_of(objects).pointer().rfind("/k/k/k", 0) == 0);
 }
 
-TEST_CASE("json_reader: an unclosed 1 MB run of opening brackets is rejected quickly with a located error",
-          "[geometry][io][errors][limits]") {
+TEST_CASE(
+    "json_reader: an unclosed 1 MB run of opening brackets is rejected quickly with a located "
+    "error",
+    "[geometry][io][errors][limits]") {
   // Rejected in 52 s before: the error path built a million-level pointer, quadratically.
   const auto t0 = std::chrono::steady_clock::now();
   const ModelError e = parse_error_of(nested_arrays(std::size_t{1} << 20, false));

@@ -27,7 +27,8 @@ double rope_ratio(const std::string& file, double mu, double pitch, AnalysisResu
   AnalysisResult r = a.run();
   REQUIRE(r.full_slip);
   REQUIRE(r.steps.back().reactions.size() == 1);
-  const double ratio = r.steps.back().reactions[0].norm() / doc["loads"][0]["magnitude"].get<double>();
+  const double ratio =
+      r.steps.back().reactions[0].norm() / doc["loads"][0]["magnitude"].get<double>();
   if (out) *out = std::move(r);
   return ratio;
 }
@@ -85,34 +86,47 @@ TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the
   CHECK(cur.derivs(D.hi, 1).d[1].normalized().dot(t_end.normalized()) > 1.0 - 1e-5);
 }
 
-TEST_CASE("analysis: structural errors of the model name their JSON path", "[iga][analysis][errors]") {
+TEST_CASE("analysis: structural errors of the model name their JSON path",
+          "[iga][analysis][errors]") {
   const Json base = read_json_file(kData + "capstan.json");
   auto error = [&](auto&& edit) { return test::analysis_error(base, edit); };
-  CHECK_THAT(error([](Json& d) { d.erase("bodies"); }), Catch::Contains("m.json: missing required key \"bodies\""));
+  CHECK_THAT(error([](Json& d) { d.erase("bodies"); }),
+             Catch::Contains("m.json: missing required key \"bodies\""));
   CHECK_THAT(error([](Json& d) { d["bodies"]["second"] = d["bodies"]["rope"]; }),
              Catch::Contains("m.json: /bodies: expected an object with exactly one named body"));
-  CHECK_THAT(error([](Json& d) { d["bodies"]["rope"]["curve"] = "cylinder"; }),
-             Catch::Contains("m.json: /bodies/rope/curve: names no curve of the geometry section, got \"cylinder\""));
-  CHECK_THAT(error([](Json& d) { d["contact"].push_back(d["contact"][0]); }),
-             Catch::Contains("m.json: /contact: one contact pair per model in this version, got 2"));
-  CHECK_THAT(error([](Json& d) { d["contact"][0]["body"] = "rod"; }),
-             Catch::Contains("m.json: /contact/0/body: names no body (the model's body is \"rope\"), got \"rod\""));
+  CHECK_THAT(
+      error([](Json& d) { d["bodies"]["rope"]["curve"] = "cylinder"; }),
+      Catch::Contains(
+          "m.json: /bodies/rope/curve: names no curve of the geometry section, got \"cylinder\""));
+  CHECK_THAT(
+      error([](Json& d) { d["contact"].push_back(d["contact"][0]); }),
+      Catch::Contains("m.json: /contact: one contact pair per model in this version, got 2"));
+  CHECK_THAT(
+      error([](Json& d) { d["contact"][0]["body"] = "rod"; }),
+      Catch::Contains(
+          "m.json: /contact/0/body: names no body (the model's body is \"rope\"), got \"rod\""));
   CHECK_THAT(error([](Json& d) {
                d["contact"][0]["type"] = "surface_to_rigid";
                d["contact"][0]["face"] = "lower";
              }),
              Catch::Contains("m.json: /contact/0/type: a rod's contact is \"curve_to_rigid\", got "
                              "\"surface_to_rigid\""));
-  CHECK_THAT(error([](Json& d) { d["loads"][0]["force"] = {1, 0, 0}; }),
-             Catch::Contains("m.json: /loads/0: give either \"force\" or \"magnitude\" and \"direction\""));
+  CHECK_THAT(error([](Json& d) {
+               d["loads"][0]["force"] = {1, 0, 0};
+             }),
+             Catch::Contains(
+                 "m.json: /loads/0: give either \"force\" or \"magnitude\" and \"direction\""));
   CHECK_THAT(error([](Json& d) { d["materials"]["rope"]["EI"] = -1.0; }),
              Catch::Contains("m.json: /materials/rope/EI: must be >= 0, got -1"));
-  CHECK_THAT(error([](Json& d) { d["boundary_conditions"][1]["point"] = 99; }),
-             Catch::Contains("m.json: /boundary_conditions/1/point: control point index must be in 0..20, got 99"));
+  CHECK_THAT(
+      error([](Json& d) { d["boundary_conditions"][1]["point"] = 99; }),
+      Catch::Contains(
+          "m.json: /boundary_conditions/1/point: control point index must be in 0..20, got 99"));
   CHECK_THAT(error([](Json& d) { d["solver"]["t_end"] = std::nan(""); }),
              Catch::Contains("m.json: /solver/t_end"));
-  CHECK_THAT(error([](Json& d) { d["load_curves"]["hold"]["type"] = "sine"; }),
-             Catch::Contains("m.json: /load_curves/hold/type: expected one of \"ramp\", \"constant\""));
+  CHECK_THAT(
+      error([](Json& d) { d["load_curves"]["hold"]["type"] = "sine"; }),
+      Catch::Contains("m.json: /load_curves/hold/type: expected one of \"ramp\", \"constant\""));
 }
 
 TEST_CASE("analysis: a rope of 60000 elements is set up in seconds (no quadratic step)",

@@ -1,6 +1,6 @@
 // Tests of the model file (iga/model.hpp): load -> save -> load is exact and the saved text
-// is stable; top-level keys, format/version and the types of the analysis sections are checked with errors that
-// name the file, the JSON path and the value.
+// is stable; top-level keys, format/version and the types of the analysis sections are checked with
+// errors that name the file, the JSON path and the value.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -25,7 +25,6 @@ std::string scratch(const std::string& name) {
   fs::create_directories(dir);
   return (dir / name).string();
 }
-
 
 ModelError model_error(const std::string& path) {
   try {
@@ -90,7 +89,8 @@ TEST_CASE("model: analysis sections are kept in file order and saved back unchan
           "[iga][io][model]") {
   Json j = parse_json_text(R"({"format": "iga-contact-model", "geometry": {},
     "solver": {"t_end": 2}, "bodies": {"b": {"type": "rod"}}, "app": {"x": [1, 2]},
-    "loads": [{"type": "point_force"}]})", "sections.json");
+    "loads": [{"type": "point_force"}]})",
+                           "sections.json");
   const Model m = parse_model(j, "sections.json");
   CHECK(m.has_analysis());
   REQUIRE(m.sections.size() == 4);

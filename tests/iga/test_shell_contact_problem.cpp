@@ -55,8 +55,10 @@ std::vector<std::pair<double, double>> deflections(const AnalysisResult& r) {
 
 }  // namespace
 
-TEST_CASE("ShellContactProblem: tangent = central differences (saddle, master and slave, with and without friction)",
-          "[iga][shell][contact][tangent]") {
+TEST_CASE(
+    "ShellContactProblem: tangent = central differences (saddle, master and slave, with and "
+    "without friction)",
+    "[iga][shell][contact][tangent]") {
   for (const char* strategy : {"master", "slave"})
     for (const double mu : {0.0, 0.125}) {
       Json doc = quick_saddle(mu, strategy);
@@ -102,7 +104,8 @@ TEST_CASE("saddle: master and slave strategies give the same centre deflections"
       return 0.0;
     };
     const double wm = at(dm), ws = at(ds);
-    INFO("t = " << t << ": master " << wm << ", slave " << ws << ", relative difference " << (ws - wm) / wm);
+    INFO("t = " << t << ": master " << wm << ", slave " << ws << ", relative difference "
+                << (ws - wm) / wm);
     CHECK(std::abs(ws - wm) <= 1e-3 * std::abs(wm));
   }
   CHECK(rm.steps.back().contact.active == Approx(rs.steps.back().contact.active).epsilon(0.1));
@@ -120,8 +123,11 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
     for (const auto& [x0, x1] : {std::pair{lo, mid}, std::pair{mid, hi}})
       for (const auto& [y0, y1] : {std::pair{lo, mid}, std::pair{mid, hi}}) {
         const std::string name = "saddle_" + std::to_string(k++);
-        geo[name] = {{"type", "construction"}, {"shape", "hyperboloid"}, {"a", 0.025},
-                     {"x_range", {x0, x1}}, {"y_range", {y0, y1}}};
+        geo[name] = {{"type", "construction"},
+                     {"shape", "hyperboloid"},
+                     {"a", 0.025},
+                     {"x_range", {x0, x1}},
+                     {"y_range", {y0, y1}}};
         group["patches"].push_back(name);
       }
     geo["saddle4"] = group;
@@ -137,7 +143,8 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
       for (std::size_t s = 0; s < r1.steps.size(); ++s) {
         CHECK(r1.steps[s].t == r4.steps[s].t);
         CHECK(r1.steps[s].contact.active == r4.steps[s].contact.active);
-        worst = std::max(worst, (r1.steps[s].displacements[0] - r4.steps[s].displacements[0]).norm());
+        worst =
+            std::max(worst, (r1.steps[s].displacements[0] - r4.steps[s].displacements[0]).norm());
       }
       INFO("largest difference of the centre displacement " << worst);
       CHECK(worst <= 1e-9);
