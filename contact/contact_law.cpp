@@ -25,7 +25,8 @@ double increment(double now, double before, bool closed, const Interval& I) {
 }  // namespace
 
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
-                              const ContactParameters& p, const ContactHistory& history) {
+                              const ContactParameters& p, const ContactHistory& history,
+                              double lambda_n) {
   ContactPoint c;
   c.xi = foot.uv;
   const SurfaceDerivs d = s.derivs(foot.uv[0], foot.uv[1], 2);
@@ -39,9 +40,10 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   c.foot = d.S;
   c.normal = n;
   c.gap = dvec.dot(n) - p.radius;  // (52)
-  if (c.gap > 0.0) return c;       // (34): no contact, no force
+  // (34), augmented: N = min(0, lambda_N + eps_N xi^3); lambda_N = 0 is the penalty law.
+  if (lambda_n == 0.0 ? c.gap > 0.0 : lambda_n + p.eps_n * c.gap > 0.0) return c;  // no force
   c.active = true;
-  c.N = p.eps_n * c.gap;  // (34), N <= 0
+  c.N = p.eps_n * c.gap + lambda_n;  // (34), N <= 0
 
   // Derivatives of the foot parameters and of the normal with respect to r.
   const Vector3d* rho2[2][2] = {{&d.Suu, &d.Suv}, {&d.Suv, &d.Svv}};

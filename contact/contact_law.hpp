@@ -9,12 +9,16 @@
 //
 //   gap  xi^3 = (r - rho).n - R                                   (52)
 //   N    = eps_N xi^3 if xi^3 <= 0, else 0 (N <= 0: compression)   (34)
+//   augmented Lagrangian (exact enforcement, lambda_N <= 0 the multiplier of the point, kept
+//   by the caller and updated between Newton solves, Uzawa: lambda_N <- N of the converged
+//   state):  N = min(0, lambda_N + eps_N xi^3)   ((34) augmented; lambda_N = 0: (34))
 //   T_tr^i = T^i_(n) - eps_T (xi^i - xi^i_(n))                     (66), (54)
 //   |T_tr| = sqrt(T_tr^i a_ij T_tr^j),  Phi = |T_tr| - mu |N|       (35)
 //   T^i = T_tr^i (stick, Phi <= 0),  mu |N| T_tr^i / |T_tr| (slip)  (36)
 //   force on the deformable point  f = -N n + T^i rho_i             (67: R_S = -R_C, with the
 //       sign of T chosen so that f opposes the sliding increment)
-// and its derivative K = df/dr (3x3, not symmetric with friction), from
+// and its derivative K = df/dr (3x3, not symmetric with friction; the augmented N has the same
+// derivative eps_N n^T as (34), so K keeps its form with N = lambda_N + eps_N xi^3), from
 //   dxi/dr = A^{-1} [rho_1 rho_2]^T, A_ij = a_ij - rho_ij.(r - rho)   ((17), implicit function)
 //   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten).
 // The history (xi_(n), T_(n)) is committed only at converged load steps. A point that was not in
@@ -29,6 +33,19 @@
 #include "geometry/surface.hpp"
 
 namespace iga {
+
+/// How the normal contact constraint is enforced (docs/contact.md, "Enforcement").
+///  - penalty: N = eps_N xi^3 (34); the penetration is |N| / eps_N.
+///  - augmented Lagrange: N = min(0, lambda_N + eps_N xi^3) with a multiplier lambda_N per
+///    contact point, updated between Newton solves of a load step (Uzawa: lambda_N <- N of the
+///    converged state) until the largest penetration max(-xi^3) of the active points is at
+///    most penetration_tol; at most max_augmentations updates per load step, else the step
+///    fails (cut back like a Newton failure). lambda_N is committed with the history.
+struct ContactEnforcement {
+  bool augmented = false;        ///< false: penalty (default); true: augmented Lagrange
+  double penetration_tol = 0.0;  ///< a length > 0 (augmented only)
+  int max_augmentations = 10;    ///< >= 1 (augmented only)
+};
 
 struct ContactParameters {
   double eps_n = 0.0;   ///< normal penalty eps_N > 0
@@ -49,10 +66,10 @@ struct ContactHistory {
 
 /// The contact state at one point for the current iterate.
 struct ContactPoint {
-  bool active = false;  ///< penetrating (gap <= 0)
+  bool active = false;  ///< penetrating: lambda_N + eps_N gap <= 0 (gap <= 0 for the penalty)
   bool slip = false;    ///< return mapping on the slip surface (36)
   double gap = 0.0;     ///< xi^3 (52)
-  double N = 0.0;       ///< normal force (34), <= 0
+  double N = 0.0;       ///< normal force (34) (augmented: lambda_N + eps_N gap), <= 0
   double phi = 0.0;     ///< slip function |T_tr| - mu |N| of the trial force (35)
   Vector2d T = Vector2d::Zero();         ///< contravariant tangential force T^i (36)
   Vector3d T_vector = Vector3d::Zero();  ///< T^i rho_i
@@ -66,9 +83,11 @@ struct ContactPoint {
 /// Evaluates the law at the deformable point r whose closest point on `s` is `foot` (computed
 /// by the caller, e.g. RigidSurface warm-started from the history). The foot must be an
 /// interior or seam point of the patch for the linearization to be exact; at edges and
-/// vertices the tangent drops the terms of the held parameters.
+/// vertices the tangent drops the terms of the held parameters. `lambda_n` <= 0: the normal
+/// multiplier of the augmented Lagrangian at this point (0: the penalty law (34)).
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
-                              const ContactParameters& p, const ContactHistory& history);
+                              const ContactParameters& p, const ContactHistory& history,
+                              double lambda_n = 0.0);
 
 /// The history to store after a converged step.
 ContactHistory commit_contact(const ContactPoint& c, int patch);

@@ -68,6 +68,23 @@ std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names
   }
   c.fail("expected one of " + list);
 }
+/// The enforcement keys of a contact pair: "enforcement" "penalty" (default) or
+/// "augmented_lagrange" with "penetration_tol" (a length > 0, required) and
+/// "max_augmentations" (1..1000, default 10); the last two only with the augmented Lagrangian.
+ContactEnforcement parse_enforcement(const JsonCursor& c) {
+  ContactEnforcement e;
+  if (c.has("enforcement"))
+    e.augmented =
+        one_of(c["enforcement"], {"penalty", "augmented_lagrange"}) == "augmented_lagrange";
+  if (!e.augmented) {
+    for (const char* k : {"penetration_tol", "max_augmentations"})
+      if (c.has(k)) c[k].fail("applies only with \"enforcement\": \"augmented_lagrange\"");
+    return e;
+  }
+  e.penetration_tol = positive(c["penetration_tol"]);
+  e.max_augmentations = int_or(c, "max_augmentations", e.max_augmentations, 1, 1000, "1..1000");
+  return e;
+}
 
 // ---- load curves ---------------------------------------------------------------------------
 
@@ -594,14 +611,17 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
-                     "points_per_element", "description"});
+                     "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
+                     "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     ContactParameters cp;
     penalty_and_friction(c, cp);
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
+    const ContactEnforcement enforcement = parse_enforcement(c);
     const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
     auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid_out, cp, ppe);
+    p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
     contact_out = p.get();
     problem = std::move(p);
   } else {
@@ -652,7 +672,8 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
       c["type"].fail("a shell's contact is \"surface_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
-                     "points_per_direction", "search_distance", "description"});
+                     "points_per_direction", "search_distance", "enforcement", "penetration_tol",
+                     "max_augmentations", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
@@ -674,8 +695,10 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
     cp.points_per_direction =
         int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
+    const ContactEnforcement enforcement = parse_enforcement(c);
     try {
       auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
+      p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
       contact_out = p.get();
       problem = std::move(p);
     } catch (const std::invalid_argument& e) {

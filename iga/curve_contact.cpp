@@ -37,6 +37,16 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
   search_distance_ = params_.radius + chord;
 }
 
+void CurveContact::set_enforcement(const ContactEnforcement& e) {
+  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
+    throw std::invalid_argument("contact penetration_tol must be > 0 and finite, got " +
+                                std::to_string(e.penetration_tol));
+  if (e.augmented && e.max_augmentations < 1)
+    throw std::invalid_argument("contact max_augmentations must be >= 1, got " +
+                                std::to_string(e.max_augmentations));
+  enforcement_ = e;
+}
+
 void CurveContact::rational_basis(double eta, BasisValues& R, int& first) const {
   const int p = ref_.degree();
   const int span = ref_.knots().find_span(eta);
@@ -97,7 +107,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       const Vector3d& nrm = cp.foot.normal;
       if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
     }
-    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history);
+    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history,
+                              cp.lambda_n);
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
       continue;
@@ -161,8 +172,24 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
 }
 
 void CurveContact::commit() {
-  for (CurveContactPoint& cp : points_)
+  for (CurveContactPoint& cp : points_) {
     if (found(cp.foot.status)) cp.history = commit_contact(cp.law, cp.foot.patch);
+    cp.lambda_n_committed = cp.lambda_n;
+  }
+  augmentation_.step_updates = 0;
+}
+
+AugmentResult CurveContact::augment() {
+  return augmentation_.update(
+      points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
+      [](const CurveContactPoint& cp) { return cp.law.gap; },
+      [](const CurveContactPoint& cp) { return cp.law.N; },
+      [](CurveContactPoint& cp) -> double& { return cp.lambda_n; });
+}
+
+void CurveContact::restore() {
+  for (CurveContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
+  augmentation_.step_updates = 0;
 }
 
 CurveContactCounts CurveContact::counts() const {

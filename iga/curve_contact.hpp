@@ -18,6 +18,7 @@
 #include "contact/contact_law.hpp"
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_curve.hpp"
+#include "iga/contact_augmentation.hpp"
 
 namespace iga {
 
@@ -29,6 +30,8 @@ struct CurveContactPoint {
   ProjectionResult foot;             ///< its projection (warm start of the next evaluation)
   ContactPoint law;                  ///< the point law's state
   ContactHistory history;            ///< committed state of the last converged step
+  double lambda_n = 0.0;             ///< normal multiplier lambda_N (augmented Lagrange), <= 0
+  double lambda_n_committed = 0.0;   ///< lambda_N at the last converged step
   double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
 };
 
@@ -47,13 +50,25 @@ class CurveContact {
   /// point, dof 3 a + k) to R and, if K is not null, to the triplets of the tangent.
   void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K);
-  /// Stores the current state of every point as history (after a converged step).
+  /// Stores the current state of every point as history (after a converged step), with the
+  /// multipliers.
   void commit();
+  /// Augmented Lagrange (parameters().enforcement): the Uzawa update of the multipliers from
+  /// the state of the last assembly (iga/contact_augmentation.hpp); penalty: satisfied.
+  AugmentResult augment();
+  /// Multipliers back to the last commit (a step cut back).
+  void restore();
+  /// Multiplier updates and the last largest penetration (augmented Lagrange).
+  const NormalAugmentation& augmentation() const { return augmentation_; }
 
   const std::vector<CurveContactPoint>& points() const { return points_; }
   CurveContactCounts counts() const;
   const ContactParameters& parameters() const { return params_; }
   void set_parameters(const ContactParameters& p) { params_ = p; }
+  /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);
+  /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
+  const ContactEnforcement& enforcement() const { return enforcement_; }
+  void set_enforcement(const ContactEnforcement& e);
   /// Points without a warm start (first assembly, or no foot last time) are projected in one
   /// batch: a CGAL box-intersection broad phase (RigidSurface::closest_points) between the
   /// points and the Bezier elements of the rigid patches, inflated by this distance, then the
@@ -76,6 +91,8 @@ class CurveContact {
   NurbsCurve ref_;
   const RigidSurface* rigid_;
   ContactParameters params_;
+  ContactEnforcement enforcement_;
+  NormalAugmentation augmentation_;
   std::vector<CurveContactPoint> points_;
   struct PointBasis {
     BasisValues R{};  ///< rational basis functions at the point's eta

@@ -15,6 +15,18 @@ namespace iga {
 using Eigen::VectorXd;
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column major
 
+/// What NonlinearProblem::augment found at a converged state (exact enforcement of
+/// constraints by an augmented Lagrangian, e.g. contact; see NonlinearProblem::augment).
+enum class AugmentStatus {
+  satisfied,  ///< the constraints hold within their tolerance: commit the step
+  updated,    ///< the multipliers were updated: solve the same step again
+  failed,     ///< not satisfied after the allowed number of updates: the step fails
+};
+struct AugmentResult {
+  AugmentStatus status = AugmentStatus::satisfied;
+  std::string message;  ///< what was found (e.g. the largest penetration against the tolerance)
+};
+
 class NonlinearProblem {
  public:
   virtual ~NonlinearProblem() = default;
@@ -28,6 +40,17 @@ class NonlinearProblem {
   virtual bool symmetric() const { return true; }
   /// Called after a converged step at time t with state u: commit history variables.
   virtual void commit(const VectorXd& u, double t) { (void)u, (void)t; }
+  /// Called when Newton has converged at time t with state u (the state of the last assembly),
+  /// before commit: a problem with multipliers (augmented Lagrangian) checks its constraints
+  /// and, if they are violated, updates its multipliers (Uzawa) and returns `updated`; the
+  /// solver then solves the same step again from u. Default: no multipliers, `satisfied`.
+  virtual AugmentResult augment(const VectorXd& u, double t) {
+    (void)u, (void)t;
+    return {};
+  }
+  /// Called when an attempted step is undone (cutback): multipliers go back to their values at
+  /// the last commit.
+  virtual void restore() {}
   /// A short status for the progress line (e.g. "contact 24 (stick 10, slip 14)").
   virtual std::string status() const { return {}; }
 };

@@ -80,6 +80,8 @@ const char* to_string(NewtonOutcome o) {
       return "linear_solve_failed";
     case NewtonOutcome::assembly_failed:
       return "assembly_failed";
+    case NewtonOutcome::augmentation_failed:
+      return "augmentation_failed";
   }
   return "?";
 }
@@ -119,7 +121,7 @@ void NonlinearSolver::set_settings(const NonlinearSolverSettings& settings) {
 }
 
 void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w,
-                             StepAttempt& a, NonlinearSolverResult& r) {
+                             StepAttempt& a, NonlinearSolverResult& r, bool break_cycles) {
   const NonlinearSolverSettings& s = settings_;
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
@@ -195,7 +197,15 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
     if (k == 1) e1 = e;
 
     u += w.du;
-    const double rk = assemble();
+    double rk = assemble();
+    // Re-solves after a multiplier update: backtrack a correction that raises |R| (points
+    // flipping between stick and slip can make full Newton steps cycle), halving it up to
+    // four times while |R| stays above |R_{k-1}|.
+    for (int half = 0; break_cycles && rk > r_prev && half < 4; ++half) {
+      w.du *= 0.5;
+      u -= w.du;
+      rk = assemble();
+    }
     if (rk < 0.0)
       return finish(NewtonOutcome::assembly_failed,
                     format("iteration %d: assembly: %s", k, error.c_str()));
@@ -268,13 +278,43 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     a.t_start = t;
     a.t = t_new;
     a.dt = t_new - t;
+    int hardest_solve = 0;  // the most iterations of one Newton solve of the step
     try {
       newton(problem, u, t_new, w, a, r);
+      hardest_solve = a.iterations;
+      // Exact enforcement: update multipliers and solve again until the constraints hold.
+      while (a.outcome == NewtonOutcome::converged) {
+        const AugmentResult ar = problem.augment(u, t_new);
+        if (ar.status == AugmentStatus::satisfied) break;
+        if (ar.status == AugmentStatus::failed) {
+          a.outcome = NewtonOutcome::augmentation_failed;
+          a.message = ar.message;
+          break;
+        }
+        ++a.augmentations;
+        StepAttempt b;
+        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true);
+        hardest_solve = std::max(hardest_solve, b.iterations);
+        a.iterations += b.iterations;
+        a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(),
+                                b.residual_norms.end());
+        a.energy_norms.insert(a.energy_norms.end(), b.energy_norms.begin(), b.energy_norms.end());
+        a.cholmod_factorizations += b.cholmod_factorizations;
+        a.umfpack_factorizations += b.umfpack_factorizations;
+        a.cholesky_fallbacks += b.cholesky_fallbacks;
+        if (b.outcome != NewtonOutcome::converged) {
+          a.outcome = b.outcome;
+          a.message = format("after augmentation %d (%s): %s", a.augmentations, ar.message.c_str(),
+                             b.message.c_str());
+        }
+      }
     } catch (...) {
       u = u_last;
+      problem.restore();
       throw;
     }
     r.total_iterations += a.iterations;
+    r.augmentations += a.augmentations;
     r.cholmod_factorizations += a.cholmod_factorizations;
     r.umfpack_factorizations += a.umfpack_factorizations;
     r.cholesky_fallbacks += a.cholesky_fallbacks;
@@ -295,6 +335,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
             "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
             "|R0| = %.3e  |R| = %.3e  E = %.3e",
             r.steps, t, a.dt, (t - s.t0) / span, a.iterations, a.residual_norms.front(), rn, en);
+        if (a.augmentations > 0) *log_ << "  augmentations " << a.augmentations;
         if (a.cholesky_fallbacks > 0) *log_ << "  lu-fallbacks " << a.cholesky_fallbacks;
         const std::string status = problem.status();
         if (!status.empty()) *log_ << "  " << status;
@@ -306,7 +347,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
         go_on = on_step(u, t, a);
         r.time_callback += seconds_since(tc);
       }
-      if (a.iterations <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
+      if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
       r.attempts.push_back(std::move(a));
       if (!go_on) {
         r.status = NonlinearSolverStatus::stopped;
@@ -315,6 +356,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       }
     } else {
       u = u_last;
+      problem.restore();
       ++r.cutbacks;
       // The size tried: the nominal dt, or less where the step was cut at t1. (A step stretched
       // to t1 by less than min_step counts as its nominal size.)
@@ -365,6 +407,9 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
       "commit and output %.4f s (%.1f %%)\n",
       r.time_total, r.time_assembly, 100.0 * r.time_assembly / total, r.time_linear_solve,
       100.0 * r.time_linear_solve / total, r.time_callback, 100.0 * r.time_callback / total);
+  if (r.augmentations > 0)
+    os << format("  augmentations %d (multiplier updates, each followed by a Newton re-solve)\n",
+                 r.augmentations);
   os << format("  factorizations: CHOLMOD %d, UMFPACK %d (Cholesky fallbacks %d)\n",
                r.cholmod_factorizations, r.umfpack_factorizations, r.cholesky_fallbacks);
 }

@@ -75,6 +75,8 @@ enum class NewtonOutcome {
   linear_solve_failed,  ///< singular tangent or non-finite entries in it
   assembly_failed,      ///< the problem threw while assembling (e.g. a non-finite state met by
                         ///< the contact search); the step is cut back like any other failure
+  augmentation_failed,  ///< Newton converged but NonlinearProblem::augment found the constraints
+                        ///< still violated after its allowed multiplier updates; cut back
 };
 
 /// How the whole run ended.
@@ -97,8 +99,11 @@ struct StepAttempt {
   double t = 0.0;        ///< target time of the step
   double dt = 0.0;       ///< t - t_start
   NewtonOutcome outcome = NewtonOutcome::max_iterations;
-  int iterations = 0;                  ///< Newton corrections computed (linear solves)
-  std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms)
+  int iterations = 0;                  ///< Newton corrections computed (linear solves), the
+                                       ///< re-solves after multiplier updates included
+  int augmentations = 0;               ///< multiplier updates (re-solves) of the step
+  std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms); after
+                                       ///< an augmentation the re-solve's |R_0|, |R_1|, ...
   std::vector<double> energy_norms;    ///< E_1, ..., E_iterations
   int cholmod_factorizations = 0;      ///< factorizations that succeeded with CHOLMOD
   int umfpack_factorizations = 0;      ///< ... with UMFPACK (incl. fallbacks)
@@ -114,6 +119,7 @@ struct NonlinearSolverResult {
   int steps = 0;                      ///< converged steps
   int cutbacks = 0;                   ///< failed attempts
   int total_iterations = 0;           ///< Newton iterations over all attempts, failed ones included
+  int augmentations = 0;              ///< multiplier updates over all attempts (augment)
   std::vector<int> step_iterations;   ///< Newton iterations of each converged step
   std::vector<StepAttempt> attempts;  ///< every attempt, in order
   int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
@@ -136,9 +142,13 @@ using StepCallback = std::function<bool(const VectorXd& u, double t, const StepA
 /// symbolic analysis) across steps and runs.
 ///
 /// Each step tries t = t_start + dt from the converged u (no extrapolation): R_0 = R(u, t);
-/// Newton corrections K du = -R until the residual and energy tests hold. A step that diverges,
-/// produces NaN, fails the linear solve or needs more than max_iterations is undone (u restored)
-/// and retried with dt * cutback_factor; a failed step of size min_step ends the run with
+/// Newton corrections K du = -R until the residual and energy tests hold. Then
+/// NonlinearProblem::augment: while it updates multipliers, Newton runs again at the same t
+/// from the converged u (its iterations count for the step; a failure of such a re-solve, or
+/// augment's `failed`, fails the step, which is cut back with NonlinearProblem::restore). The
+/// step size grows after a step whose every solve took <= easy_iterations iterations. A step that
+/// diverges, produces NaN, fails the linear solve or needs more than max_iterations is undone (u
+/// restored) and retried with dt * cutback_factor; a failed step of size min_step ends the run with
 /// status min_step_reached and u at the last converged step. Prescribed values depend on t
 /// inside NonlinearProblem::assemble. An exception thrown by NonlinearProblem::assemble (a
 /// std::exception, e.g. the contact search meeting a non-finite state) fails the attempt
@@ -163,9 +173,11 @@ class NonlinearSolver {
 
  private:
   struct Workspace;
-  /// Newton iterations at time t from u (updated in place).
+  /// Newton iterations at time t from u (updated in place). `break_cycles` (the re-solves after
+  /// a multiplier update): a correction that brings |R| back to its value two iterations
+  /// before (a 2-cycle, e.g. points flipping between stick and slip) is followed by a half step.
   void newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
-              NonlinearSolverResult& r);
+              NonlinearSolverResult& r, bool break_cycles = false);
 
   NonlinearSolverSettings settings_;
   std::ostream* log_ = nullptr;

@@ -20,7 +20,7 @@ namespace iga {
 
 /// Base: a ControlPointProblem (RodProblem, ShellProblem) constructible from its body model.
 /// Integral: the contact integral (CurveContact, SurfaceContact) with assemble(x, g, K*),
-/// commit() and counts() (active, stick, slip); copyable.
+/// commit(), augment(), restore() and counts() (active, stick, slip); copyable.
 template <class Base, class Integral>
 class RigidContactProblem : public Base {
  public:
@@ -34,6 +34,15 @@ class RigidContactProblem : public Base {
     contact_.commit();
     Base::commit(u, t);
   }
+  /// Exact enforcement (augmented Lagrange, ContactEnforcement): the integral checks the
+  /// penetration of the state of the last assembly (the solver's converged u) and updates its
+  /// multipliers (Uzawa); penalty: always satisfied.
+  AugmentResult augment(const VectorXd& u, double t) override {
+    (void)u, (void)t;
+    return contact_.augment();
+  }
+  /// The multipliers of the last commit (a step is cut back).
+  void restore() override { contact_.restore(); }
   /// "contact 24 (stick 10, slip 14)" for the progress line.
   std::string status() const override {
     const auto c = contact_.counts();

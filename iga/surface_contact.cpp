@@ -190,6 +190,16 @@ void SurfaceContact::check(const SurfaceContactParameters& p) const {
     fail("points_per_direction must be in 1..20", p.points_per_direction);
 }
 
+void SurfaceContact::set_enforcement(const ContactEnforcement& e) {
+  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
+    throw std::invalid_argument("SurfaceContact: penetration_tol must be > 0 and finite, got " +
+                                std::to_string(e.penetration_tol));
+  if (e.augmented && e.max_augmentations < 1)
+    throw std::invalid_argument("SurfaceContact: max_augmentations must be >= 1, got " +
+                                std::to_string(e.max_augmentations));
+  enforcement_ = e;
+}
+
 void SurfaceContact::set_parameters(const SurfaceContactParameters& p) {
   check(p);
   if (p.points_per_direction != params_.points_per_direction)
@@ -351,8 +361,8 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
       Matrix39 df;
       if (master) {
         // (10)-(18), (34)-(36) by the CTRS point law with R = 0 at x_c; df/dG = df/dx_c dx_c/dG.
-        const ContactPoint law =
-            evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x, law_params, cp.history);
+        const ContactPoint law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x,
+                                                  law_params, cp.history, cp.lambda_n);
         cp.gap = law.gap;
         if (!law.active) continue;
         cp.N = law.N;
@@ -368,7 +378,9 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         const double xi3 = cp.foot.distance;
         const double sigma = g.n.dot(cp.foot.normal) >= 0.0 ? 1.0 : -1.0;
         cp.gap = -sigma * xi3;
-        if (cp.gap > 0.0) continue;  // (34)
+        // (34), augmented: N = min(0, lambda_N + eps_N gap); lambda_N = 0 is the penalty law.
+        const double lambda = cp.lambda_n;
+        if (lambda == 0.0 ? cp.gap > 0.0 : lambda + params_.eps_n * cp.gap > 0.0) continue;
         Matrix3d J;  // (4)
         J << rd.Su, rd.Sv, -g.n;
         const Matrix3d J_inv = J.inverse();
@@ -376,11 +388,15 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         Matrix39 dy;
         dy.noalias() = J_inv * (g.Xg + xi3 * g.Ng);
         const RowVector9 dxi3 = dy.row(2);
-        cp.N = params_.eps_n * cp.gap;  // (34), <= 0
+        cp.N = params_.eps_n * cp.gap + lambda;  // (34), <= 0
         const double absN = -cp.N;
-        // f_N = -N nu = eps_N xi3 n
+        // f_N = -N nu = eps_N xi3 n - lambda_N sigma n
         f = params_.eps_n * xi3 * g.n;
         df.noalias() = params_.eps_n * (g.n * dxi3 + xi3 * g.Ng);
+        if (lambda != 0.0) {
+          f -= lambda * sigma * g.n;
+          df.noalias() -= lambda * sigma * g.Ng;
+        }
         const ContactHistory& h = cp.history;
         // no tangential force in the step of first contact (contact/contact_law.hpp)
         if (params_.mu > 0.0 && params_.eps_t > 0.0 && h.patch >= 0 && h.active) {
@@ -478,7 +494,22 @@ void SurfaceContact::commit() {
       h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
     }
     cp.history = h;
+    cp.lambda_n_committed = cp.lambda_n;
   }
+  augmentation_.step_updates = 0;
+}
+
+AugmentResult SurfaceContact::augment() {
+  return augmentation_.update(
+      points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },
+      [](const SurfaceContactPoint& cp) { return cp.gap; },
+      [](const SurfaceContactPoint& cp) { return cp.N; },
+      [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; });
+}
+
+void SurfaceContact::restore() {
+  for (SurfaceContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
+  augmentation_.step_updates = 0;
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {

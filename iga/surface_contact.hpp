@@ -101,6 +101,7 @@
 #include "contact/contact_law.hpp"
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_surface.hpp"
+#include "iga/contact_augmentation.hpp"
 
 namespace iga {
 
@@ -146,6 +147,8 @@ struct SurfaceContactPoint {
   bool slip = false;                  ///< return mapping on the slip surface (36)
   bool first_contact = false;         ///< active, but not in contact at the last converged step
   ContactHistory history;             ///< committed state of the last converged step
+  double lambda_n = 0.0;              ///< normal multiplier lambda_N (augmented Lagrange), <= 0
+  double lambda_n_committed = 0.0;    ///< lambda_N at the last converged step
 };
 
 /// Active points split into sticking and sliding ones (SurfaceContact::sticks).
@@ -167,8 +170,16 @@ class SurfaceContact {
   /// tangent's triplets. R must have size 3 x.size().
   void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K);
-  /// Stores the current state of every point as history (after a converged step).
+  /// Stores the current state of every point as history (after a converged step), with the
+  /// multipliers.
   void commit();
+  /// Augmented Lagrange (parameters().enforcement): the Uzawa update of the multipliers from
+  /// the state of the last assembly (iga/contact_augmentation.hpp); penalty: satisfied.
+  AugmentResult augment();
+  /// Multipliers back to the last commit (a step cut back).
+  void restore();
+  /// Multiplier updates and the last largest penetration (augmented Lagrange).
+  const NormalAugmentation& augmentation() const { return augmentation_; }
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }
   SurfaceContactCounts counts() const;
@@ -181,6 +192,10 @@ class SurfaceContact {
   /// New penalties, friction, face, thickness or search distance; the Gauss points stay
   /// (points_per_direction cannot change).
   void set_parameters(const SurfaceContactParameters& p);
+  /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);
+  /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
+  const ContactEnforcement& enforcement() const { return enforcement_; }
+  void set_enforcement(const ContactEnforcement& e);
 
  private:
   struct Element {
@@ -197,6 +212,8 @@ class SurfaceContact {
   NurbsSurface ref_;
   const RigidSurface* rigid_;
   SurfaceContactParameters params_;
+  ContactEnforcement enforcement_;
+  NormalAugmentation augmentation_;
   int nen_ = 0;  ///< control points per element (p+1)(q+1)
   std::vector<Element> elements_;
   std::vector<SurfaceContactPoint> points_;

@@ -17,22 +17,25 @@ using namespace iga;
 namespace {
 
 ContactPoint at(const Surface& s, const Vector3d& r, const Vector2d& guess,
-                const ContactParameters& p, const ContactHistory& h) {
+                const ContactParameters& p, const ContactHistory& h, double lambda_n = 0.0) {
   ProjectionResult f = closest_point_local(s, r, guess);
   f.patch = 0;
-  return evaluate_contact(s, f, r, p, h);
+  return evaluate_contact(s, f, r, p, h, lambda_n);
 }
 
 // max |K - K_fd| / max(|K|, eps_n) over the columns.
 double tangent_error(const Surface& s, const Vector3d& r, const Vector2d& guess,
-                     const ContactParameters& p, const ContactHistory& h, bool& slip) {
-  const ContactPoint c = at(s, r, guess, p, h);
+                     const ContactParameters& p, const ContactHistory& h, bool& slip,
+                     double lambda_n = 0.0) {
+  const ContactPoint c = at(s, r, guess, p, h, lambda_n);
   slip = c.slip;
   const double step = 1e-6;
   Matrix3d fd;
   for (int k = 0; k < 3; ++k) {
     const Vector3d e = Vector3d::Unit(k) * step;
-    fd.col(k) = (at(s, r + e, c.xi, p, h).force - at(s, r - e, c.xi, p, h).force) / (2 * step);
+    fd.col(k) =
+        (at(s, r + e, c.xi, p, h, lambda_n).force - at(s, r - e, c.xi, p, h, lambda_n).force) /
+        (2 * step);
   }
   return (fd - c.stiffness).cwiseAbs().maxCoeff() / std::max(c.stiffness.cwiseAbs().maxCoeff(), p.eps_n);
 }
@@ -120,4 +123,80 @@ TEST_CASE("contact law: the tangent df/dr matches finite differences (normal, st
   }
   CHECK(n_slip > 20);  // both branches of the return mapping are exercised
   CHECK(n_stick > 20);
+}
+
+TEST_CASE("contact law: augmented normal force N = min(0, lambda_N + eps_N gap) ((34) augmented)",
+          "[contact][law][augmented]") {
+  const Cylinder cyl(Placement{}, 2.0);
+  const ContactParameters p{1000.0, 0.0, 0.0, 0.1};
+  ContactHistory h;
+  // lambda_N = 0 is the penalty law, bit for bit (the option off changes nothing)
+  const Vector3d r_in(2.05, 0.0, 0.3);
+  const ContactPoint c0 = at(cyl, r_in, Vector2d(0.1, 0.3), p, h);
+  const ContactPoint c00 = at(cyl, r_in, Vector2d(0.1, 0.3), p, h, 0.0);
+  CHECK(c0.N == c00.N);
+  CHECK(c0.force == c00.force);
+  CHECK(c0.stiffness == c00.stiffness);
+  // penetrating by 0.05 with lambda_N = -30: N = -30 - 50
+  const ContactPoint c = at(cyl, r_in, Vector2d(0.1, 0.3), p, h, -30.0);
+  REQUIRE(c.active);
+  CHECK(c.N == Approx(-80.0).epsilon(1e-12));
+  CHECK((c.force - Vector3d(80.0, 0, 0)).norm() <= 1e-9);
+  // 0.02 apart: still pressed by the multiplier, N = -30 + 1000 * 0.02 = -10
+  const ContactPoint apart = at(cyl, Vector3d(2.12, 0.0, 0.3), Vector2d(0.1, 0.3), p, h, -30.0);
+  REQUIRE(apart.active);
+  CHECK(apart.gap == Approx(0.02).epsilon(1e-12));
+  CHECK(apart.N == Approx(-10.0).epsilon(1e-12));
+  // 0.04 apart: lambda_N + eps_N gap = +10 > 0, no force
+  const ContactPoint free = at(cyl, Vector3d(2.14, 0.0, 0.3), Vector2d(0.1, 0.3), p, h, -30.0);
+  CHECK(!free.active);
+  CHECK(free.force.norm() == 0.0);
+}
+
+TEST_CASE(
+    "contact law: the augmented tangent df/dr matches finite differences (normal, stick, "
+    "slip; gaps of both signs)",
+    "[contact][law][tangent][augmented]") {
+  std::mt19937 g(22);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  const double pi = std::numbers::pi;
+  const Torus torus(Placement{}, 3.0, 1.0);
+  const NurbsSurface nurbs =
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0, 4.0);
+  const Surface* surfaces[2] = {&torus, &nurbs};
+  int n_slip = 0, n_stick = 0, n_apart = 0;
+  for (const Surface* s : surfaces) {
+    for (int k = 0; k < 200; ++k) {
+      const Domain2 dom = s->domain();
+      const Vector2d uv(dom.u.lo + (0.1 + 0.8 * U(g)) * (dom.u.hi - dom.u.lo),
+                        s == &torus ? 2 * pi * U(g) : 0.2 + 0.6 * U(g));
+      const SurfaceDerivs d = s->derivs(uv[0], uv[1], 1);
+      const Vector3d n = s->normal_sign() * d.Su.cross(d.Sv).normalized();
+      const ContactParameters p{500.0, 300.0, 0.4, 0.05};
+      const double lambda = -10.0 * U(g);                        // up to 0.02 eps_N
+      const Vector3d r = d.S + (0.05 - 0.02 + 0.04 * U(g)) * n;  // gap in (-0.02, 0.02)
+      ContactHistory h;
+      h.active = U(g) < 0.7;
+      h.patch = 0;
+      h.xi = uv + 0.02 * Vector2d(U(g) - 0.5, U(g) - 0.5);
+      h.foot = s->point(h.xi[0], h.xi[1]);
+      h.T = Vector2d(U(g) - 0.5, U(g) - 0.5);
+      h.T_vector = Vector3d(d.Su * h.T[0] + d.Sv * h.T[1]);
+      bool slip = false;
+      const ContactPoint c = at(*s, r, uv, p, h, lambda);
+      // kinks at lambda_N + eps_N gap = 0 and phi = 0: skip points next to them
+      if (!c.active || std::abs(lambda + p.eps_n * c.gap) < 1e-4 * p.eps_n ||
+          std::abs(c.phi) < 1e-3 * p.mu * std::abs(c.N))
+        continue;
+      const double err = tangent_error(*s, r, uv, p, h, slip, lambda);
+      INFO("slip " << slip << " err " << err << " gap " << c.gap << " lambda " << lambda);
+      CHECK(c.N == Approx(lambda + p.eps_n * c.gap).epsilon(1e-12));
+      if (c.gap > 0.0) ++n_apart;
+      (slip ? n_slip : n_stick)++;
+      CHECK(err <= 1e-6);
+    }
+  }
+  CHECK(n_slip > 20);  // both branches of the return mapping are exercised
+  CHECK(n_stick > 20);
+  CHECK(n_apart > 10);  // active points held by their multiplier above the surface
 }
