@@ -7,15 +7,20 @@
 // augmented, contact/contact_law.hpp).
 //
 // After Newton has converged at a load step (the integral's points hold the state of that
-// assembly), the largest penetration p = max(-xi^3) over the active points is compared with
-// the tolerance; if p > tol, every point's multiplier becomes its current force,
+// assembly), the largest |xi^3| over the active points (N < 0) is compared with the tolerance:
+// exact enforcement means xi^3 = 0 wherever there is a force, so a point held above the surface
+// by its multiplier (xi^3 > 0, N < 0) violates the constraint as much as a penetrating one. If
+// it is above the tolerance, every point's multiplier becomes its current force,
 // lambda_N <- N (0 where the point is apart), and the step is solved again. A point that stays
 // in contact then carries lambda_N from the start of the re-solve and its gap shrinks to
 // (N_new - lambda_N) / eps_N, the change of its force between solves over eps_N. Multipliers
-// are committed with the history at converged steps and restored when a step is cut back.
+// are committed with the history at converged steps and restored when a step is cut back. The
+// first solve of a step starts from multipliers extrapolated from the last two commits
+// (NormalAugmentation::predict), which spares the update where the force grows steadily.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -29,7 +34,33 @@ namespace iga {
 struct NormalAugmentation {
   int step_updates = 0;          ///< updates since the last commit or restore
   int total_updates = 0;         ///< updates since construction
-  double max_penetration = 0.0;  ///< at the last augment() call
+  double max_gap = 0.0;          ///< max |xi^3| of the active points at the last augment() call
+  double t_last = 0.0;           ///< time of the last prediction (assembly)
+  double t_committed = 0.0;      ///< time of the last commit
+  double t_before = 0.0;         ///< time of the commit before it
+  int commits = 0;
+
+  /// Predictor for the first solve of a step at time t (before any update of the step): the
+  /// multipliers extrapolated linearly in t from the last two commits, lambda_N = min(0,
+  /// lambda_c + (t - t_c) / (t_c - t_b) (lambda_c - lambda_b)), so that a steadily growing
+  /// contact force is met without an update; lambda_c at t = t_c (output, reactions).
+  template <class Point, class Lambda, class Committed, class Before>
+  void predict(std::vector<Point>& points, const ContactEnforcement& e, double t, Lambda lambda,
+               Committed committed, Before before) {
+    if (!e.augmented || step_updates > 0) return;
+    t_last = t;
+    const double span = t_committed - t_before;
+    const double ratio = commits >= 2 && span > 0.0 ? (t - t_committed) / span : 0.0;
+    for (Point& cp : points)
+      lambda(cp) = std::min(0.0, committed(cp) + ratio * (committed(cp) - before(cp)));
+  }
+  /// At a commit: the times of the last two commits.
+  void commit() {
+    step_updates = 0;
+    t_before = t_committed;
+    t_committed = t_last;
+    ++commits;
+  }
 
   /// The Uzawa step over `points`: active(cp), gap(cp), N(cp) read the state of the last
   /// assembly; lambda(cp) is the multiplier (a reference).
@@ -37,23 +68,23 @@ struct NormalAugmentation {
   AugmentResult update(std::vector<Point>& points, const ContactEnforcement& e, Active active,
                        Gap gap, Force N, Lambda lambda) {
     if (!e.augmented) return {};
-    max_penetration = 0.0;
+    max_gap = 0.0;
     for (const Point& cp : points)
-      if (active(cp)) max_penetration = std::max(max_penetration, -gap(cp));
+      if (active(cp)) max_gap = std::max(max_gap, std::abs(gap(cp)));
     char buf[160];
-    if (max_penetration <= e.penetration_tol) return {};
+    if (max_gap <= e.penetration_tol) return {};
     if (step_updates >= e.max_augmentations) {
       std::snprintf(buf, sizeof buf,
-                    "contact penetration %.3e above penetration_tol %.3e after %d augmentations "
-                    "(max_augmentations)",
-                    max_penetration, e.penetration_tol, step_updates);
+                    "contact gap %.3e (largest |gap| of a point carrying a force) above "
+                    "penetration_tol %.3e after %d augmentations (max_augmentations)",
+                    max_gap, e.penetration_tol, step_updates);
       return {AugmentStatus::failed, buf};
     }
     ++step_updates;
     ++total_updates;
     for (Point& cp : points) lambda(cp) = active(cp) ? std::min(0.0, N(cp)) : 0.0;
-    std::snprintf(buf, sizeof buf, "contact penetration %.3e > penetration_tol %.3e",
-                  max_penetration, e.penetration_tol);
+    std::snprintf(buf, sizeof buf, "contact gap %.3e > penetration_tol %.3e", max_gap,
+                  e.penetration_tol);
     return {AugmentStatus::updated, buf};
   }
 };

@@ -174,9 +174,10 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
 void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
     if (found(cp.foot.status)) cp.history = commit_contact(cp.law, cp.foot.patch);
+    cp.lambda_n_before = cp.lambda_n_committed;
     cp.lambda_n_committed = cp.lambda_n;
   }
-  augmentation_.step_updates = 0;
+  augmentation_.commit();
 }
 
 AugmentResult CurveContact::augment() {
@@ -185,6 +186,13 @@ AugmentResult CurveContact::augment() {
       [](const CurveContactPoint& cp) { return cp.law.gap; },
       [](const CurveContactPoint& cp) { return cp.law.N; },
       [](CurveContactPoint& cp) -> double& { return cp.lambda_n; });
+}
+
+void CurveContact::predict(double t) {
+  augmentation_.predict(
+      points_, enforcement_, t, [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
+      [](const CurveContactPoint& cp) { return cp.lambda_n_committed; },
+      [](const CurveContactPoint& cp) { return cp.lambda_n_before; });
 }
 
 void CurveContact::restore() {

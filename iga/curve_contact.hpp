@@ -32,6 +32,7 @@ struct CurveContactPoint {
   ContactHistory history;            ///< committed state of the last converged step
   double lambda_n = 0.0;             ///< normal multiplier lambda_N (augmented Lagrange), <= 0
   double lambda_n_committed = 0.0;   ///< lambda_N at the last converged step
+  double lambda_n_before = 0.0;      ///< lambda_N at the commit before (predictor)
   double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
 };
 
@@ -56,6 +57,9 @@ class CurveContact {
   /// Augmented Lagrange (parameters().enforcement): the Uzawa update of the multipliers from
   /// the state of the last assembly (iga/contact_augmentation.hpp); penalty: satisfied.
   AugmentResult augment();
+  /// Augmented Lagrange: multipliers for the first solve of a step at time t, extrapolated
+  /// from the last two commits (NormalAugmentation::predict); no effect after an update.
+  void predict(double t);
   /// Multipliers back to the last commit (a step cut back).
   void restore();
   /// Multiplier updates and the last largest penetration (augmented Lagrange).

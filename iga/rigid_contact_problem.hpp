@@ -20,7 +20,7 @@ namespace iga {
 
 /// Base: a ControlPointProblem (RodProblem, ShellProblem) constructible from its body model.
 /// Integral: the contact integral (CurveContact, SurfaceContact) with assemble(x, g, K*),
-/// commit(), augment(), restore() and counts() (active, stick, slip); copyable.
+/// commit(), predict(t), augment(), restore() and counts() (active, stick, slip); copyable.
 template <class Base, class Integral>
 class RigidContactProblem : public Base {
  public:
@@ -77,6 +77,7 @@ class RigidContactProblem : public Base {
     Base::add_contributions(x, t, g, K);
     const auto start = std::chrono::steady_clock::now();
     x_.assign(x.begin(), x.end());  // no reallocation after the first call
+    contact_.predict(t);            // augmented Lagrange: the step's first multipliers
     contact_.assemble(x_, g, K);    // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
     contact_time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }

@@ -494,9 +494,10 @@ void SurfaceContact::commit() {
       h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
     }
     cp.history = h;
+    cp.lambda_n_before = cp.lambda_n_committed;
     cp.lambda_n_committed = cp.lambda_n;
   }
-  augmentation_.step_updates = 0;
+  augmentation_.commit();
 }
 
 AugmentResult SurfaceContact::augment() {
@@ -505,6 +506,13 @@ AugmentResult SurfaceContact::augment() {
       [](const SurfaceContactPoint& cp) { return cp.gap; },
       [](const SurfaceContactPoint& cp) { return cp.N; },
       [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; });
+}
+
+void SurfaceContact::predict(double t) {
+  augmentation_.predict(
+      points_, enforcement_, t, [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
+      [](const SurfaceContactPoint& cp) { return cp.lambda_n_committed; },
+      [](const SurfaceContactPoint& cp) { return cp.lambda_n_before; });
 }
 
 void SurfaceContact::restore() {

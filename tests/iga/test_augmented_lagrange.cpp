@@ -166,7 +166,7 @@ TEST_CASE(
         CHECK(r.solver.augmentations == 0);
       } else {
         CHECK(deepest <= 1e-7);
-        CHECK(c.augmentation().max_penetration <= 1e-7);
+        CHECK(c.augmentation().max_gap <= 1e-7);
         CHECK(r.solver.augmentations >= 1);
       }
     }
@@ -250,4 +250,35 @@ TEST_CASE("augmented Lagrange: the model keys and their errors (file, path, valu
   bad.max_augmentations = 0;
   CHECK_THROWS_WITH(contact.set_enforcement(bad),
                     Catch::Contains("max_augmentations must be >= 1"));
+}
+
+TEST_CASE(
+    "augmented Lagrange: the coarse saddle runs (STAS, master), |gap| below the tolerance, "
+    "within twice the penalty's Newton iterations",
+    "[iga][shell][contact][saddle][augmented]") {
+  // data/saddle.json with its app/quick overrides, frictionless. The penalty's largest |gap|
+  // reaches 3.3e-4 (local N ~ 50-80 at eps_N = 2.5e5); tolerance 3e-5. Below about 1.2e-5 the
+  // updates stall late in the run (multipliers at 576 Gauss points for 100 control points;
+  // docs/contact.md). Measured: 156 Newton iterations (penalty), 289 (augmented).
+  Json doc = read_json_file(kData + "saddle.json");
+  for (const auto& [ptr, value] : doc["app"]["quick"].items()) doc[JsonPointer(ptr)] = value;
+  Analysis pen = Analysis::from_json(doc, "saddle.json");
+  const AnalysisResult rp = pen.run();
+  REQUIRE(rp.solver.converged());
+  doc["contact"][0]["enforcement"] = "augmented_lagrange";
+  doc["contact"][0]["penetration_tol"] = 3e-5;
+  Analysis al = Analysis::from_json(doc, "saddle.json");
+  const AnalysisResult ra = al.run();
+  INFO("penalty " << rp.solver.total_iterations << " iterations, augmented "
+                  << ra.solver.total_iterations << " (" << ra.solver.augmentations
+                  << " augmentations): " << ra.solver.message);
+  REQUIRE(ra.solver.converged());
+  double worst = 0.0;
+  for (const SurfaceContactPoint& cp : al.shell_contact_problem()->contact().points())
+    if (cp.active) worst = std::max(worst, std::abs(cp.gap));
+  CHECK(worst <= 3e-5);
+  CHECK(ra.solver.total_iterations <= 2 * rp.solver.total_iterations);
+  // the centre deflection moves by about the penalty's penetration there (2e-4 of 2.65)
+  CHECK(ra.steps.back().displacements.at(0).z() ==
+        Approx(rp.steps.back().displacements.at(0).z()).epsilon(1e-3));
 }
