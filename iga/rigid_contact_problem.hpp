@@ -6,6 +6,7 @@
 #pragma once
 
 #include <chrono>
+#include <cstdio>
 #include <memory>
 #include <span>
 #include <string>
@@ -35,8 +36,8 @@ class RigidContactProblem : public Base {
     Base::commit(u, t);
   }
   /// Exact enforcement (augmented Lagrange, ContactEnforcement): the integral checks the
-  /// penetration of the state of the last assembly (the solver's converged u) and updates its
-  /// multipliers (Uzawa); penalty: always satisfied.
+  /// largest |gap| of the points carrying a force in the state of the last assembly (the
+  /// solver's converged u) and updates its multipliers (Uzawa); penalty: always satisfied.
   AugmentResult augment(const VectorXd& u, double t) override {
     (void)u, (void)t;
     return contact_.augment();
@@ -44,10 +45,18 @@ class RigidContactProblem : public Base {
   /// The multipliers of the last commit (a step is cut back).
   void restore() override { contact_.restore(); }
   /// "contact 24 (stick 10, slip 14)" for the progress line.
+  /// Augmented Lagrange: "contact 24 (stick 10, slip 14), |gap| 3.1e-05", the largest |gap| of
+  /// a point carrying a force at the last check.
   std::string status() const override {
     const auto c = contact_.counts();
-    return "contact " + std::to_string(c.active) + " (stick " + std::to_string(c.stick) + ", slip " +
-           std::to_string(c.slip) + ")";
+    std::string s = "contact " + std::to_string(c.active) + " (stick " + std::to_string(c.stick) +
+                    ", slip " + std::to_string(c.slip) + ")";
+    if (contact_.enforcement().augmented) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, ", |gap| %.1e", contact_.augmentation().max_gap);
+      s += buf;
+    }
+    return s;
   }
   /// nodal_residual (the reactions at constrained points of an equilibrium state) without
   /// disturbing the contact state kept for output: nodal_residual re-evaluates the contact, and

@@ -155,7 +155,7 @@ TEST_CASE("contact law: augmented normal force N = min(0, lambda_N + eps_N gap) 
 
 TEST_CASE(
     "contact law: the augmented tangent df/dr matches finite differences (normal, stick, "
-    "slip; gaps of both signs)",
+    "slip, gaps of both signs)",
     "[contact][law][tangent][augmented]") {
   std::mt19937 g(22);
   std::uniform_real_distribution<double> U(0.0, 1.0);
