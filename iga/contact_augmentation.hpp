@@ -39,6 +39,14 @@ struct NormalAugmentation {
   double t_committed = 0.0;      ///< time of the last commit
   double t_before = 0.0;         ///< time of the commit before it
   int commits = 0;
+  /// Factor on eps_N of the augmented law (1 at the start). An update that left the largest
+  /// |gap| above half of its value at the update before (in the same step) multiplies it by 4,
+  /// up to 1e3: where the body cannot follow the surface at every contact point, the updates
+  /// shift force between neighbouring points by eps_N |gap| each and stall; a larger eps_N
+  /// moves more force per update and leaves a smaller gap for the same imbalance (the method
+  /// of multipliers with an increasing penalty, Bertsekas). Kept for the rest of the run.
+  double eps_scale = 1.0;
+  double previous_gap = 0.0;  ///< max |gap| at the last update of this step (0: none yet)
 
   /// Predictor for the first solve of a step at time t (before any update of the step): the
   /// multipliers extrapolated linearly in t from the last two commits, lambda_N = min(0,
@@ -57,6 +65,7 @@ struct NormalAugmentation {
   /// At a commit: the times of the last two commits.
   void commit() {
     step_updates = 0;
+    previous_gap = 0.0;
     t_before = t_committed;
     t_committed = t_last;
     ++commits;
@@ -80,6 +89,8 @@ struct NormalAugmentation {
                     max_gap, e.penetration_tol, step_updates);
       return {AugmentStatus::failed, buf};
     }
+    if (previous_gap > 0.0 && max_gap > 0.5 * previous_gap && eps_scale < 1e3) eps_scale *= 4.0;
+    previous_gap = max_gap;
     ++step_updates;
     ++total_updates;
     for (Point& cp : points) lambda(cp) = active(cp) ? std::min(0.0, N(cp)) : 0.0;

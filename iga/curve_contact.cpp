@@ -86,6 +86,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   }
   std::size_t next_cold = 0;
   near_.clear();
+  ContactParameters law_params = params_;
+  law_params.eps_n *= augmentation_.eps_scale;  // 1 but where augmentations stalled
   bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
@@ -107,7 +109,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       const Vector3d& nrm = cp.foot.normal;
       if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
     }
-    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, params_, cp.history,
+    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
                               cp.lambda_n);
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
@@ -198,6 +200,7 @@ void CurveContact::predict(double t) {
 void CurveContact::restore() {
   for (CurveContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
   augmentation_.step_updates = 0;
+  augmentation_.previous_gap = 0.0;
 }
 
 CurveContactCounts CurveContact::counts() const {

@@ -342,7 +342,8 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   cold_project();
 
   // 2. Point laws, residual and element tangents.
-  ContactParameters law_params{params_.eps_n, params_.eps_t, params_.mu, 0.0};
+  const double eps_n = params_.eps_n * augmentation_.eps_scale;  // 1 but where updates stalled
+  ContactParameters law_params{eps_n, params_.eps_t, params_.mu, 0.0};
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     element_dofs(static_cast<int>(e));
     bool any = false;
@@ -380,7 +381,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         cp.gap = -sigma * xi3;
         // (34), augmented: N = min(0, lambda_N + eps_N gap); lambda_N = 0 is the penalty law.
         const double lambda = cp.lambda_n;
-        if (lambda == 0.0 ? cp.gap > 0.0 : lambda + params_.eps_n * cp.gap > 0.0) continue;
+        if (lambda == 0.0 ? cp.gap > 0.0 : lambda + eps_n * cp.gap > 0.0) continue;
         Matrix3d J;  // (4)
         J << rd.Su, rd.Sv, -g.n;
         const Matrix3d J_inv = J.inverse();
@@ -388,11 +389,11 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         Matrix39 dy;
         dy.noalias() = J_inv * (g.Xg + xi3 * g.Ng);
         const RowVector9 dxi3 = dy.row(2);
-        cp.N = params_.eps_n * cp.gap + lambda;  // (34), <= 0
+        cp.N = eps_n * cp.gap + lambda;  // (34), <= 0
         const double absN = -cp.N;
         // f_N = -N nu = eps_N xi3 n - lambda_N sigma n
-        f = params_.eps_n * xi3 * g.n;
-        df.noalias() = params_.eps_n * (g.n * dxi3 + xi3 * g.Ng);
+        f = eps_n * xi3 * g.n;
+        df.noalias() = eps_n * (g.n * dxi3 + xi3 * g.Ng);
         if (lambda != 0.0) {
           f -= lambda * sigma * g.n;
           df.noalias() -= lambda * sigma * g.Ng;
@@ -424,7 +425,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
             cp.slip = true;
             cp.T = params_.mu * absN * t / m;
             const RowVector9 dm = (t_up.transpose() * dt - 0.5 * t_up.transpose() * metric_times(g.a1, g.a2, t_up)) / m;
-            const RowVector9 dabsN = params_.eps_n * sigma * dxi3;
+            const RowVector9 dabsN = eps_n * sigma * dxi3;
             dT.noalias() = params_.mu * (t / m) * dabsN + (params_.mu * absN / m) * (dt - t * dm / m);
           }
           // f_T = -T_i rho^i = -A a^-1 T
@@ -518,6 +519,7 @@ void SurfaceContact::predict(double t) {
 void SurfaceContact::restore() {
   for (SurfaceContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
   augmentation_.step_updates = 0;
+  augmentation_.previous_gap = 0.0;
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {
