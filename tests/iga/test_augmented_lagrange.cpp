@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "analysis_error.hpp"
 #include "iga/analysis.hpp"
@@ -338,4 +339,85 @@ TEST_CASE(
                     << " points with a multiplier, relative error " << err);
       CHECK(err < 1e-5);
     }
+}
+
+TEST_CASE(
+    "NormalAugmentation: Uzawa update, predictor from the last two commits, penalty raised "
+    "when the updates stall",
+    "[iga][contact][augmented]") {
+  struct P {
+    bool active;
+    double gap, N, lambda = 0.0, committed = 0.0, before = 0.0;
+  };
+  std::vector<P> pts{{true, -2e-3, -5.0}, {true, 1e-4, -1.0}, {false, 0.3, 0.0}};
+  ContactEnforcement e;
+  e.augmented = true;
+  e.penetration_tol = 1e-3;
+  e.max_augmentations = 3;
+  NormalAugmentation aug;
+  auto update = [&] {
+    return aug.update(
+        pts, e, [](const P& p) { return p.active; }, [](const P& p) { return p.gap; },
+        [](const P& p) { return p.N; }, [](P& p) -> double& { return p.lambda; });
+  };
+  // |gap| 2e-3 > tol: lambda_N <- N at active points, 0 elsewhere
+  pts[2].lambda = -7.0;
+  AugmentResult r = update();
+  CHECK(r.status == AugmentStatus::updated);
+  CHECK(aug.max_gap == 2e-3);
+  CHECK(pts[0].lambda == -5.0);
+  CHECK(pts[1].lambda == -1.0);
+  CHECK(pts[2].lambda == 0.0);
+  CHECK(aug.eps_scale == 1.0);
+  // the same |gap| again (stalled): eps_N x 4
+  r = update();
+  CHECK(r.status == AugmentStatus::updated);
+  CHECK(aug.eps_scale == 4.0);
+  // below the tolerance: satisfied, nothing changes
+  pts[0].gap = -0.99e-3;
+  pts[1].gap = 1e-4;
+  r = update();
+  CHECK(r.status == AugmentStatus::satisfied);  // 0.99e-3 <= tol
+  pts[0].gap = -1.5e-3;
+  r = update();
+  CHECK(r.status == AugmentStatus::updated);
+  CHECK(aug.eps_scale == 16.0);  // 1.5e-3 > 0.5 * 2e-3: stalled again
+  r = update();
+  CHECK(r.status == AugmentStatus::failed);  // max_augmentations = 3 reached
+  CHECK_THAT(r.message, Catch::Contains("after 3 augmentations"));
+  // predictor: commits at t = 1 (lambda -1) and t = 2 (lambda -2), prediction at t = 3: -3
+  aug = NormalAugmentation();
+  auto predict = [&](double t) {
+    aug.predict(
+        pts, e, t, [](P& p) -> double& { return p.lambda; }, [](const P& p) { return p.committed; },
+        [](const P& p) { return p.before; });
+  };
+  auto commit = [&] {
+    for (P& p : pts) {
+      p.before = p.committed;
+      p.committed = p.lambda;
+    }
+    aug.commit();
+  };
+  for (P& p : pts) p = P{true, 0.0, 0.0};
+  predict(1.0);
+  for (P& p : pts) p.lambda = -1.0;
+  commit();
+  predict(2.0);
+  CHECK(pts[0].lambda == -1.0);  // one commit only: no extrapolation
+  for (P& p : pts) p.lambda = -2.0;
+  commit();
+  predict(3.0);
+  CHECK(pts[0].lambda == Approx(-3.0).epsilon(1e-15));
+  predict(2.0);
+  CHECK(pts[0].lambda == -2.0);  // at the committed time: the committed multiplier
+  predict(0.0);
+  CHECK(pts[0].lambda == 0.0);  // clipped to <= 0
+  // penalty: nothing changes
+  ContactEnforcement off;
+  pts[0].lambda = 0.0;
+  aug.predict(
+      pts, off, 3.0, [](P& p) -> double& { return p.lambda; },
+      [](const P& p) { return p.committed; }, [](const P& p) { return p.before; });
+  CHECK(pts[0].lambda == 0.0);
 }
