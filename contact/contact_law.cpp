@@ -13,15 +13,6 @@ namespace {
 using Matrix32 = Eigen::Matrix<double, 3, 2>;
 using Matrix23 = Eigen::Matrix<double, 2, 3>;
 
-// Parameter increment xi - xi_prev, the short way round in closed directions.
-double increment(double now, double before, bool closed, const Interval& I) {
-  double d = now - before;
-  if (closed) {
-    const double period = I.hi - I.lo;
-    d = std::remainder(d, period);
-  }
-  return d;
-}
 }  // namespace
 
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
@@ -65,54 +56,51 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   c.force = -c.N * n;
   c.stiffness = -p.eps_n * n * n.transpose() - c.N * dn_dr;
 
-  // Tangential part (66), (35)-(36); none in the step of first contact (see the header).
+  // Tangential part (66), (35)-(36) in space, independent of the parametrization (see the
+  // header); none in the step of first contact.
   if (!(p.mu > 0.0 && p.eps_t > 0.0) || history.patch < 0 || !history.active) return c;
-  Vector2d dxi, T_prev;
-  if (history.patch == foot.patch) {
-    dxi << increment(foot.uv[0], history.xi[0], s.closed_u(), dom.u),
-        increment(foot.uv[1], history.xi[1], s.closed_v(), dom.v);  // (54)
-    T_prev = history.T;
-  } else {
-    // Another patch: carry the increment and the force through space (contravariant basis
-    // rho^i = a^ij rho_j), to first order as in (28).
-    const Matrix23 contra = a_inv * J.transpose();
-    dxi = contra * (d.S - history.foot);
-    T_prev = contra * history.T_vector;
+  // The tangential projector P = I - n n^T of the current foot and, for a fixed vector w,
+  // d(P w)/dr = -(n.w) dn/dr - n (w^T dn/dr).
+  const Matrix3d P = Matrix3d::Identity() - n * n.transpose();
+  const Matrix3d drho_dr = J * dxi_dr;  // the foot moves with r through xi (17)
+  // The committed force T_(n), carried into the current tangent plane with its length kept:
+  // q = P T_(n), carried = |T_(n)| q / |q|.
+  const Vector3d& Tn = history.T_vector;
+  const Vector3d q = P * Tn;
+  const double Tn_norm = Tn.norm(), q_norm = q.norm();
+  Vector3d carried = Vector3d::Zero();
+  Matrix3d dcarried_dr = Matrix3d::Zero();
+  if (q_norm > 0.0) {
+    const Vector3d qh = q / q_norm;
+    const Matrix3d dq_dr = -n.dot(Tn) * dn_dr - n * (Tn.transpose() * dn_dr);
+    carried = Tn_norm * qh;
+    dcarried_dr = (Tn_norm / q_norm) * (Matrix3d::Identity() - qh * qh.transpose()) * dq_dr;
   }
-  const Vector2d t = T_prev - p.eps_t * dxi;  // (66): trial force
-  const Matrix23 dt_dr = -p.eps_t * dxi_dr;
-  const double m = std::sqrt(t.dot(a * t));  // |T_tr| (35)
+  // The slip since the anchor rho_(n), in the current tangent plane: g_T = P (rho - rho_(n)),
+  // the spatial form of Delta xi^i rho_i (54) (equal to first order, exact on a plane).
+  const Vector3d chord = d.S - history.foot;
+  const Vector3d gT = P * chord;
+  const Matrix3d dgT_dr = drho_dr - n.dot(chord) * dn_dr - n * (chord.transpose() * dn_dr);
+  const Vector3d t = carried - p.eps_t * gT;  // (66): trial force, a tangent vector
+  const Matrix3d dt_dr = dcarried_dr - p.eps_t * dgT_dr;
+  const double m = t.norm();  // |T_tr| (35): sqrt(T^i a_ij T^j) of a tangent vector
   const double absN = -c.N;
   c.phi = m - p.mu * absN;
-  Matrix23 dT_dr;
+  Matrix3d dT_dr;
   if (m - p.mu * absN <= 0.0 || m == 0.0) {  // stick (36)
-    c.T = t;
+    c.T_vector = t;
     dT_dr = dt_dr;
   } else {  // slip (36): T = mu |N| t / |t|
     c.slip = true;
-    c.T = p.mu * absN * t / m;
-    // dm/dr = ((a t)^T dt/dr + 1/2 sum_k t^T (da/dxi^k) t dxi^k/dr) / m,
-    // da_ij/dxi^k = rho_ik.rho_j + rho_i.rho_jk.
-    Eigen::RowVector3d dm_dr = (a * t).transpose() * dt_dr;
-    for (int k = 0; k < 2; ++k) {
-      Matrix2d da;
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j)
-          da(i, j) = rho2[i][k]->dot(J.col(j)) + J.col(i).dot(*rho2[j][k]);
-      dm_dr += 0.5 * t.dot(da * t) * dxi_dr.row(k);
-    }
-    dm_dr /= m;
+    const Vector3d u = t / m;
+    c.T_vector = p.mu * absN * u;
     const Eigen::RowVector3d dabsN_dr = -p.eps_n * n.transpose();
-    const Matrix23 du_dr = dt_dr / m - t * dm_dr / (m * m);
-    dT_dr = p.mu * (t / m) * dabsN_dr + p.mu * absN * du_dr;
+    dT_dr = p.mu * u * dabsN_dr +
+            (p.mu * absN / m) * (Matrix3d::Identity() - u * u.transpose()) * dt_dr;
   }
-  // f_T = T^i rho_i, K_T = rho_i dT^i/dr + T^i rho_ik dxi^k/dr.
-  c.T_vector = J * c.T;
-  Matrix32 T_rho2;
-  T_rho2.col(0) = c.T[0] * d.Suu + c.T[1] * d.Suv;
-  T_rho2.col(1) = c.T[0] * d.Suv + c.T[1] * d.Svv;
+  c.T = a_inv * (J.transpose() * c.T_vector);  // contravariant components T^i (output)
   c.force += c.T_vector;
-  c.stiffness += J * dT_dr + T_rho2 * dxi_dr;
+  c.stiffness += dT_dr;
   return c;
 }
 

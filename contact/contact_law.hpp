@@ -12,17 +12,30 @@
 //   augmented Lagrangian (exact enforcement, lambda_N <= 0 the multiplier of the point, kept
 //   by the caller and updated between Newton solves, Uzawa: lambda_N <- N of the converged
 //   state):  N = min(0, lambda_N + eps_N xi^3)   ((34) augmented; lambda_N = 0: (34))
-//   T_tr^i = T^i_(n) - eps_T (xi^i - xi^i_(n))                     (66), (54)
-//   |T_tr| = sqrt(T_tr^i a_ij T_tr^j),  Phi = |T_tr| - mu |N|       (35)
-//   T^i = T_tr^i (stick, Phi <= 0),  mu |N| T_tr^i / |T_tr| (slip)  (36)
-//   force on the deformable point  f = -N n + T^i rho_i             (67: R_S = -R_C, with the
-//       sign of T chosen so that f opposes the sliding increment)
+//   The friction history is kept in space, not in the parameters xi, so that it does not
+//   depend on the parametrization of the rigid surface: the anchor rho_(n) (the foot at the
+//   last converged step, a point of the tool; tools do not move yet, so the tool's frame is the
+//   global one) and the committed tangential force T_(n) = T^i_(n) rho_i as a 3-D vector. With
+//   P = I - n n^T the projector onto the current tangent plane:
+//   g_T  = P (rho - rho_(n))   the slip since the anchor; (54) reads Delta xi^i rho_i, equal to
+//                              first order and exact on a plane
+//   T_c  = |T_(n)| P T_(n) / |P T_(n)|   T_(n) carried into the current tangent plane, its
+//                              length kept (a rotation to first order, like (28))
+//   T_tr = T_c - eps_T g_T                                          (66)
+//   Phi  = |T_tr| - mu |N|  (|T_tr| = sqrt(T^i a_ij T^j) of a tangent vector)  (35)
+//   T    = T_tr (stick, Phi <= 0),  mu |N| T_tr / |T_tr| (slip)    (36)
+//   The parameter form (54), (66) breaks where the parametrization is singular or jumps: at a
+//   pole a short chord is a jump of pi in the angle, at the seam of a closed surface and at a
+//   border between patches xi restarts; the spatial form sees only the chord and the normal.
+//   force on the deformable point  f = -N n + T                      (67: R_S = -R_C, with the
+//       sign of T chosen so that f opposes the sliding increment); T^i = a^ij rho_j.T (output)
 // and its derivative K = df/dr (3x3, not symmetric with friction; the augmented N has the same
 // derivative eps_N n^T as (34), so K keeps its form with N = lambda_N + eps_N xi^3), from
 //   dxi/dr = A^{-1} [rho_1 rho_2]^T, A_ij = a_ij - rho_ij.(r - rho)   ((17), implicit function)
-//   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten).
-// The history (xi_(n), T_(n)) is committed only at converged load steps. A point that was not in
-// contact at the last converged step has no xi_(n) to slide from: in the step where it first
+//   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten),  drho/dr = rho_i dxi^i/dr,
+//   d(P w)/dr = -(n.w) dn/dr - n (w^T dn/dr) for a fixed w.
+// The history (rho_(n), T_(n)) is committed only at converged load steps. A point that was not in
+// contact at the last converged step has no anchor to slide from: in the step where it first
 // touches it carries no tangential force (T = 0, frictionless for that step); its foot and
 // T = 0 are committed at the end of the step and friction acts from the next step on. (Using the
 // foot of the last converged step, when the point was still apart, would count its approach as
@@ -57,11 +70,11 @@ struct ContactParameters {
 /// Converged state of the previous load step at one contact point.
 struct ContactHistory {
   bool active = false;               ///< in contact at the last converged step
-  int patch = -1;                    ///< rigid patch of the stored foot
-  Vector2d xi = Vector2d::Zero();    ///< foot parameters xi_(n)
-  Vector3d foot = Vector3d::Zero();  ///< foot point rho(xi_(n)) (to carry T across patches)
-  Vector2d T = Vector2d::Zero();     ///< contravariant tangential force T^i_(n)
-  Vector3d T_vector = Vector3d::Zero();  ///< T^i rho_i at the stored foot (to change patch)
+  int patch = -1;                    ///< rigid patch of the stored foot (warm start)
+  Vector2d xi = Vector2d::Zero();    ///< foot parameters xi_(n) (warm start only)
+  Vector3d foot = Vector3d::Zero();  ///< the anchor rho_(n): the stored foot point
+  Vector2d T = Vector2d::Zero();     ///< contravariant T^i_(n) (output only)
+  Vector3d T_vector = Vector3d::Zero();  ///< the committed tangential force T_(n), 3-D
 };
 
 /// The contact state at one point for the current iterate.
@@ -72,7 +85,7 @@ struct ContactPoint {
   double N = 0.0;       ///< normal force (34) (augmented: lambda_N + eps_N gap), <= 0
   double phi = 0.0;     ///< slip function |T_tr| - mu |N| of the trial force (35)
   Vector2d T = Vector2d::Zero();         ///< contravariant tangential force T^i (36)
-  Vector3d T_vector = Vector3d::Zero();  ///< T^i rho_i
+  Vector3d T_vector = Vector3d::Zero();  ///< the tangential force T = T^i rho_i (3-D)
   Vector2d xi = Vector2d::Zero();        ///< foot parameters
   Vector3d foot = Vector3d::Zero();
   Vector3d normal = Vector3d::Zero();

@@ -52,6 +52,21 @@ double clockwise_angle(const Vector3d& a, const Vector3d& b, double near) {
   return w;
 }
 
+// The default rigid surface: a cylinder about e_z; its seam (u = 0, ref_dir -e_y) lies opposite
+// the middle of the arc. Long enough for the helix and its spans: rise pitch phi / 2 pi plus the
+// spans' rise.
+std::shared_ptr<const RigidSurface> capstan_cylinder(const CapstanParameters& p) {
+  auto rigid = std::make_shared<RigidSurface>();
+  const double height = std::abs(p.pitch) * p.phi / (2.0 * kPi) + 2.0 * p.span_length + 1.0;
+  if (p.nurbs_cylinder)
+    rigid->add(make_cylinder(Vector3d(0, 0, -0.5 * height), Vector3d::UnitZ(), -Vector3d::UnitY(),
+                             p.radius, height));
+  else
+    rigid->add(
+        Cylinder(Placement{Vector3d::Zero(), Vector3d::UnitZ(), -Vector3d::UnitY()}, p.radius));
+  return rigid;
+}
+
 }  // namespace
 
 void CapstanParameters::validate() const {
@@ -82,17 +97,8 @@ CapstanModel make_capstan(const CapstanParameters& p) {
   p.validate();
   const WrapPath fit = rope_path(p);
 
-  auto rigid = std::make_shared<RigidSurface>();
-  // Cylinder about e_z; its seam (u = 0, ref_dir -e_y) lies opposite the middle of the arc.
-  // Long enough for the helix and its spans: rise pitch phi / 2 pi plus the spans' rise.
-  const double height = std::abs(p.pitch) * p.phi / (2.0 * kPi) + 2.0 * p.span_length + 1.0;
-  if (p.nurbs_cylinder)
-    rigid->add(make_cylinder(Vector3d(0, 0, -0.5 * height), Vector3d::UnitZ(), -Vector3d::UnitY(),
-                             p.radius, height));
-  else
-    rigid->add(
-        Cylinder(Placement{Vector3d::Zero(), Vector3d::UnitZ(), -Vector3d::UnitY()}, p.radius));
-
+  std::shared_ptr<const RigidSurface> rigid = p.rigid;
+  if (!rigid) rigid = capstan_cylinder(p);
   RodSection section;
   section.EA = p.EA;
   section.EI1 = section.EI2 = p.EI;

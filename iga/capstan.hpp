@@ -43,6 +43,7 @@
 #pragma once
 
 #include <iosfwd>
+#include <memory>
 #include <numbers>
 #include <vector>
 
@@ -69,6 +70,10 @@ struct CapstanParameters {
   int contact_points = 3;         ///< contact (Gauss) points per element
   double pull = 0.05;             ///< displacement of end B over t in [1, 2]
   bool nurbs_cylinder = true;     ///< exact NURBS patch (make_cylinder), else analytic
+  /// If set, this rigid surface replaces the cylinder (tests: the same circle of radius
+  /// `radius` in the plane z = 0 on other surfaces and parametrizations: a sphere's equator or
+  /// a meridian over its pole, a cylinder with its seam or patch borders under the arc).
+  std::shared_ptr<const RigidSurface> rigid;
 
   void validate() const;
   /// exp(mu phi rho / sqrt(rho^2 + (H / 2 pi)^2)) (83), rho = radius + rope_radius the centre

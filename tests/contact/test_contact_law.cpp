@@ -9,6 +9,7 @@
 
 #include "contact/closest_point.hpp"
 #include "contact/contact_law.hpp"
+#include "contact/rigid_surface.hpp"
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
 
@@ -199,4 +200,147 @@ TEST_CASE(
   CHECK(n_slip > 20);  // both branches of the return mapping are exercised
   CHECK(n_stick > 20);
   CHECK(n_apart > 10);  // active points held by their multiplier above the surface
+}
+
+namespace {
+
+// The committed state of a point anchored at the foot of `anchor` on `rigid`, with the
+// committed tangential force T_(n) = length * (the tangential part of dir, normalized); the
+// parameter form xi_(n), T^i_(n) is filled in as well (what the parameter law (54), (66) used).
+ContactHistory anchored(const RigidSurface& rigid, const Vector3d& anchor, const Vector3d& dir,
+                        double length) {
+  const ProjectionResult f = rigid.closest_point(anchor);
+  const SurfaceDerivs d = rigid.patch(f.patch).derivs(f.uv[0], f.uv[1], 1);
+  Eigen::Matrix<double, 3, 2> J;
+  J << d.Su, d.Sv;
+  const Vector3d n = d.Su.cross(d.Sv).normalized();
+  const Vector3d t = (dir - dir.dot(n) * n).normalized() * length;
+  ContactHistory h;
+  h.active = true;
+  h.patch = f.patch;
+  h.xi = f.uv;
+  h.foot = d.S;
+  h.T_vector = t;
+  h.T = (J.transpose() * J).inverse() * (J.transpose() * t);
+  return h;
+}
+
+ContactPoint evaluate_on(const RigidSurface& rigid, const Vector3d& r, const ContactParameters& p,
+                         const ContactHistory& h) {
+  const ProjectionResult f = rigid.closest_point(r);
+  return evaluate_contact(rigid.patch(f.patch), f, r, p, h);
+}
+
+// The force and its tangent of one physical state evaluated on two parametrizations of one
+// surface: the largest difference relative to the force's size and to eps_N.
+void check_same_law(const RigidSurface& a, const RigidSurface& b, const Vector3d& anchor,
+                    const Vector3d& r, const Vector3d& dir, const ContactParameters& p,
+                    bool expect_slip) {
+  const ContactPoint ca = evaluate_on(a, r, p, anchored(a, anchor, dir, 2.0));
+  const ContactPoint cb = evaluate_on(b, r, p, anchored(b, anchor, dir, 2.0));
+  REQUIRE(ca.active);
+  REQUIRE(cb.active);
+  CHECK(ca.slip == expect_slip);
+  CHECK(cb.slip == expect_slip);
+  INFO("force a " << ca.force.transpose() << ", b " << cb.force.transpose());
+  // Both are the same function of the geometry; what differs is round-off of the
+  // projections and of two parametrizations' derivatives.
+  CHECK((ca.force - cb.force).norm() <= 1e-9 * ca.force.norm());
+  CHECK((ca.T_vector - cb.T_vector).norm() <= 1e-9 * ca.force.norm());
+  CHECK((ca.stiffness - cb.stiffness).cwiseAbs().maxCoeff() <= 1e-7 * p.eps_n);
+}
+
+}  // namespace
+
+TEST_CASE(
+    "contact law: friction across a sphere's pole equals friction on a sphere whose pole "
+    "is elsewhere (spatial history)",
+    "[contact][law][friction]") {
+  // Anchor 0.01 rad from the pole +z on the +x side, the point now 0.005 rad past the pole on
+  // the -x side, 1e-3 inside: in the parameters of sphere a the foot jumped by pi in the angle
+  // about the axis; sphere b (axis e_x) has no singular point near. Stick and slip.
+  constexpr double kPi = std::numbers::pi;
+  RigidSurface a, b;
+  a.add(Sphere(Placement{Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX()}, 1.0));
+  b.add(Sphere(Placement{Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()}, 1.0));
+  const Vector3d anchor(std::sin(0.01), 0.0, std::cos(0.01));
+  const Vector3d r = 0.999 * Vector3d(-std::sin(0.005), 0.0, std::cos(0.005));
+  const Vector3d dir(0.3, 1.0, 0.0);  // committed force, partly along the slide
+  check_same_law(a, b, anchor, r, dir, ContactParameters{1e4, 100.0, 1.0, 0.0}, false);
+  check_same_law(a, b, anchor, r, dir, ContactParameters{1e4, 1e4, 1.0, 0.0}, true);
+  // The same on the NURBS sphere (poles on its axis e_z) against the analytic sphere b.
+  RigidSurface c;
+  c.add(make_sphere(Vector3d::Zero(), 1.0));
+  check_same_law(c, b, anchor, r, dir, ContactParameters{1e4, 100.0, 1.0, 0.0}, false);
+  check_same_law(c, b, anchor, r, dir, ContactParameters{1e4, 1e4, 1.0, 0.0}, true);
+  (void)kPi;
+}
+
+TEST_CASE(
+    "contact law: friction across a patch border and a seam equals friction on one patch "
+    "(spatial history)",
+    "[contact][law][friction]") {
+  // A cylinder of radius 1 about e_z as one full NURBS patch (seam at +x) and as four patches
+  // with borders at 45, 135, 225 and 315 degrees; the anchor 0.01 rad before a border, the point
+  // 0.005 rad past it (another patch), 1e-3 inside; then the same across the seam of the one
+  // patch against the four patches.
+  constexpr double kPi = std::numbers::pi;
+  RigidSurface one, four;
+  one.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  for (int k = 0; k < 4; ++k)
+    four.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
+                           kPi / 4 + k * kPi / 2, kPi / 4 + (k + 1) * kPi / 2));
+  auto at_angle = [](double t, double s) {
+    return Vector3d(s * std::cos(t), s * std::sin(t), 0.1);
+  };
+  const Vector3d dir(0.0, 1.0, 0.5);
+  for (double border : {kPi / 4, 3 * kPi / 4, 0.0}) {
+    INFO("border at " << border);
+    const Vector3d anchor = at_angle(border - 0.01, 1.0), r = at_angle(border + 0.005, 0.999);
+    const bool other_patch = four.closest_point(anchor).patch != four.closest_point(r).patch;
+    REQUIRE((other_patch || border == 0.0));
+    check_same_law(four, one, anchor, r, dir, ContactParameters{1e4, 100.0, 1.0, 0.0}, false);
+    check_same_law(four, one, anchor, r, dir, ContactParameters{1e4, 1e4, 1.0, 0.0}, true);
+  }
+}
+
+TEST_CASE(
+    "contact law: the spatial friction tangent = central differences across a pole and a "
+    "patch border",
+    "[contact][law][friction]") {
+  // Sphere a of the pole test, the anchor on the other side of the pole; then the four-patch
+  // cylinder with the anchor on the neighbouring patch. Stick and slip.
+  RigidSurface a, four;
+  a.add(Sphere(Placement{Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX()}, 1.0));
+  constexpr double kPi = std::numbers::pi;
+  for (int k = 0; k < 4; ++k)
+    four.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
+                           kPi / 4 + k * kPi / 2, kPi / 4 + (k + 1) * kPi / 2));
+  struct Case {
+    const RigidSurface* s;
+    Vector3d anchor, r;
+  };
+  const Case cases[] = {
+      {&a, Vector3d(std::sin(0.01), 0.0, std::cos(0.01)),
+       0.999 * Vector3d(-std::sin(0.005), 0.003, std::cos(0.005))},
+      {&four, Vector3d(std::cos(kPi / 4 - 0.01), std::sin(kPi / 4 - 0.01), 0.1),
+       Vector3d(0.999 * std::cos(kPi / 4 + 0.005), 0.999 * std::sin(kPi / 4 + 0.005), 0.1)}};
+  for (const Case& k : cases)
+    for (double eps_t : {100.0, 1e4}) {
+      const ContactParameters p{1e4, eps_t, 1.0, 0.0};
+      const ContactHistory h = anchored(*k.s, k.anchor, Vector3d(0.3, 1.0, 0.2), 2.0);
+      const ContactPoint c = evaluate_on(*k.s, k.r, p, h);
+      REQUIRE(c.active);
+      CHECK(c.slip == (eps_t > 1e3));
+      const double step = 1e-6;
+      Matrix3d fd;
+      for (int j = 0; j < 3; ++j) {
+        const Vector3d e = Vector3d::Unit(j) * step;
+        fd.col(j) =
+            (evaluate_on(*k.s, k.r + e, p, h).force - evaluate_on(*k.s, k.r - e, p, h).force) /
+            (2 * step);
+      }
+      INFO("eps_t " << eps_t << "\nK\n" << c.stiffness << "\nFD\n" << fd);
+      CHECK((fd - c.stiffness).cwiseAbs().maxCoeff() <= 1e-6 * p.eps_n);
+    }
 }
