@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -15,6 +16,9 @@
 
 #include <Eigen/Dense>
 
+#include "contact/rigid_surface.hpp"
+#include "geometry/analytic_surfaces.hpp"
+#include "geometry/constructions.hpp"
 #include "iga/capstan.hpp"
 #include "iga/linear_solver.hpp"
 
@@ -296,4 +300,99 @@ TEST_CASE("RodContactProblem: status line, symmetry flag and bad input", "[iga][
   CHECK_THROWS_AS(RodContactProblem(frictional.problem.rod(), nullptr,
                                     ContactParameters{1.0, 0.0, 0.0, 0.0}, 3),
                   RodError);
+}
+
+namespace {
+
+/// T/T0 of every converged step of a capstan pulled to t = 2 (the whole pull: points slide
+/// across whatever lies under the middle of the arc) with `rigid` in place of the cylinder.
+std::vector<CapstanStep> slide(double mu, std::shared_ptr<const RigidSurface> rigid) {
+  CapstanParameters p = capstan(mu);
+  p.rigid = std::move(rigid);
+  // Contact points lie about 0.1 apart along the arc: a slide of 0.2 takes several of them
+  // across the middle of the arc.
+  p.pull = 0.2;
+  CapstanModel m = make_capstan(p);
+  const CapstanResult r = run_capstan(m, capstan_solver_settings(), nullptr, CapstanStop::kEnd);
+  REQUIRE(r.solver.converged());
+  REQUIRE(r.full_slip);
+  return r.steps;
+}
+
+/// The largest relative difference of T/T0 between two runs, step by step (same t).
+double largest_step_difference(const std::vector<CapstanStep>& a,
+                               const std::vector<CapstanStep>& b) {
+  REQUIRE(a.size() == b.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    REQUIRE(a[k].t == Approx(b[k].t).epsilon(1e-12));
+    worst = std::max(worst, std::abs(b[k].T_ratio / a[k].T_ratio - 1.0));
+  }
+  return worst;
+}
+
+std::shared_ptr<const RigidSurface> rigid_of(const Surface& s) {
+  auto r = std::make_shared<RigidSurface>();
+  if (const auto* n = dynamic_cast<const NurbsSurface*>(&s))
+    r->add(*n);
+  else
+    r->add(dynamic_cast<const AnalyticSurface&>(s));
+  return r;
+}
+
+/// The NURBS sphere of radius 1 about the origin turned so that its north pole is +e_y, the
+/// middle of the capstan's arc (a rotation of the homogeneous net is exact).
+NurbsSurface sphere_pole_up_y() {
+  const NurbsSurface s = make_sphere(Vector3d::Zero(), 1.0);
+  Matrix3d Q;  // e_z -> e_y, e_y -> -e_z
+  Q << 1, 0, 0, 0, 0, 1, 0, -1, 0;
+  std::vector<Vector4d> pw = s.homogeneous();
+  for (Vector4d& c : pw) c.head<3>() = Q * c.head<3>();
+  NurbsSurface r(s.knots_u(), s.knots_v(), pw);
+  r.set_normal_sign(s.normal_sign());
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "capstan: a rope over a sphere's pole slides as on its equator, step by step "
+    "(spatial friction history)",
+    "[iga][capstan][friction]") {
+  // The arc (phi = pi, z = 0, symmetric about +e_y) on a unit sphere: along the equator (axis
+  // e_z), and along a meridian whose pole +e_y lies under the middle of the arc (analytic
+  // sphere with axis e_y; the NURBS sphere turned likewise). Same geometry, so the same T/T0 in
+  // every step; the parameter form of the history jumped by pi at the pole (issue 12: T/T0
+  // dipped by up to 10 %). mu = 1, pulled to t = 2.
+  const Sphere equator(Placement{Vector3d::Zero(), Vector3d::UnitZ(), -Vector3d::UnitY()}, 1.0);
+  const Sphere pole(Placement{Vector3d::Zero(), Vector3d::UnitY(), Vector3d::UnitX()}, 1.0);
+  const std::vector<CapstanStep> ref = slide(1.0, rigid_of(equator));
+  const double analytic = largest_step_difference(ref, slide(1.0, rigid_of(pole)));
+  const double nurbs = largest_step_difference(ref, slide(1.0, rigid_of(sphere_pole_up_y())));
+  INFO("largest step difference: analytic pole " << analytic << ", NURBS pole " << nurbs);
+  CHECK(analytic <= 5e-3);
+  CHECK(nurbs <= 5e-3);
+}
+
+TEST_CASE(
+    "capstan: a rope sliding across the seam of a cylinder and across the borders of four "
+    "patches gives the single patch's T/T0 in every step",
+    "[iga][capstan][friction]") {
+  // The default cylinder has its seam opposite the arc; here the seam lies under the middle of
+  // the arc (ref_dir +e_y), and then four patches have borders at 45 and 135 degrees, inside the
+  // arc. mu = 0.5, pulled to t = 2 (the whole arc slides over them).
+  const double h = 3.0;
+  const Vector3d base(0, 0, -0.5 * h);
+  const std::vector<CapstanStep> ref =
+      slide(0.5, rigid_of(make_cylinder(base, Vector3d::UnitZ(), -Vector3d::UnitY(), 1.0, h)));
+  const double seam = largest_step_difference(
+      ref, slide(0.5, rigid_of(make_cylinder(base, Vector3d::UnitZ(), Vector3d::UnitY(), 1.0, h))));
+  auto four = std::make_shared<RigidSurface>();
+  for (int k = 0; k < 4; ++k)
+    four->add(make_cylinder(base, Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, h,
+                            kPi / 4 + k * kPi / 2, kPi / 4 + (k + 1) * kPi / 2));
+  const double borders = largest_step_difference(ref, slide(0.5, four));
+  INFO("largest step difference: seam " << seam << ", four patches " << borders);
+  CHECK(seam <= 1e-6);
+  CHECK(borders <= 1e-6);
 }
