@@ -23,7 +23,8 @@
 //  - kRigidMaster ((10)-(18), Sect. 2.4): x_c is projected onto the rigid surface (closest
 //    point, warm-started); the point law of contact/contact_law.hpp (radius 0) gives the gap
 //    xi^3 = (x_c - r).n_r along the rigid normal n_r, N = eps_N xi^3 (34), the friction trial
-//    (35)/(66) with the increments Delta alpha^j of the foot (27) in the rigid metric, the
+//    (35)/(66) with the slip of the foot (27) taken in space (the tangential part of the chord
+//    from the anchor, independent of the rigid parametrization: contact_law.hpp), the
 //    return mapping (36), the force f on x_c and df/dx_c.
 //  - kRigidSlave ((2)-(5), Sect. 2.1): the ray x_c + xi3 n along the CURRENT shell normal is
 //    intersected with the rigid surface, unknowns (alpha^1, alpha^2, xi3) of
