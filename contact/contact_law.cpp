@@ -58,7 +58,7 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
 
   // Tangential part (66), (35)-(36) in space, independent of the parametrization (see the
   // header); none in the step of first contact.
-  if (!(p.mu > 0.0 && p.eps_t > 0.0) || history.patch < 0 || !history.active) return c;
+  if (!(p.mu > 0.0 && p.eps_t > 0.0) || history.patch < 0) return c;
   // The tangential projector P = I - n n^T of the current foot and, for a fixed vector w,
   // d(P w)/dr = -(n.w) dn/dr - n (w^T dn/dr).
   const Matrix3d P = Matrix3d::Identity() - n * n.transpose();

@@ -34,12 +34,15 @@
 //   dxi/dr = A^{-1} [rho_1 rho_2]^T, A_ij = a_ij - rho_ij.(r - rho)   ((17), implicit function)
 //   dgap/dr = n,  dn/dxi^k = -h_kj a^jl rho_l (Weingarten),  drho/dr = rho_i dxi^i/dr,
 //   d(P w)/dr = -(n.w) dn/dr - n (w^T dn/dr) for a fixed w.
-// The history (rho_(n), T_(n)) is committed only at converged load steps. A point that was not in
-// contact at the last converged step has no anchor to slide from: in the step where it first
-// touches it carries no tangential force (T = 0, frictionless for that step); its foot and
-// T = 0 are committed at the end of the step and friction acts from the next step on. (Using the
-// foot of the last converged step, when the point was still apart, would count its approach as
-// slip: a point falling onto an inclined surface would start with a spurious tangential force.)
+// The history (rho_(n), T_(n)) is committed only at converged load steps, for every point with
+// a foot, in contact or not (T_(n) = 0 for a point that was apart). So friction acts from the
+// step in which a point first touches (stick allowed by the return mapping (36)): its anchor is
+// the foot of its last converged position. Before the first commit the contact integrals anchor
+// each point at its foot in the start state (a rope laid on an inclined surface is held from the
+// first step). A point that approaches obliquely within one step counts the tangential part of
+// its approach as slip; the return mapping bounds the force that gives by mu |N|. Only a point
+// with no foot at the last commit (farther than the search distance) has no anchor: T = 0 in
+// that step.
 #pragma once
 
 #include "contact/projection.hpp"

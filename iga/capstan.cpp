@@ -121,7 +121,7 @@ CapstanModel make_capstan(const CapstanParameters& p) {
   m.out_a = -fit.curve.derivs(D.lo, 1).d[1].normalized();
   m.out_b = fit.curve.derivs(D.hi, 1).d[1].normalized();
 
-  if (p.pitch == 0.0)
+  if (p.pitch == 0.0 && p.planar)
     for (int i = 0; i < n; ++i) prob.fix(i, 2);  // planar problem
   // End A: dead load T0 along its outgoing direction, ramped over t in [0, 1].
   prob.add_point_load(fit.curve.domain().lo, p.T0 * m.out_a,

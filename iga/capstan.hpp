@@ -70,6 +70,7 @@ struct CapstanParameters {
   int contact_points = 3;         ///< contact (Gauss) points per element
   double pull = 0.05;             ///< displacement of end B over t in [1, 2]
   bool nurbs_cylinder = true;     ///< exact NURBS patch (make_cylinder), else analytic
+  bool planar = true;             ///< fix every z for pitch 0 (false: a free 3-D rope)
   /// If set, this rigid surface replaces the cylinder (tests: the same circle of radius
   /// `radius` in the plane z = 0 on other surfaces and parametrizations: a sphere's equator or
   /// a meridian over its pole, a cylinder with its seam or patch borders under the arc).

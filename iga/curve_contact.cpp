@@ -84,6 +84,12 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       if (!found(cp.foot.status)) cp.foot.patch = -1;  // stays cold
     }
   }
+  // The start state anchors friction: before the first commit, a point with a foot has no
+  // history yet, and without one it would carry no friction in the first step (a rope laid on
+  // an inclined surface would have nothing to hold it). The first assembly is at the start
+  // state, so its feet are where the points rest.
+  const bool anchor_start = !anchored_start_;
+  anchored_start_ = true;
   std::size_t next_cold = 0;
   near_.clear();
   ContactParameters law_params = params_;
@@ -101,6 +107,12 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     cp.law = ContactPoint();
     cp.N = cp.T = cp.B = 0.0;
     if (!found(cp.foot.status)) continue;
+    if (anchor_start && cp.history.patch < 0) {
+      cp.history = ContactHistory{};
+      cp.history.patch = cp.foot.patch;
+      cp.history.xi = cp.foot.uv;
+      cp.history.foot = cp.foot.point;
+    }
     // A foot on an open edge or corner of the rigid body with the point off the surface normal
     // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
     // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
@@ -175,7 +187,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
 
 void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
-    if (found(cp.foot.status)) cp.history = commit_contact(cp.law, cp.foot.patch);
+    cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
     cp.lambda_n_before = cp.lambda_n_committed;
     cp.lambda_n_committed = cp.lambda_n;
   }

@@ -105,6 +105,7 @@ class CurveContact {
   std::vector<PointBasis> basis_;  ///< per point, parallel to points_
   double search_distance_ = 0.0;
   int broad_phase_points_ = 0;
+  bool anchored_start_ = false;  ///< the first assembly anchored the points at rest
   std::vector<int> cold_;  ///< work: points without a warm start
   std::vector<Vector3d> cold_x_;
   std::vector<int> near_;  ///< work: points near contact (see near_distance)

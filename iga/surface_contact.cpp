@@ -341,6 +341,19 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   }
   cold_project();
 
+  // The start state anchors friction (master strategy): before the first commit, a point with
+  // a foot has no history yet, and without one it would carry no friction in the first step;
+  // the first assembly is at the start state, so its feet are where the points rest.
+  if (!anchored_start_ && master)
+    for (SurfaceContactPoint& cp : points_)
+      if (found(cp.foot.status) && cp.history.patch < 0) {
+        cp.history = ContactHistory{};
+        cp.history.patch = cp.foot.patch;
+        cp.history.xi = cp.foot.uv;
+        cp.history.foot = cp.foot.point;
+      }
+  anchored_start_ = true;
+
   // 2. Point laws, residual and element tangents.
   const double eps_n = params_.eps_n * augmentation_.eps_scale;  // 1 but where updates stalled
   ContactParameters law_params{eps_n, params_.eps_t, params_.mu, 0.0};
@@ -491,7 +504,7 @@ void SurfaceContact::commit() {
       h.xi = cp.foot.uv;
       h.foot = cp.foot.point;
       h.T = cp.active ? cp.T : Vector2d::Zero();
-      // master: T^i r_i, the vector contact_law.cpp carries across patches
+      // master: the committed tangential force as a 3-D vector (contact_law.hpp)
       h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
     }
     cp.history = h;

@@ -229,6 +229,7 @@ class SurfaceContact {
   std::vector<std::pair<int, int>> rigid_tags_;
   // Workspace (allocated once).
   std::vector<int> cold_;                 ///< points needing a search in this assemble
+  bool anchored_start_ = false;  ///< the first assembly anchored the points at rest (master)
   std::vector<Vector3d> cold_x_;
   Eigen::MatrixXd Ke_;  ///< element tangent: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
   Eigen::MatrixXd Z_;   ///< per element: rows nen (3 k + l) + a: [.. N_p M_p^kl ..], 3 n^2 columns
