@@ -866,12 +866,43 @@ namespace {
 /// The rod's centre line sampled per element, with axial force and curvature. A sample where
 /// the strains cannot be evaluated (a zero tangent, e.g. at an end whose first two control
 /// points coincide) gets zero force and curvature and the flag singular = 1.
+/// Contact fields on the rod, per element: the line pressure -N (force per reference length),
+/// the pulling and dragging tractions T (69), B (70), each the mean of the element's contact
+/// points weighted as in the contact integral (what the penalty resolves: point by point the
+/// values oscillate about it within an element), and the state 0 apart, 1 stick, 2 slip (2 if
+/// any point of the element slides, 1 if one sticks).
+struct RodContactFields {
+  double pressure = 0.0, T = 0.0, B = 0.0, state = 0.0;
+};
+
+RodContactFields rod_contact_fields(const CurveContact& contact, const Interval& I) {
+  RodContactFields f;
+  double w = 0.0;
+  for (const CurveContactPoint& cp : contact.points()) {
+    if (cp.eta < I.lo || cp.eta > I.hi) continue;
+    w += cp.weight;
+    if (!cp.law.active) continue;
+    f.pressure += cp.weight * -cp.N;
+    f.T += cp.weight * cp.T;
+    f.B += cp.weight * cp.B;
+    f.state = std::max(f.state, cp.law.slip ? 2.0 : 1.0);
+  }
+  if (w > 0.0) {
+    f.pressure /= w;
+    f.T /= w;
+    f.B /= w;
+  }
+  return f;
+}
+
 void write_rod_vtk(const std::string& path, const KirchhoffRod& rod, const std::vector<Vector3d>& x,
-                   int samples, const std::string& title) {
+                   int samples, const std::string& title, const CurveContact* contact) {
   std::vector<Vector3d> line;
   std::vector<double> force, curvature, singular;
+  std::vector<double> pressure, traction_T, traction_B, state;
   for (int e = 0; e < rod.num_elements(); ++e) {
     const Interval I = rod.element_range(e);
+    const RodContactFields cf = contact ? rod_contact_fields(*contact, I) : RodContactFields{};
     for (int k = (e == 0 ? 0 : 1); k <= samples; ++k) {
       const double xi = I.lo + (I.hi - I.lo) * k / samples;
       line.push_back(rod.point(xi, x));
@@ -888,10 +919,20 @@ void write_rod_vtk(const std::string& path, const KirchhoffRod& rod, const std::
       force.push_back(ok ? n : 0.0);
       curvature.push_back(ok ? kappa : 0.0);
       singular.push_back(ok ? 0.0 : 1.0);
+      pressure.push_back(cf.pressure);
+      traction_T.push_back(cf.T);
+      traction_B.push_back(cf.B);
+      state.push_back(cf.state);
     }
   }
   VtkPointData d;
   d.scalars = {{"axial_force", force}, {"curvature", curvature}, {"singular", singular}};
+  if (contact) {
+    d.scalars.push_back({"contact_pressure", pressure});
+    d.scalars.push_back({"contact_traction_T", traction_T});
+    d.scalars.push_back({"contact_traction_B", traction_B});
+    d.scalars.push_back({"contact_state", state});
+  }
   write_vtk_polydata(path, line, true, d, title);
 }
 
@@ -958,19 +999,24 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   if (rod_) {
     files.push_back(stem + "_rod.vtk");
     write_rod_vtk((fs::path(dir) / files[0]).string(), rod_->rod(), x, n,
-                  name_ + " rod, t = " + fmt(t));
+                  name_ + " rod, t = " + fmt(t), rod_contact_ ? &rod_contact_->contact() : nullptr);
   } else {
     files.push_back(stem + "_shell.vtk");
     write_shell_vtk((fs::path(dir) / files[0]).string(), shell_->shell(), x, n,
                     name_ + " shell, t = " + fmt(t));
   }
-  VtkPointData cd;
-  std::vector<Vector3d> pts;
+  VtkPointData cd, td;
+  std::vector<Vector3d> pts, feet, foot_traction;
+  std::vector<double> foot_pressure, foot_state;
   if (rod_contact_) {
     std::vector<Vector3d> normal;
     std::vector<double> N, T, B, slip;
     for (const CurveContactPoint& cp : rod_contact_->contact().points()) {
       if (!cp.law.active) continue;
+      feet.push_back(cp.law.foot);
+      foot_pressure.push_back(-cp.N);
+      foot_traction.push_back(-cp.law.T_vector);  // on the tool: opposite to the rope's
+      foot_state.push_back(cp.law.slip ? 2.0 : 1.0);
       pts.push_back(cp.x);
       normal.push_back(cp.law.normal);
       N.push_back(cp.N);
@@ -985,6 +1031,10 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
     std::vector<double> N, gap, slip;
     for (const SurfaceContactPoint& cp : shell_contact_->contact().points()) {
       if (!cp.active) continue;
+      feet.push_back(cp.foot.point);
+      foot_pressure.push_back(-cp.N);
+      foot_traction.push_back(-cp.T_vector);  // on the tool: opposite to the shell's
+      foot_state.push_back(shell_contact_->contact().sticks(cp) ? 1.0 : 2.0);
       pts.push_back(cp.x);
       normal.push_back(cp.normal);
       ft.push_back(cp.T_vector);
@@ -999,6 +1049,13 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
     files.push_back(stem + "_contact.vtk");
     write_vtk_polydata((fs::path(dir) / files[1]).string(), pts, false, cd,
                        name_ + " contact points, t = " + fmt(t));
+    // The same contact seen from the rigid tool: its surface points (the feet) with the
+    // pressure, the traction the body exerts on the tool, and the state (1 stick, 2 slip).
+    files.push_back(stem + "_tool_contact.vtk");
+    td.scalars = {{"contact_pressure", foot_pressure}, {"contact_state", foot_state}};
+    td.vectors = {{"tangential_traction", foot_traction}};
+    write_vtk_polydata((fs::path(dir) / files[2]).string(), feet, false, td,
+                       name_ + " contact on the rigid tool, t = " + fmt(t));
   }
   return files;
 }

@@ -266,6 +266,27 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   CHECK(std::abs(T_ratio / std::exp(0.2 * M_PI) - 1.0) < 0.005);
   CHECK(slurp(out / "model_used.json").find("\"mu\": 0.2") != std::string::npos);
   CHECK(slurp(out / "summary.json").find("\"full_slip\": true") != std::string::npos);
+  // Contact fields on the rod (per element, issue 12 item 6): the line pressure is finite, >= 0,
+  // and peaks near the tight end at about T0 e^{mu phi} / rho (rho = 1.02; the last element is
+  // partly in the lift-off zone, so a little below); the tool's side is written too.
+  CHECK(fs::exists(out / "last_tool_contact.vtk"));
+  const std::string vtk = slurp(out / "last_rod.vtk");
+  const auto at = vtk.find("SCALARS contact_pressure double 1\nLOOKUP_TABLE default\n");
+  REQUIRE(at != std::string::npos);
+  std::istringstream values(vtk.substr(vtk.find("default\n", at) + 8));
+  double largest = 0.0, smallest = 1e300;
+  int count = 0;
+  for (std::string v; count < 257 && values >> v; ++count) {
+    const double p = std::stod(v);
+    REQUIRE(std::isfinite(p));
+    largest = std::max(largest, p);
+    smallest = std::min(smallest, p);
+  }
+  CHECK(count == 257);
+  CHECK(smallest >= 0.0);
+  const double tight = 10.0 * std::exp(0.2 * M_PI) / 1.02;
+  CHECK(largest <= 1.01 * tight);
+  CHECK(largest >= 0.8 * tight);
 }
 
 TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the shell files",

@@ -443,3 +443,53 @@ TEST_CASE(
   CHECK(r.T_ratio == Approx(exact).epsilon(0.05));
   CHECK(r.T_ratio > onset);  // it creeps up as the rope slides down the cone
 }
+
+TEST_CASE("capstan: the line pressure along the arc at full slip is T0 exp(mu theta) / rho",
+          "[iga][capstan][output]") {
+  // At full slip the tension along the arc is T0 e^{mu theta} (theta from the tangent point of
+  // the loaded end A), and a rope of tension T on a circle of radius rho presses with T / rho
+  // per unit length. -N of the contact points is a force per reference length. Point by point
+  // it oscillates about that by a few per cent within each element (first Gauss point high, the
+  // others low: the penalty resolves the pressure only weakly, in the element's polynomial
+  // space); its mean over an element, weighted as in the contact integral, is the resolved
+  // pressure (the output field contact_pressure on the rod, iga/analysis.cpp) and is compared
+  // here, away from the
+  // lift-off zones at the tangent points (bending: sqrt(EI / T) ~ 0.03; elements reaching
+  // within 0.15 rad of an end excluded). Measured (penalty, default mesh): within 0.8 % at
+  // mu = 0.3 and 4.4 % at mu = 1, where the deviation grows towards the tight end (a known
+  // limit, not understood yet: T/T0 itself is within 0.41 %; the penetration |N| / eps_N ~
+  // 7e-3 there explains about 0.7 %). With the augmented Lagrangian the point values are
+  // rougher still (multipliers at Gauss points outnumber the unknowns), so the field is
+  // checked with the penalty. The bounds pin today's accuracy: 1 % and 5 %.
+  for (double mu : {0.3, 1.0}) {
+    CapstanParameters p = capstan(mu);
+    CapstanModel m = make_capstan(p);
+    const CapstanResult r = run_capstan(m);
+    REQUIRE(r.full_slip);
+    const double rho = p.radius + p.rope_radius, theta_a = 0.5 * kPi + 0.5 * p.phi;
+    const auto& points = m.problem.contact().points();
+    const std::size_t per = static_cast<std::size_t>(p.contact_points);
+    double worst = 0.0;
+    int checked = 0;
+    for (std::size_t e = 0; e + per <= points.size(); e += per) {
+      double w = 0.0, pressure = 0.0, exact = 0.0;
+      bool inside = true;
+      for (std::size_t k = e; k < e + per; ++k) {
+        const CurveContactPoint& cp = points[k];
+        const double theta = theta_a - std::atan2(cp.x.y(), cp.x.x());
+        inside = inside && theta >= 0.15 && theta <= p.phi - 0.15 && cp.law.active;
+        w += cp.weight;
+        pressure += cp.weight * -cp.N;
+        exact += cp.weight * p.T0 * std::exp(mu * theta) / rho;
+      }
+      if (!inside) continue;
+      worst = std::max(worst, std::abs(pressure / exact - 1.0));
+      UNSCOPED_INFO("element " << e / per << ": mean pressure " << pressure / w << ", exact "
+                               << exact / w);
+      ++checked;
+    }
+    INFO("mu " << mu << ": " << checked << " elements, worst relative deviation " << worst);
+    CHECK(checked >= 7);
+    CHECK(worst <= (mu < 0.5 ? 1e-2 : 5e-2));
+  }
+}
