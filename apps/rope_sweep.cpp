@@ -20,6 +20,52 @@ namespace iga::app {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// The line pressure along the arc of a planar wrap path (issue 12 item 6): per element the
+/// weighted mean of -N over its contact points (the field written to the rod's VTK) at the mean
+/// angle theta from the arc's start (the tangent point of the loaded end A), against the full
+/// slip value T0 e^{mu theta} / rho. The rope object must be a wrap_path construction with
+/// center, axis and mid_dir; otherwise (or with a pitch) nothing is written.
+void write_pressure_rows(std::ostream& out, const std::string& name, double mu, double phi,
+                         double T0, double rho, const Json& rope, const CurveContact& contact,
+                         int per_element) {
+  if (!rope.is_object() || !rope.contains("mid_dir") || !rope.contains("axis") ||
+      !rope.contains("center") || rope.value("pitch", 0.0) != 0.0 || per_element < 1)
+    return;
+  auto vec = [&](const char* k) {
+    const Json& a = rope.at(k);
+    return Vector3d(a.at(0).get<double>(), a.at(1).get<double>(), a.at(2).get<double>());
+  };
+  const Vector3d c = vec("center"), e3 = vec("axis").normalized();
+  Vector3d e1 = vec("mid_dir");
+  e1 = (e1 - e1.dot(e3) * e3).normalized();
+  const Vector3d e2 = e3.cross(e1);
+  // The arc runs clockwise about the axis from mid + phi / 2 to mid - phi / 2.
+  auto theta_of = [&](const Vector3d& x) {
+    const Vector3d d = x - c;
+    double t = 0.5 * phi - std::atan2(d.dot(e2), d.dot(e1));
+    return t;
+  };
+  const auto& pts = contact.points();
+  const std::size_t per = static_cast<std::size_t>(per_element);
+  for (std::size_t e = 0; e + per <= pts.size(); e += per) {
+    double w = 0.0, p = 0.0, th = 0.0;
+    bool any = false;
+    for (std::size_t k = e; k < e + per; ++k) {
+      w += pts[k].weight;
+      th += pts[k].weight * theta_of(pts[k].x);
+      if (!pts[k].law.active) continue;
+      any = true;
+      p += pts[k].weight * -pts[k].N;
+    }
+    if (!any || w <= 0.0) continue;
+    th /= w;
+    if (th < 0.0 || th > phi) continue;
+    out << name << "," << csv_number(mu, 10) << "," << csv_number(phi, 10) << ","
+        << csv_number(th, 10) << "," << csv_number(p / w, 10) << ","
+        << csv_number(T0 * std::exp(mu * th) / rho, 10) << "\n";
+  }
+}
 constexpr double kPi = std::numbers::pi;
 
 struct Case {
@@ -167,6 +213,9 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   csv << (ra.pitch_column ? "case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,status\n"
                           : "case,sweep,mu,phi,T_ratio,exact,rel_error,pull,status\n");
   steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n";
+  std::ofstream pressure(dir / (ra.name + "_pressure.csv"));
+  if (!pressure) throw std::runtime_error("cannot write to " + out);
+  pressure << "case,mu,phi,theta,pressure,exact\n";
 
   // 4. Each case; rows are written as they finish (a failure keeps what is done).
   const auto t_start = std::chrono::steady_clock::now();
@@ -232,6 +281,10 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     }
     worst = std::max(worst, std::abs(rel));
     a->write_vtk(dir.string(), c.name, r.u, r.solver.t);
+    if (const RodContactProblem* rc = a->contact_problem())
+      write_pressure_rows(pressure, c.name, c.mu, phi, T0, rho, d.at(ptr.phi_deg.parent_pointer()),
+                          rc->contact(), rc->contact().points_per_element());
+    pressure.flush();
     std::cout << "  " << std::left << std::setw(4) << c.name << " mu " << std::setw(5) << c.mu
               << " phi " << std::setw(5) << c.phi_deg << " deg";
     if (ra.pitch_column) std::cout << " pitch " << std::setw(5) << c.pitch;
@@ -248,6 +301,12 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
                           (dir / (ra.name + ".png")).string() + "\" 2>&1";
   if (std::system(cmd.c_str()) != 0)
     std::cout << ra.name << ": warning: the plot failed (" << cmd << ")\n";
+  const std::string pcmd = "/usr/bin/python3 \"" +
+                           (fs::path(ra.plot_script).parent_path() / "plot_pressure.py").string() +
+                           "\" \"" + (dir / (ra.name + "_pressure.csv")).string() + "\" \"" +
+                           (dir / (ra.name + "_pressure.png")).string() + "\" 2>&1";
+  if (std::system(pcmd.c_str()) != 0)
+    std::cout << ra.name << ": warning: the pressure plot failed (" << pcmd << ")\n";
   std::cout << ra.name << ": " << cases.size() - failed << "/" << cases.size()
             << " cases, max |rel_error| " << worst << ", " << steps_total << " steps, "
             << static_cast<double>(iterations_total) / std::max(steps_total, 1)

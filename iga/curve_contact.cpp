@@ -12,7 +12,7 @@ namespace iga {
 
 CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
                            const ContactParameters& params, int points_per_element)
-    : ref_(reference), rigid_(&rigid), params_(params) {
+    : ref_(reference), rigid_(&rigid), params_(params), per_element_(points_per_element) {
   if (points_per_element < 1 || points_per_element > 16)
     throw std::invalid_argument("contact points per element must be in 1..16, got " +
                                 std::to_string(points_per_element));

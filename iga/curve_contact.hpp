@@ -66,6 +66,8 @@ class CurveContact {
   const NormalAugmentation& augmentation() const { return augmentation_; }
 
   const std::vector<CurveContactPoint>& points() const { return points_; }
+  /// Contact points per element: points_ holds them element by element, in order.
+  int points_per_element() const { return per_element_; }
   CurveContactCounts counts() const;
   const ContactParameters& parameters() const { return params_; }
   void set_parameters(const ContactParameters& p) { params_ = p; }
@@ -95,6 +97,7 @@ class CurveContact {
   NurbsCurve ref_;
   const RigidSurface* rigid_;
   ContactParameters params_;
+  int per_element_ = 1;  ///< contact points per element
   ContactEnforcement enforcement_;
   NormalAugmentation augmentation_;
   std::vector<CurveContactPoint> points_;
