@@ -32,12 +32,12 @@ namespace iga {
 
 /// The multipliers' bookkeeping of one contact integral.
 struct NormalAugmentation {
-  int step_updates = 0;          ///< updates since the last commit or restore
-  int total_updates = 0;         ///< updates since construction
-  double max_gap = 0.0;          ///< max |xi^3| of the active points at the last augment() call
-  double t_last = 0.0;           ///< time of the last prediction (assembly)
-  double t_committed = 0.0;      ///< time of the last commit
-  double t_before = 0.0;         ///< time of the commit before it
+  int step_updates = 0;      ///< updates since the last commit or restore
+  int total_updates = 0;     ///< updates since construction
+  double max_gap = 0.0;      ///< max |xi^3| of the active points at the last augment() call
+  double t_last = 0.0;       ///< time of the last prediction (assembly)
+  double t_committed = 0.0;  ///< time of the last commit
+  double t_before = 0.0;     ///< time of the commit before it
   int commits = 0;
   /// Factor on eps_N of the augmented law (1 at the start). An update that left the largest
   /// |gap| above half of its value at the update before (in the same step) multiplies it by 4,

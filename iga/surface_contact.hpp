@@ -6,12 +6,11 @@
 //
 // Notation ([KS15] -> code):
 //   xi^1, xi^2            shell parameters of a contact point           uv (SurfaceContactPoint)
-//   rho(xi), rho_i        current shell mid-surface point, basis        rho, a1, a2 (G = (rho, a1, a2))
-//   n = rho_1 x rho_2/|.| current shell normal (of the parametrization) n
-//   a_ij, a^ij, rho^i     shell metric, its inverse, contravariant basis  a, a_inv
-//   h, s                  shell thickness, face (-1 lower, +1 upper, 0 mid)  thickness, face
-//   x_c = rho + s h/2 n   the contact point on the face                 x
-//   alpha^1, alpha^2      rigid surface parameters of the foot          foot.uv
+//   rho(xi), rho_i        current shell mid-surface point, basis        rho, a1, a2 (G = (rho, a1,
+//   a2)) n = rho_1 x rho_2/|.| current shell normal (of the parametrization) n a_ij, a^ij, rho^i
+//   shell metric, its inverse, contravariant basis  a, a_inv h, s                  shell thickness,
+//   face (-1 lower, +1 upper, 0 mid)  thickness, face x_c = rho + s h/2 n   the contact point on
+//   the face                 x alpha^1, alpha^2      rigid surface parameters of the foot foot.uv
 //   r(alpha), r_j         rigid surface point and basis at the foot     foot.point, Su, Sv
 //   xi^3                  penetration (gap), <= 0 in contact            gap
 //   eps_N, eps_T, mu      penalties, Coulomb coefficient                eps_n, eps_t, mu
