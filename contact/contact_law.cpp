@@ -104,6 +104,14 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   return c;
 }
 
+ContactHistory anchor_at(const ProjectionResult& foot) {
+  ContactHistory h;
+  h.patch = foot.patch;
+  h.xi = foot.uv;
+  h.foot = foot.point;
+  return h;
+}
+
 ContactHistory commit_contact(const ContactPoint& c, int patch) {
   ContactHistory h;
   h.active = c.active;

@@ -105,6 +105,10 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
                               const ContactParameters& p, const ContactHistory& history,
                               double lambda_n = 0.0);
 
+/// The history of a point at rest on its foot: anchored there, no tangential force (the start
+/// state, before the first commit).
+ContactHistory anchor_at(const ProjectionResult& foot);
+
 /// The history to store after a converged step.
 ContactHistory commit_contact(const ContactPoint& c, int patch);
 

@@ -107,12 +107,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     cp.law = ContactPoint();
     cp.N = cp.T = cp.B = 0.0;
     if (!found(cp.foot.status)) continue;
-    if (anchor_start && cp.history.patch < 0) {
-      cp.history = ContactHistory{};
-      cp.history.patch = cp.foot.patch;
-      cp.history.xi = cp.foot.uv;
-      cp.history.foot = cp.foot.point;
-    }
+    if (anchor_start && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
     // A foot on an open edge or corner of the rigid body with the point off the surface normal
     // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
     // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.

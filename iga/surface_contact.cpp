@@ -346,12 +346,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   // the first assembly is at the start state, so its feet are where the points rest.
   if (!anchored_start_ && master)
     for (SurfaceContactPoint& cp : points_)
-      if (found(cp.foot.status) && cp.history.patch < 0) {
-        cp.history = ContactHistory{};
-        cp.history.patch = cp.foot.patch;
-        cp.history.xi = cp.foot.uv;
-        cp.history.foot = cp.foot.point;
-      }
+      if (found(cp.foot.status) && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
   anchored_start_ = true;
 
   // 2. Point laws, residual and element tangents.
