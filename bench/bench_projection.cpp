@@ -7,9 +7,10 @@
 // Every answer is judged against a brute-force reference (a dense grid of surface points,
 // then the bound-constrained Newton from the best grid points). Reported: projections per
 // second (median of 5 runs, one core), the share that is the global minimum, and the worst
-// orthogonality residual; rays are cast from each point towards its reference foot point
-// (that foot is the nearest intersection), for the points whose foot is interior.
-// Usage: bench_projection [N points per set, default 100000]
+// orthogonality residual, with the certified search (ProjectionOptions::certify, the default:
+// also the share proven global) and with the sampled search of earlier versions; rays are cast from
+// each point towards its reference foot point (that foot is the nearest intersection), for the
+// points whose foot is interior. Usage: bench_projection [N points per set, default 100000]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -118,29 +119,45 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
     // reference
     std::vector<ProjectionResult> refs(N);
     for (std::size_t i = 0; i < N; ++i) refs[i] = ref.closest(s, pts[i]);
-    // cold
-    std::vector<ProjectionResult> cold(N);
-    const double cold_rate = rate(N, [&] { for (std::size_t i = 0; i < N; ++i) cold[i] = P.project(pts[i]); });
-    // warm: guess = the cold answer of the nearby partner point
-    std::vector<ProjectionResult> partner(N), warm(N);
-    for (std::size_t i = 0; i < N; ++i) partner[i] = P.project(near[i]);
-    const double warm_rate = rate(N, [&] { for (std::size_t i = 0; i < N; ++i) warm[i] = P.project(pts[i], partner[i].uv); });
-    std::size_t good_cold = 0, good_warm = 0, interior = 0, edge = 0, vertex = 0;
-    double it_cold = 0, it_warm = 0;
-    double worst_res = 0.0, worst_gap = 0.0;
-    for (std::size_t i = 0; i < N; ++i) {
-      const double dr = (refs[i].point - pts[i]).norm();
-      const double tol = 1e-10 * diag;
-      const double dc = (cold[i].point - pts[i]).norm(), dw = (warm[i].point - pts[i]).norm();
-      good_cold += dc <= dr + tol;
-      good_warm += dw <= dr + tol;
-      worst_gap = std::max(worst_gap, dc - dr);
-      if (found(cold[i].status)) worst_res = std::max(worst_res, cold[i].residual);
-      it_cold += cold[i].iterations;
-      it_warm += warm[i].iterations;
-      interior += cold[i].status == ProjectionStatus::interior;
-      edge += cold[i].status == ProjectionStatus::edge;
-      vertex += cold[i].status == ProjectionStatus::vertex;
+    // cold and warm (guess = the cold answer of the nearby partner point), certified and sampled
+    for (const bool certify : {true, false}) {
+      ProjectionOptions opt;
+      opt.certify = certify;
+      std::vector<ProjectionResult> cold(N);
+      const double cold_rate = rate(N, [&] {
+        for (std::size_t i = 0; i < N; ++i) cold[i] = P.project(pts[i], opt);
+      });
+      std::vector<ProjectionResult> partner(N), warm(N);
+      for (std::size_t i = 0; i < N; ++i) partner[i] = P.project(near[i], opt);
+      const double warm_rate = rate(N, [&] {
+        for (std::size_t i = 0; i < N; ++i) warm[i] = P.project(pts[i], partner[i].uv, opt);
+      });
+      std::size_t good_cold = 0, good_warm = 0, interior = 0, edge = 0, vertex = 0, proven = 0;
+      double it_cold = 0, it_warm = 0;
+      double worst_res = 0.0, worst_gap = 0.0;
+      for (std::size_t i = 0; i < N; ++i) {
+        const double dr = (refs[i].point - pts[i]).norm();
+        const double tol = 1e-10 * diag;
+        const double dc = (cold[i].point - pts[i]).norm(), dw = (warm[i].point - pts[i]).norm();
+        good_cold += dc <= dr + tol;
+        good_warm += dw <= dr + tol;
+        proven += cold[i].certified && warm[i].certified;
+        worst_gap = std::max(worst_gap, dc - dr);
+        if (found(cold[i].status)) worst_res = std::max(worst_res, cold[i].residual);
+        it_cold += cold[i].iterations;
+        it_warm += warm[i].iterations;
+        interior += cold[i].status == ProjectionStatus::interior;
+        edge += cold[i].status == ProjectionStatus::edge;
+        vertex += cold[i].status == ProjectionStatus::vertex;
+      }
+      std::printf(
+          "%-9s %c %-9s | cold %9.0f /s  warm %9.0f /s | global min cold %8.4f %%  warm %8.4f %% | "
+          "certified %8.4f %% | "
+          "feet int/edge/vert %6zu/%6zu/%6zu | worst residual %.1e | worst excess %.1e | "
+          "Newton iterations cold %.2f warm %.2f\n",
+          label, set, certify ? "certified" : "sampled", cold_rate, warm_rate,
+          100.0 * good_cold / N, 100.0 * good_warm / N, 100.0 * proven / N, interior, edge, vertex,
+          worst_res, worst_gap, it_cold / N, it_warm / N);
     }
     // rays towards the reference foot, for interior feet
     std::vector<std::size_t> ray_ids;
@@ -162,11 +179,6 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
       ray_good += ok;
       if (found(rays[k].status)) ray_worst = std::max(ray_worst, rays[k].residual);
     }
-    std::printf("%-9s %c | cold %9.0f /s  warm %9.0f /s | global min cold %8.4f %%  warm %8.4f %% | "
-                "feet int/edge/vert %6zu/%6zu/%6zu | worst residual %.1e | worst excess %.1e | "
-                "Newton iterations cold %.2f warm %.2f\n",
-                label, set, cold_rate, warm_rate, 100.0 * good_cold / N, 100.0 * good_warm / N,
-                interior, edge, vertex, worst_res, worst_gap, it_cold / N, it_warm / N);
     std::printf("%-9s %c | rays %9.0f /s on %zu interior feet | nearest hit found %8.4f %% | worst ray residual %.1e\n",
                 label, set, ray_rate, ray_ids.size(), ray_ids.empty() ? 100.0 : 100.0 * ray_good / ray_ids.size(), ray_worst);
   }

@@ -2,10 +2,13 @@
 #include "contact/closest_point.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include "contact/bounded_newton.hpp"
+#include "contact/patch_bounds.hpp"
 #include "geometry/differential_geometry.hpp"
 
 namespace iga {
@@ -141,6 +144,7 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
     for (const Vector4d& q : b.pw) hull_.push_back(q.head<3>() / q.w());
     hull_offset_.push_back(hull_.size());
     boxes_.push_back(bounding_box(b));
+    bounds_.push_back(detail::patch_bounds(b));
     box_.extend(boxes_.back().lo);
     box_.extend(boxes_.back().hi);
     for (int j = 0; j < n; ++j)
@@ -163,15 +167,73 @@ ProjectionResult PatchProjector::project_among(const Vector3d& x, std::span<cons
   return search(x, ids.data(), ids.size(), max_distance, opt);
 }
 
+namespace {
+
+// A piece of a Bezier element met by the subdivision of the certified search.
+struct Node {
+  detail::Net net;
+  std::array<Vector3d, std::tuple_size_v<decltype(detail::Net::pw)>> points;  // projected
+  Box3 box;
+  detail::PatchBounds bounds;  // computed when the node passes the hull bound
+};
+
+void finish_node(Node& n) {
+  n.box = Box3{};
+  for (int k = 0; k < n.net.size(); ++k) {
+    const Vector4d& q = n.net.pw[static_cast<std::size_t>(k)];
+    n.points[static_cast<std::size_t>(k)] = q.head<3>() / q.w();
+    n.box.extend(n.points[static_cast<std::size_t>(k)]);
+  }
+}
+
+// Lower bound of |x - S| over a Bezier piece from its control points (convex hull property):
+// the distance to their box, and for the unit directions d from the box centre towards x and
+// from the best foot point so far towards x, d.x - max_i d.P_i (a supporting plane of the hull).
+double hull_lower_bound(const Box3& box, const Vector3d* pts, std::size_t n, const Vector3d& x,
+                        const Vector3d* toward) {
+  double lb = std::sqrt(box_distance2(box, x));
+  Vector3d dirs[2];
+  int n_dirs = 0;
+  const Vector3d a = x - 0.5 * (box.lo + box.hi);
+  if (a.norm() > 0.0) dirs[n_dirs++] = a.normalized();
+  if (toward) {
+    const Vector3d b = x - *toward;
+    if (b.norm() > 0.0) dirs[n_dirs++] = b.normalized();
+  }
+  for (int k = 0; k < n_dirs; ++k) {
+    double support = -kInf;
+    for (std::size_t i = 0; i < n; ++i) support = std::max(support, dirs[k].dot(pts[i]));
+    lb = std::max(lb, dirs[k].dot(x) - support);
+  }
+  return lb;
+}
+
+bool inside(const Domain2& r, const Vector2d& uv) {
+  return uv[0] >= r.u.lo && uv[0] <= r.u.hi && uv[1] >= r.v.lo && uv[1] <= r.v.hi;
+}
+
+}  // namespace
+
+// The certified search (issue 12, item 5). Every Bezier element (or the ids given) is a node;
+// a node is
+//  - pruned when the lower bound of its control net (hull_lower_bound) is not below the best
+//    distance found, less the tolerance tol: it holds no closer point;
+//  - pruned when F = 1/2 |x - S|^2 is monotone over it in a parameter (the interval bound of
+//    the gradient (16) has one sign) towards a bound it shares with another node: its minimum
+//    lies on that bound, which the other node holds;
+//  - solved when F has one minimum on it that the bound-constrained Newton finds from any
+//    start: F convex there (interval bound of the Hessian (17) positive definite), or monotone
+//    in one parameter and convex along the other, or monotone in both (a corner);
+//  - otherwise halved in u and v and its four children visited nearest first.
+// So the best answer is the global minimum over all nodes up to tol, by construction. Depth is
+// capped; a node still open at the cap is solved by a Newton from its centre and the answer is
+// marked not certified (`ProjectionResult::certified`).
 ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::size_t n_ids,
-                                        double max_distance, const ProjectionOptions& opt) const {
-  // Branch and bound over the Bezier elements (all, or the ids given). Lower bound: distance to
-  // the element's box (convex hull property); upper bound: the best foot point so far. Each
-  // visited element is searched by Newtons restricted to it, seeded at its sample minima.
+                                        double max_distance, const ProjectionOptions& opt,
+                                        const ProjectionResult* start) const {
   thread_local std::vector<std::pair<double, int>> order;
   order.clear();
   const double limit2 = max_distance < kInf ? max_distance * max_distance : kInf;
-  double ub2 = limit2;
   for (std::size_t k = 0; k < n_ids; ++k) {
     const int e = ids ? ids[k] : static_cast<int>(k);
     const double lb2 = box_distance2(boxes_[static_cast<std::size_t>(e)], x);
@@ -180,40 +242,78 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   ProjectionResult best;
   best.status = ProjectionStatus::far;
   best.distance = kInf;
-  if (order.empty()) return best;
-  // A first upper bound from the samples of the most promising element.
+  double best_d = kInf;
+  bool best_patch_kkt = false;  // best satisfies the optimality conditions on the whole patch
+  int best_element = -1;
+  Domain2 best_range;  // the node that gave the best answer
+  int iterations = 0;
+  bool certified = opt.certify;
+  if (start && found(start->status)) {
+    best = *start;
+    best_d = (start->point - x).norm();
+    best_patch_kkt = true;
+    iterations = start->iterations;
+  }
+  if (order.empty()) {
+    best.certified = certified && best_d < kInf;
+    return best;
+  }
+  // A first upper bound from the samples of the most promising element (a surface point at
+  // that distance exists), so that far elements are pruned before any Newton.
+  double ub = max_distance;
+  Vector2d ub_uv = Vector2d::Zero();
   {
     const auto first = std::min_element(order.begin(), order.end());
-    for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)])
-      ub2 = std::min(ub2, (smp.x - x).squaredNorm());
-    ub2 *= (1.0 + 1e-12);
+    for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
+      const double d = (smp.x - x).norm();
+      if (d < ub) ub = d, ub_uv = smp.uv;
+    }
+    ub *= 1.0 + 1e-12;
   }
   std::sort(order.begin(), order.end());
-  double best2 = kInf;
-  int iterations = 0, best_element = 0;
-  for (const auto& [lb2, e] : order) {
-    if (lb2 > std::min(ub2, best2)) break;
-    // A second lower bound from the convex hull of the element's control points: for the
-    // direction d from the element's centre towards x, |x - S| >= d.x - max_i d.P_i. Tight
-    // for far points, where the box bound is loose.
-    {
-      const Box3& b = boxes_[static_cast<std::size_t>(e)];
-      Vector3d dir = x - 0.5 * (b.lo + b.hi);
-      const double len = dir.norm();
-      if (len > 0.0) {
-        dir /= len;
-        double support = -kInf;
-        const std::size_t first = hull_offset_[static_cast<std::size_t>(e)];
-        const std::size_t last = hull_offset_[static_cast<std::size_t>(e) + 1];
-        for (std::size_t k = first; k < last; ++k) support = std::max(support, dir.dot(hull_[k]));
-        const double lb_hull = dir.dot(x) - support;
-        if (lb_hull > 0.0 && lb_hull * lb_hull > std::min(ub2, best2)) continue;
-      }
+  const Domain2 dom = s_.domain();
+  const bool cu = s_.closed_u(), cv = s_.closed_v();
+  const bool all_elements = ids == nullptr;
+  const double tol = 1e-11 * (box_.hi - box_.lo).norm();
+  auto threshold = [&] { return std::min(ub, best_d - tol); };
+  auto consider = [&](const ProjectionResult& r, int e, const Domain2& node_range, bool patch_kkt) {
+    iterations += r.iterations;
+    if (!found(r.status)) return;
+    // Only a clearly closer answer replaces the best: one equal to round-off would make the
+    // foot jump between two converged iterates of the same minimum.
+    const double d = (r.point - x).norm();
+    if (d < best_d - tol) {
+      best_d = d;
+      best = r;
+      best_element = e;
+      best_range = node_range;
+      // An answer off its node's bounds (but those of the patch) satisfies the optimality
+      // conditions of the whole patch, so those of every node that holds it.
+      auto off = [](double t, const Interval& n, const Interval& dm, bool closed) {
+        return (t > n.lo || (n.lo <= dm.lo && !closed)) && (t < n.hi || (n.hi >= dm.hi && !closed));
+      };
+      best_patch_kkt = patch_kkt || (off(r.uv[0], node_range.u, dom.u, cu) &&
+                                     off(r.uv[1], node_range.v, dom.v, cv));
     }
-    // Seeds: the discrete local minima of the distance over the element's sample grid (far
-    // from the surface one element can hold several local minima, e.g. on an edge and near
-    // it), nearest first, at most kMaxSeeds.
-    const std::vector<Sample>& smp = samples_[static_cast<std::size_t>(e)];
+  };
+  // Whether the minimum of F over a node, lying on its bound `side` (0 lo, 1 hi) in direction
+  // `dir`, is held by another node: the bound is inside the element, or (all elements
+  // searched) an element border inside the patch or a seam.
+  auto shared_bound = [&](const Domain2& range, int element, int dir, int side) {
+    const Interval& r = dir == 0 ? range.u : range.v;
+    const Domain2& er = elements_[static_cast<std::size_t>(element)].range;
+    const Interval& el = dir == 0 ? er.u : er.v;
+    const Interval& d = dir == 0 ? dom.u : dom.v;
+    const double b = side == 0 ? r.lo : r.hi;
+    if (b > el.lo && b < el.hi) return true;
+    if (!all_elements) return false;
+    return (b > d.lo && b < d.hi) || (dir == 0 ? cu : cv);
+  };
+  // Newtons in an element from the discrete local minima of the distance over its sample grid,
+  // nearest first, at most kMaxSeeds: a good answer early prunes the most.
+  auto seed_newtons = [&](int element) {
+    const Domain2& range = elements_[static_cast<std::size_t>(element)].range;
+    const std::vector<Sample>& smp = samples_[static_cast<std::size_t>(element)];
     const int n = samples_per_dir_;
     double d2s[kMaxSamples];
     for (int k = 0; k < n * n; ++k) d2s[k] = (smp[static_cast<std::size_t>(k)].x - x).squaredNorm();
@@ -234,48 +334,153 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
             }
           }
         if (!is_min) continue;
-        // keep the kMaxSeeds nearest minima, sorted
         std::pair<double, int> cand{d, i + n * j};
         for (int q = 0; q < n_seeds; ++q)
           if (cand < seeds[q]) std::swap(cand, seeds[q]);
         if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
       }
-    const Domain2& range = elements_[static_cast<std::size_t>(e)].range;
-    for (int q = 0; q < n_seeds; ++q) {
-      const Vector2d& start = smp[static_cast<std::size_t>(seeds[q].second)].uv;
-      const ProjectionResult r = closest_point_local(s_, x, start, range, opt);
-      iterations += r.iterations;
-      const double d2 = (r.point - x).squaredNorm();
-      if (d2 < best2) {
-        best2 = d2;
-        best = r;
-        best_element = e;
-      }
+    for (int q = 0; q < n_seeds; ++q)
+      consider(
+          closest_point_local(s_, x, smp[static_cast<std::size_t>(seeds[q].second)].uv, range, opt),
+          element, range, false);
+  };
+  constexpr int kMaxDepth = 10;
+  // Visits a node; `element` is its Bezier element, `seeds` the element's samples (depth 0).
+  auto visit = [&](auto&& self, Node* node_ptr, int element, int depth) -> void {
+    const std::size_t e = static_cast<std::size_t>(element);
+    const Box3& box = node_ptr ? node_ptr->box : boxes_[e];
+    const Vector3d* pts = node_ptr ? node_ptr->points.data() : hull_.data() + hull_offset_[e];
+    const std::size_t n_pts = node_ptr ? static_cast<std::size_t>(node_ptr->net.size())
+                                       : hull_offset_[e + 1] - hull_offset_[e];
+    const Domain2& range = node_ptr ? node_ptr->net.range : elements_[e].range;
+    if (hull_lower_bound(box, pts, n_pts, x, best_d < kInf ? &best.point : nullptr) > threshold())
+      return;
+    if (!opt.certify) {  // the sampled search: seeded Newtons in the element, no proof
+      seed_newtons(element);
+      return;
     }
+    if (node_ptr) node_ptr->bounds = detail::patch_bounds(node_ptr->net);
+    const detail::PatchBounds& pb = node_ptr ? node_ptr->bounds : bounds_[e];
+    detail::DistanceBounds db = detail::distance_bounds(pb, x);
+    {
+      // Mean value forms about the node's centre c, second-order tight as nodes shrink:
+      // grad F(U) in grad F(c) + H(U) (U - c), and F(U) >= F(c) + grad F(c).d + 1/2 d.H(U).d.
+      const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
+      const SurfaceDerivs dc = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
+      const Vector3d rc = x - dc.S;
+      const double gu = -dc.Su.dot(rc), gv = -dc.Sv.dot(rc);  // (16)
+      const double dist_c = rc.norm();
+      if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
+      const detail::Iv A{-a, a}, B{-b, b};
+      const detail::Iv mu = detail::Iv{gu, gu} + db.H11 * A + db.H12 * B;
+      const detail::Iv mv = detail::Iv{gv, gv} + db.H12 * A + db.H22 * B;
+      db.gu = detail::Iv{std::max(db.gu.lo, mu.lo), std::min(db.gu.hi, mu.hi)};
+      db.gv = detail::Iv{std::max(db.gv.lo, mv.lo), std::min(db.gv.hi, mv.hi)};
+      const double h12 = std::max(std::abs(db.H12.lo), std::abs(db.H12.hi));
+      const double f_lo =
+          0.5 * rc.squaredNorm() - std::abs(gu) * a - std::abs(gv) * b +
+          0.5 * (std::min(0.0, db.H11.lo) * a * a + std::min(0.0, db.H22.lo) * b * b) - h12 * a * b;
+      if (f_lo > 0.0 && std::sqrt(2.0 * f_lo) > threshold()) return;
+    }
+    // -1: F increases with the parameter (minimum on the lower bound), +1: decreases, 0: open
+    const int mono_u = db.gu.lo > 0.0 ? -1 : db.gu.hi < 0.0 ? 1 : 0;
+    const int mono_v = db.gv.lo > 0.0 ? -1 : db.gv.hi < 0.0 ? 1 : 0;
+    if (mono_u != 0 && shared_bound(range, element, 0, mono_u > 0)) return;
+    if (mono_v != 0 && shared_bound(range, element, 1, mono_v > 0)) return;
+    const bool solvable = detail::convex(db) || (mono_u != 0 && mono_v != 0) ||
+                          (mono_u != 0 && db.H22.lo > 0.0) || (mono_v != 0 && db.H11.lo > 0.0);
+    if (solvable) {
+      // The best answer, a KKT point of the whole patch lying on this node, is the node's too.
+      if (best_patch_kkt && inside(range, best.uv)) return;
+      Vector2d s0(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
+      if (mono_u != 0) s0[0] = mono_u < 0 ? range.u.lo : range.u.hi;
+      if (mono_v != 0) s0[1] = mono_v < 0 ? range.v.lo : range.v.hi;
+      const ProjectionResult r = closest_point_local(s_, x, s0, range, opt);
+      consider(r, element, range, false);
+      if (found(r.status)) return;
+    }
+    if (depth == 0) {
+      seed_newtons(element);
+      if (hull_lower_bound(box, pts, n_pts, x, &best.point) > threshold()) return;
+    }
+    if (depth >= kMaxDepth) {
+      const Vector2d c(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
+      consider(closest_point_local(s_, x, c, range, opt), element, range, false);
+      certified = false;
+      return;
+    }
+    Node children[4];
+    {
+      detail::Net whole, lo, hi;
+      const detail::Net* parent = &whole;
+      if (node_ptr)
+        parent = &node_ptr->net;
+      else if (!detail::to_net(elements_[e], whole)) {  // degree above the nets' capacity
+        certified = false;
+        return;
+      }
+      detail::split_half(*parent, 0, lo, hi);
+      detail::split_half(lo, 1, children[0].net, children[1].net);
+      detail::split_half(hi, 1, children[2].net, children[3].net);
+    }
+    std::pair<double, int> by_bound[4];
+    for (int k = 0; k < 4; ++k) {
+      finish_node(children[k]);
+      by_bound[k] = {box_distance2(children[k].box, x), k};
+    }
+    std::sort(by_bound, by_bound + 4);
+    for (const auto& [lb2, k] : by_bound) self(self, &children[k], element, depth + 1);
+  };
+  for (const auto& [lb2, e] : order) {
+    const double t = threshold();
+    if (t < 0.0 || lb2 > t * t) break;
+    visit(visit, nullptr, e, 0);
   }
-  if (best2 == kInf) return best;
-  // The element's answer is a local minimum of the patch unless it rests on an element bound
+  if (best_d == kInf) {
+    if (ub < max_distance) {  // only the sample's node held points this close: solve there
+      ProjectionResult r = closest_point_local(s_, x, ub_uv, opt);
+      r.iterations += iterations;
+      r.certified = false;
+      return r;
+    }
+    best.iterations = iterations;
+    return best;
+  }
+  best.certified = certified;
+  best.iterations = iterations;
+  if (best_patch_kkt) {
+    best.status = boundary_status(s_, best.uv);
+    return best;
+  }
+  // The node's answer is a local minimum of the patch unless it rests on an element bound
   // inside the patch or on a seam (the bound of a closed direction); then polish on the whole
   // patch, which also wraps across the seam.
   const Domain2& er = elements_[static_cast<std::size_t>(best_element)].range;
-  const Domain2 dom = s_.domain();
-  const bool cu = s_.closed_u(), cv = s_.closed_v();
   const bool inner_bound = (best.uv[0] <= er.u.lo && (er.u.lo > dom.u.lo || cu)) ||
                            (best.uv[0] >= er.u.hi && (er.u.hi < dom.u.hi || cu)) ||
                            (best.uv[1] <= er.v.lo && (er.v.lo > dom.v.lo || cv)) ||
                            (best.uv[1] >= er.v.hi && (er.v.hi < dom.v.hi || cv));
-  if (!inner_bound && found(best.status)) {
-    best.iterations = iterations;
+  if (!inner_bound) {
+    // A node's answer on a bound of the node inside its element: polish on the element.
+    const bool node_bound = (best.uv[0] <= best_range.u.lo && best_range.u.lo > er.u.lo) ||
+                            (best.uv[0] >= best_range.u.hi && best_range.u.hi < er.u.hi) ||
+                            (best.uv[1] <= best_range.v.lo && best_range.v.lo > er.v.lo) ||
+                            (best.uv[1] >= best_range.v.hi && best_range.v.hi < er.v.hi);
+    if (node_bound) {
+      const ProjectionResult r = closest_point_local(s_, x, best.uv, er, opt);
+      if (found(r.status) && (r.point - x).norm() <= best_d) {
+        best = r;
+        best.iterations += iterations;
+        best.certified = certified;
+      }
+    }
     best.status = boundary_status(s_, best.uv);
     return best;
   }
   ProjectionResult r = closest_point_local(s_, x, best.uv, opt);
   r.iterations += iterations;
-  if ((r.point - x).squaredNorm() > best2 * (1.0 + 1e-12) + 1e-300) {
-    // The polish can only lower the distance; keep the element's answer if it did not.
-    best.iterations = r.iterations;
-    return best;
-  }
+  r.certified = certified;
+  if (!found(r.status) || (r.point - x).norm() > best_d * (1.0 + 1e-12) + 1e-300) return best;
   return r;
 }
 
@@ -285,7 +490,10 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOpti
 
 ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& guess,
                                          const ProjectionOptions& opt) const {
+  // The local Newton from the guess, then the certified search bounded by its answer: it
+  // either proves that answer global or finds the closer foot (the true foot may have jumped).
   ProjectionResult r = closest_point_local(s_, x, guess, opt);
+  if (opt.certify) return search(x, nullptr, boxes_.size(), kInf, opt, &r);
   if (r.status == ProjectionStatus::not_converged) {
     const int used = r.iterations;
     r = project(x, opt);

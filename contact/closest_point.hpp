@@ -3,14 +3,16 @@
 // F(alpha) = 1/2 |r - rho(alpha)|^2 (eq. 12) with gradient (16) and Hessian (17), an active set
 // for the patch bounds (Sect. 2.2: surface, then edge, then vertex), Levenberg-Marquardt
 // regularization where the Hessian (17) is not positive definite, and an Armijo line search.
-// Cold starts are seeded from the Bezier extraction: element boxes give lower bounds on the
-// distance, samples give upper bounds, elements are visited best-first and pruned
-// (branch and bound), so the global minimum is found also on edges and corners.
+// Cold and warm starts on a NURBS patch are certified (ProjectionOptions::certify): a branch
+// and bound over the Bezier elements, subdivided where needed, with lower bounds from the
+// control nets and interval bounds of the gradient (16) and Hessian (17) of (12) over each
+// node (patch_bounds.hpp) proves the answer the global minimum, also on edges and corners.
 #pragma once
 
 #include <span>
 #include <vector>
 
+#include "contact/patch_bounds.hpp"
 #include "contact/projection.hpp"
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/nurbs_surface.hpp"
@@ -43,10 +45,11 @@ class PatchProjector {
   const std::vector<BezierPatch>& elements() const { return elements_; }
   const std::vector<Box3>& element_boxes() const { return boxes_; }
 
-  /// Cold start: the global minimum (branch and bound over elements).
+  /// Cold start: the global minimum (certified branch and bound over the elements).
   ProjectionResult project(const Vector3d& x, const ProjectionOptions& opt = {}) const;
-  /// Warm start from a parameter guess (e.g. the previous load step's foot point): one local
-  /// Newton. Falls back to the cold search if it does not converge.
+  /// Warm start from a parameter guess (e.g. the previous load step's foot point): the local
+  /// Newton, then the certified search bounded by its answer (certify = false: the Newton
+  /// alone, the cold search if it does not converge).
   ProjectionResult project(const Vector3d& x, const Vector2d& guess,
                            const ProjectionOptions& opt = {}) const;
   /// Cold search, but only among elements whose box lies within `max_distance` of x; returns
@@ -63,13 +66,15 @@ class PatchProjector {
     Vector2d uv;
     Vector3d x;
   };
-  ProjectionResult search(const Vector3d& x, const int* ids, std::size_t n_ids,
-                          double max_distance, const ProjectionOptions& opt) const;
+  ProjectionResult search(const Vector3d& x, const int* ids, std::size_t n_ids, double max_distance,
+                          const ProjectionOptions& opt,
+                          const ProjectionResult* start = nullptr) const;
   static constexpr int kMaxSamples = 64;  // 8 x 8
   NurbsSurface s_;
   std::vector<BezierPatch> elements_;
   int samples_per_dir_ = 8;
   std::vector<Box3> boxes_;
+  std::vector<detail::PatchBounds> bounds_;   // per element: boxes of S and its derivatives
   std::vector<std::vector<Sample>> samples_;  // per element
   std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
   std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])

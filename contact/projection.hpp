@@ -50,6 +50,9 @@ struct ProjectionResult {
   /// size near the surface, the cosine of the angle between x - rho and rho_i far from it.
   /// Ray: |F| relative to the local patch size.
   double residual = 0.0;
+  /// Closest point onto a NURBS patch (PatchProjector): proven the global minimum over the
+  /// patch, to 1e-11 of the patch's size, by the bounds of its Bezier control nets.
+  bool certified = false;
 };
 
 /// Convergence and iteration controls.
@@ -57,6 +60,12 @@ struct ProjectionOptions {
   int max_iterations = 30;
   double tol_residual = 1e-13;  ///< on the scaled orthogonality residual
   double tol_step = 1e-14;      ///< on the parameter step, relative to the domain size
+  /// Projections onto NURBS patches (PatchProjector, RigidSurface): prove the answer the
+  /// global minimum by the bounds of the Bezier control nets (subdividing where they are not
+  /// tight enough) and check every warm start the same way. false: the sampled search of
+  /// earlier versions (seeded Newtons per element, warm starts accepted as they converge),
+  /// faster but able to miss a global minimum when two lie closer than the samples.
+  bool certify = true;
 };
 
 }  // namespace iga

@@ -211,11 +211,35 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
     return closest_point(x, opt);
   const Piece& p = pieces_[static_cast<std::size_t>(previous.patch)];
   ProjectionResult r;
-  if (p.nurbs)
-    r = closest_point_local(p.nurbs->surface(), x, previous.uv, opt);
+  if (p.nurbs)  // certified: the warm answer is checked against the piece's control nets
+    r = opt.certify ? p.nurbs->project(x, previous.uv, opt)
+                    : closest_point_local(p.nurbs->surface(), x, previous.uv, opt);
   else
     r = closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
   r.patch = previous.patch;
+  if (opt.certify && found(r.status)) {
+    // The other pieces, each bounded by this answer (ties keep it: no jumping between pieces).
+    double best_d = (r.point - x).norm();
+    ProjectionResult best = r;
+    int iterations = r.iterations;
+    for (int i = 0; i < num_patches(); ++i) {
+      if (i == previous.patch) continue;
+      if (box_distance(pieces_[static_cast<std::size_t>(i)].box, x) > best_d) continue;
+      const ProjectionResult q = project_piece(i, x, best_d, opt);
+      iterations += q.iterations;
+      if (!found(q.status)) continue;
+      const double d = (q.point - x).norm();
+      if (d < best_d * (1.0 - 1e-12)) {
+        best_d = d;
+        best = q;
+      } else if (nurbs(i) && !q.certified) {
+        best.certified = false;
+      }
+    }
+    best.iterations = iterations;
+    union_status(best);
+    return best;
+  }
   if (r.status == ProjectionStatus::interior) return r;
   // At an edge (possibly shared) or not converged: search all pieces, bounded by this answer.
   const double bound = found(r.status) ? (r.point - x).norm() * (1.0 + 1e-12) : kInf;

@@ -9,6 +9,7 @@
 
 #include "contact/analytic_projection.hpp"
 #include "contact/closest_point.hpp"
+#include "contact/patch_bounds.hpp"
 #include "contact/ray_projection.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/differential_geometry.hpp"
@@ -262,5 +263,127 @@ TEST_CASE("PatchProjector: the bilinear NURBS hyperboloid agrees with the paper'
     REQUIRE(r.status == ProjectionStatus::interior);
     CHECK((r.uv - ks.uv).norm() <= 1e-10);  // the same parametrization (alpha^1, alpha^2)
     CHECK(r.distance == Approx(ks.distance).margin(1e-10));  // (21)
+  }
+}
+
+// Issue 12, item 5: points where the sampled search of earlier versions (certify = false)
+// returns a local minimum that is not the global one, found by a scan of far points around the
+// free-form patch (two local minima closer together than the element's 8 x 8 samples, or a
+// warm start from a nearby point whose foot lies elsewhere). The certified search must find
+// the global minimum, and say that it proved it.
+TEST_CASE("PatchProjector: the certified search finds the global minimum where sampling missed it",
+          "[contact][closest][certified]") {
+  const NurbsSurface s = test::data_surface("freeform_bicubic.json");
+  const PatchProjector P(s);
+  const double diag = (P.box().hi - P.box().lo).norm();
+  ProjectionOptions sampled;
+  sampled.certify = false;
+  const Vector3d cold_cases[] = {{-13.946460824523554, -3.9300924040770231, 12.18975641085156},
+                                 {-16.82950428695699, 14.659592801944799, -29.793319582974039},
+                                 {-12.606001627472773, 6.5081733292075974, -12.506303800945481}};
+  for (const Vector3d& x : cold_cases) {
+    const double ref = (test::brute_force_closest(s, x, 300, 6).point - x).norm();
+    const ProjectionResult r = P.project(x);
+    INFO("x = " << x.transpose() << ", sampled search excess "
+                << (P.project(x, sampled).point - x).norm() - ref);
+    CHECK(r.certified);
+    CHECK(found(r.status));
+    CHECK((r.point - x).norm() <= ref + 1e-10 * diag);
+  }
+  struct Warm {
+    Vector3d x;
+    Vector2d guess;
+  };
+  const Warm warm_cases[] = {
+      {{-25.895779475036864, -0.88747374430823356, 10.243173582345728}, {0, 0.56039396430332022}},
+      {{5.3688128882628305, -18.31125535331519, 39.378415438263225}, {0.14169616357413739, 0}},
+      {{2.3750700230763724, 41.746017865569435, -8.8208009938278895}, {0.2428250970051781, 1}}};
+  for (const Warm& w : warm_cases) {
+    const double ref = (test::brute_force_closest(s, w.x, 300, 6).point - w.x).norm();
+    const ProjectionResult r = P.project(w.x, w.guess);
+    INFO("x = " << w.x.transpose() << ", sampled warm start excess "
+                << (P.project(w.x, w.guess, sampled).point - w.x).norm() - ref);
+    CHECK(r.certified);
+    CHECK((r.point - w.x).norm() <= ref + 1e-10 * diag);
+  }
+}
+
+TEST_CASE("PatchProjector: certified cold and warm projections on random points are global",
+          "[contact][closest][certified]") {
+  // The three point sets of bench_projection (near band, around the box, far), on the
+  // polynomial free-form patch and the rational torus, against a dense reference.
+  for (const char* file : {"freeform_bicubic.json", "torus_patch.json"}) {
+    const NurbsSurface s = test::data_surface(file);
+    const PatchProjector P(s);
+    const Box3 box = P.box();
+    const Vector3d c = 0.5 * (box.lo + box.hi);
+    const double diag = (box.hi - box.lo).norm(), size = (box.hi - box.lo).maxCoeff();
+    const Domain2 dom = s.domain();
+    std::mt19937 g(2026);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    int misses = 0, unproven = 0, n = 0;
+    for (int set = 0; set < 3; ++set)
+      for (int i = 0; i < 150; ++i, ++n) {
+        Vector3d x;
+        if (set == 0) {
+          const SurfaceDerivs d = s.derivs(dom.u.lo + U(g) * (dom.u.hi - dom.u.lo),
+                                           dom.v.lo + U(g) * (dom.v.hi - dom.v.lo), 1);
+          x = d.S + (2 * U(g) - 1) * 0.05 * size * d.Su.cross(d.Sv).normalized();
+        } else if (set == 1) {
+          x = random_in_box(g, box, 0.3);
+        } else {
+          const Vector3d dir(U(g) - 0.5, U(g) - 0.5, U(g) - 0.5);
+          x = c + (1.0 + 2.0 * U(g)) * diag * dir.normalized();
+        }
+        const Vector3d near =
+            x + 0.01 * size * Vector3d(U(g) - 0.5, U(g) - 0.5, U(g) - 0.5).normalized();
+        const double ref = (test::brute_force_closest(s, x, 150, 4).point - x).norm();
+        const ProjectionResult cold = P.project(x);
+        const ProjectionResult warm = P.project(x, P.project(near).uv);
+        misses += (cold.point - x).norm() > ref + 1e-10 * diag;
+        misses += (warm.point - x).norm() > ref + 1e-10 * diag;
+        unproven += !cold.certified + !warm.certified;
+      }
+    INFO(file << ": " << n << " points");
+    CHECK(misses == 0);
+    CHECK(unproven == 0);
+  }
+}
+
+TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (sampled check)",
+          "[contact][closest][certified]") {
+  // The interval bounds of S and its first and second derivatives over a Bezier element must
+  // hold every sampled value, on a rational element (torus) and a polynomial one, whole and
+  // after de Casteljau halving in u and v.
+  for (const char* file : {"freeform_bicubic.json", "torus_patch.json"}) {
+    const NurbsSurface s = test::data_surface(file);
+    for (const BezierPatch& b : bezier_extract(s)) {
+      detail::Net net, lo, hi;
+      REQUIRE(detail::to_net(b, net));
+      detail::split_half(net, 0, lo, hi);
+      for (const detail::Net* n : {&net, &lo, &hi}) {
+        const detail::PatchBounds pb = detail::patch_bounds(*n);
+        auto inside = [&](const detail::IVec3& box, const Vector3d& v) {
+          bool ok = true;
+          for (int k = 0; k < 3; ++k) {
+            const double slack = 1e-9 * (1.0 + std::abs(box.c[k].lo) + std::abs(box.c[k].hi));
+            ok = ok && v[k] >= box.c[k].lo - slack && v[k] <= box.c[k].hi + slack;
+          }
+          return ok;
+        };
+        for (int j = 0; j <= 6; ++j)
+          for (int i = 0; i <= 6; ++i) {
+            const double u = n->range.u.lo + (n->range.u.hi - n->range.u.lo) * i / 6.0;
+            const double v = n->range.v.lo + (n->range.v.hi - n->range.v.lo) * j / 6.0;
+            const SurfaceDerivs d = s.derivs(u, v, 2);
+            CHECK(inside(pb.S, d.S - pb.centre));
+            CHECK(inside(pb.Su, d.Su));
+            CHECK(inside(pb.Sv, d.Sv));
+            CHECK(inside(pb.Suu, d.Suu));
+            CHECK(inside(pb.Suv, d.Suv));
+            CHECK(inside(pb.Svv, d.Svv));
+          }
+      }
+    }
   }
 }

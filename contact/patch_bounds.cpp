@@ -1,0 +1,152 @@
+// Sound bounds over rational Bezier patches (see patch_bounds.hpp).
+#include "contact/patch_bounds.hpp"
+
+#include <limits>
+#include <tuple>
+#include <vector>
+
+namespace iga::detail {
+
+namespace {
+
+// Component-wise hull of 4-vectors.
+struct Hull4 {
+  Vector4d lo = Vector4d::Constant(std::numeric_limits<double>::infinity());
+  Vector4d hi = Vector4d::Constant(-std::numeric_limits<double>::infinity());
+  void add(const Vector4d& q) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  // An empty hull (a derivative of order above the degree) is the zero interval.
+  IVec3 xyz() const {
+    if (lo[0] > hi[0]) return {};
+    return {{{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}}};
+  }
+  Iv w() const { return lo[3] > hi[3] ? Iv{} : Iv{lo[3], hi[3]}; }
+};
+
+IVec3 sub(const IVec3& a, const IVec3& b) {
+  return {{a.c[0] - b.c[0], a.c[1] - b.c[1], a.c[2] - b.c[2]}};
+}
+IVec3 mul(Iv s, const IVec3& a) {
+  return {{s * a.c[0], s * a.c[1], s * a.c[2]}};
+}
+IVec3 div_pos(const IVec3& a, Iv w) {
+  return {{div_pos(a.c[0], w), div_pos(a.c[1], w), div_pos(a.c[2], w)}};
+}
+
+}  // namespace
+
+bool to_net(const BezierPatch& b, Net& out) {
+  if (b.degree_u > kMaxNetDegree || b.degree_v > kMaxNetDegree) return false;
+  out.range = b.range;
+  out.p = b.degree_u;
+  out.q = b.degree_v;
+  std::copy(b.pw.begin(), b.pw.end(), out.pw.begin());
+  return true;
+}
+
+PatchBounds patch_bounds(const Net& b) {
+  return patch_bounds(b.pw.data(), b.p, b.q, b.range);
+}
+
+PatchBounds patch_bounds(const BezierPatch& b) {
+  return patch_bounds(b.pw.data(), b.degree_u, b.degree_v, b.range);
+}
+
+PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range) {
+  PatchBounds out;
+  const std::size_t n = static_cast<std::size_t>((p + 1) * (q + 1));
+  Box3 box;
+  for (std::size_t k = 0; k < n; ++k) box.extend(pw[k].head<3>() / pw[k].w());
+  const Vector3d c = 0.5 * (box.lo + box.hi);
+  out.centre = c;
+  const double du = range.u.hi - range.u.lo, dv = range.v.hi - range.v.lo;
+  // Homogeneous control points of the patch moved by -centre: (A - w c, w).
+  thread_local std::vector<Vector4d> moved;
+  moved.resize(n);
+  Iv w{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (std::size_t k = 0; k < n; ++k) {
+    moved[k] = pw[k];
+    moved[k].head<3>() -= pw[k].w() * c;
+    w.lo = std::min(w.lo, pw[k].w());
+    w.hi = std::max(w.hi, pw[k].w());
+  }
+  auto P = [&](int i, int j) -> const Vector4d& {
+    return moved[static_cast<std::size_t>(i + (p + 1) * j)];
+  };
+  Hull4 Au, Av, Auu, Auv, Avv;
+  const double su = p / du, sv = q / dv, suu = p * (p - 1) / (du * du),
+               svv = q * (q - 1) / (dv * dv), suv = p * q / (du * dv);
+  for (int j = 0; j <= q; ++j)
+    for (int i = 0; i <= p; ++i) {
+      const Vector4d& h = P(i, j);
+      if (i < p) {
+        const Vector4d d = P(i + 1, j) - h;
+        Au.add(su * d);
+        if (i + 1 < p) Auu.add(suu * (P(i + 2, j) - P(i + 1, j) - d));
+        if (j < q) Auv.add(suv * (P(i + 1, j + 1) - P(i, j + 1) - d));
+      }
+      if (j < q) {
+        const Vector4d d = P(i, j + 1) - h;
+        Av.add(sv * d);
+        if (j + 1 < q) Avv.add(svv * (P(i, j + 2) - P(i, j + 1) - d));
+      }
+    }
+  out.S = to_ivec(Box3{box.lo - c, box.hi - c});
+  // A = w S differentiated (Leibniz), solved for the derivatives of S.
+  out.Su = div_pos(sub(Au.xyz(), mul(Au.w(), out.S)), w);
+  out.Sv = div_pos(sub(Av.xyz(), mul(Av.w(), out.S)), w);
+  out.Suu = div_pos(sub(sub(Auu.xyz(), mul(2.0 * Au.w(), out.Su)), mul(Auu.w(), out.S)), w);
+  out.Svv = div_pos(sub(sub(Avv.xyz(), mul(2.0 * Av.w(), out.Sv)), mul(Avv.w(), out.S)), w);
+  out.Suv = div_pos(
+      sub(sub(sub(Auv.xyz(), mul(Au.w(), out.Sv)), mul(Av.w(), out.Su)), mul(Auv.w(), out.S)), w);
+  return out;
+}
+
+DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
+  const Vector3d xc = x - b.centre;
+  IVec3 r;  // x - S
+  for (int k = 0; k < 3; ++k) r.c[k] = Iv{xc[k] - b.S.c[k].hi, xc[k] - b.S.c[k].lo};
+  DistanceBounds d;
+  const Iv su_r = dot(b.Su, r), sv_r = dot(b.Sv, r);
+  d.gu = Iv{-su_r.hi, -su_r.lo};  // (16)
+  d.gv = Iv{-sv_r.hi, -sv_r.lo};
+  d.H11 = norm2(b.Su) - dot(b.Suu, r);  // (17)
+  d.H22 = norm2(b.Sv) - dot(b.Svv, r);
+  d.H12 = dot(b.Su, b.Sv) - dot(b.Suv, r);
+  return d;
+}
+
+void split_half(const Net& b, int dir, Net& low, Net& high) {
+  low.p = high.p = b.p;
+  low.q = high.q = b.q;
+  low.range = high.range = b.range;
+  const int p = b.p;
+  const int n = dir == 0 ? b.p : b.q;  // degree along the split
+  const int rows = dir == 0 ? b.q + 1 : b.p + 1;
+  auto at = [&](int k, int row) {  // index of point k along the split direction in a row
+    return static_cast<std::size_t>(dir == 0 ? k + (p + 1) * row : row + (p + 1) * k);
+  };
+  std::array<Vector4d, kMaxNetDegree + 1> tri;
+  for (int row = 0; row < rows; ++row) {
+    for (int k = 0; k <= n; ++k) tri[static_cast<std::size_t>(k)] = b.pw[at(k, row)];
+    low.pw[at(0, row)] = tri[0];
+    high.pw[at(n, row)] = tri[static_cast<std::size_t>(n)];
+    for (int level = 1; level <= n; ++level) {
+      for (int k = 0; k <= n - level; ++k)
+        tri[static_cast<std::size_t>(k)] =
+            0.5 * (tri[static_cast<std::size_t>(k)] + tri[static_cast<std::size_t>(k + 1)]);
+      low.pw[at(level, row)] = tri[0];
+      high.pw[at(n - level, row)] = tri[static_cast<std::size_t>(n - level)];
+    }
+  }
+  Interval& lo_range = dir == 0 ? low.range.u : low.range.v;
+  Interval& hi_range = dir == 0 ? high.range.u : high.range.v;
+  const Interval whole = dir == 0 ? b.range.u : b.range.v;
+  const double mid = 0.5 * (whole.lo + whole.hi);
+  lo_range.hi = mid;
+  hi_range.lo = mid;
+}
+
+}  // namespace iga::detail

@@ -1,0 +1,109 @@
+// Sound bounds over a rational Bezier patch for the certified closest point search
+// (contact/closest_point.cpp): boxes that contain the patch's points and its first and second
+// derivatives over the whole element, from its control net (convex hull property of the net
+// and of its hodographs), and from them interval bounds on the gradient (16) and Hessian (17)
+// of F = 1/2 |x - rho|^2 (12) for one point x. Internal header of contact/.
+//
+// Notation ([KS15] -> code):
+//   rho(alpha) -> S,  rho_i = d rho / d alpha^i -> Su, Sv,  rho_ij -> Suu, Suv, Svv;
+//   r = x - rho;  F = 1/2 |r|^2 (12);  F_,i = -rho_i . r (16) -> gu, gv;
+//   F_,ij = rho_i . rho_j - rho_ij . r (17) -> H11, H12, H22.
+//   Homogeneous control points (w P, w) -> (A, w), so that rho = A / w.
+//
+// The bounds come from the homogeneous form A = w rho: A_u = w_u rho + w rho_u and
+// A_uu = w_uu rho + 2 w_u rho_u + w rho_uu (and alike), solved for the derivatives of rho
+// with interval arithmetic; the derivatives of the polynomials A and w are bounded by their
+// hodographs' control points. Interval arithmetic here rounds to nearest: the bounds are
+// sound up to round-off, which the callers cover with relative margins.
+#pragma once
+
+#include <algorithm>
+#include <array>
+
+#include "geometry/refinement.hpp"
+
+namespace iga::detail {
+
+/// A closed interval [lo, hi].
+struct Iv {
+  double lo = 0.0, hi = 0.0;
+};
+inline Iv operator+(Iv a, Iv b) {
+  return {a.lo + b.lo, a.hi + b.hi};
+}
+inline Iv operator-(Iv a, Iv b) {
+  return {a.lo - b.hi, a.hi - b.lo};
+}
+inline Iv operator*(Iv a, Iv b) {
+  const double p[4] = {a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi};
+  return {std::min({p[0], p[1], p[2], p[3]}), std::max({p[0], p[1], p[2], p[3]})};
+}
+inline Iv operator*(double s, Iv a) {
+  return s >= 0 ? Iv{s * a.lo, s * a.hi} : Iv{s * a.hi, s * a.lo};
+}
+/// a^2 (tighter than a * a when a contains 0).
+inline Iv sq(Iv a) {
+  const double l = a.lo * a.lo, h = a.hi * a.hi;
+  if (a.lo <= 0.0 && a.hi >= 0.0) return {0.0, std::max(l, h)};
+  return {std::min(l, h), std::max(l, h)};
+}
+/// a / w for an interval w with w.lo > 0.
+inline Iv div_pos(Iv a, Iv w) {
+  return a * Iv{1.0 / w.hi, 1.0 / w.lo};
+}
+
+/// An axis-aligned box as three intervals.
+struct IVec3 {
+  Iv c[3];
+};
+inline IVec3 to_ivec(const Box3& b) {
+  return {{{b.lo.x(), b.hi.x()}, {b.lo.y(), b.hi.y()}, {b.lo.z(), b.hi.z()}}};
+}
+inline Iv dot(const IVec3& a, const IVec3& b) {
+  return a.c[0] * b.c[0] + a.c[1] * b.c[1] + a.c[2] * b.c[2];
+}
+inline Iv norm2(const IVec3& a) {
+  return sq(a.c[0]) + sq(a.c[1]) + sq(a.c[2]);
+}
+
+/// A Bezier patch of degree at most kMaxNetDegree in each direction, on the stack: the nodes of
+/// the subdivision in the certified search.
+constexpr int kMaxNetDegree = 5;
+struct Net {
+  Domain2 range;
+  int p = 0, q = 0;                                                    ///< degrees in u and v
+  std::array<Vector4d, (kMaxNetDegree + 1) * (kMaxNetDegree + 1)> pw;  ///< (w P, w), u fastest
+  const Vector4d& at(int i, int j) const { return pw[static_cast<std::size_t>(i + (p + 1) * j)]; }
+  int size() const { return (p + 1) * (q + 1); }
+};
+/// The element as a Net; false when its degree is above kMaxNetDegree.
+bool to_net(const BezierPatch& b, Net& out);
+
+/// Boxes over one Bezier patch, in coordinates centred at `centre` (the centre of the box of
+/// its points): S - centre and the derivatives of S with respect to the patch's parameters.
+struct PatchBounds {
+  Vector3d centre = Vector3d::Zero();
+  IVec3 S, Su, Sv, Suu, Suv, Svv;
+};
+PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range);
+PatchBounds patch_bounds(const Net& b);
+PatchBounds patch_bounds(const BezierPatch& b);
+
+/// Interval bounds on the gradient (16) and Hessian (17) of F over the patch, for the point x.
+struct DistanceBounds {
+  Iv gu, gv, H11, H12, H22;
+};
+DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x);
+
+/// True when the Hessian (17) is positive definite at every point of the patch: F is strictly
+/// convex there, so any point satisfying the bound-constrained optimality conditions on the
+/// patch is its minimum over the patch.
+inline bool convex(const DistanceBounds& d) {
+  const double off = std::max(d.H12.lo * d.H12.lo, d.H12.hi * d.H12.hi);
+  return d.H11.lo > 0.0 && d.H22.lo > 0.0 && d.H11.lo * d.H22.lo > off * (1.0 + 1e-9);
+}
+
+/// de Casteljau halving of a Bezier patch in u (dir 0) or v (dir 1).
+void split_half(const Net& b, int dir, Net& low, Net& high);
+
+}  // namespace iga::detail
