@@ -144,7 +144,9 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
     for (const Vector4d& q : b.pw) hull_.push_back(q.head<3>() / q.w());
     hull_offset_.push_back(hull_.size());
     boxes_.push_back(bounding_box(b));
-    bounds_.push_back(detail::patch_bounds(b));
+    const SurfaceDerivs dc =
+        s_.derivs(0.5 * (b.range.u.lo + b.range.u.hi), 0.5 * (b.range.v.lo + b.range.v.hi), 1);
+    bounds_.push_back(detail::patch_bounds(b, detail::tangent_frame(dc)));
     box_.extend(boxes_.back().lo);
     box_.extend(boxes_.back().hi);
     for (int j = 0; j < n; ++j)
@@ -359,29 +361,19 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       seed_newtons(element);
       return;
     }
-    if (node_ptr) node_ptr->bounds = detail::patch_bounds(node_ptr->net);
+    // The exact derivatives at the node's centre: the frame of its bounds, the mean value
+    // forms, and a surface point there as an upper bound.
+    const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
+    const SurfaceDerivs dc = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
+    const double dist_c = (x - dc.S).norm();
+    if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
+    if (node_ptr) node_ptr->bounds = detail::patch_bounds(node_ptr->net, detail::tangent_frame(dc));
     const detail::PatchBounds& pb = node_ptr ? node_ptr->bounds : bounds_[e];
+    // The node holding the best answer, an optimum of the patch: the chord test.
+    if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point)) return;
     detail::DistanceBounds db = detail::distance_bounds(pb, x);
-    {
-      // Mean value forms about the node's centre c, second-order tight as nodes shrink:
-      // grad F(U) in grad F(c) + H(U) (U - c), and F(U) >= F(c) + grad F(c).d + 1/2 d.H(U).d.
-      const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
-      const SurfaceDerivs dc = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
-      const Vector3d rc = x - dc.S;
-      const double gu = -dc.Su.dot(rc), gv = -dc.Sv.dot(rc);  // (16)
-      const double dist_c = rc.norm();
-      if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
-      const detail::Iv A{-a, a}, B{-b, b};
-      const detail::Iv mu = detail::Iv{gu, gu} + db.H11 * A + db.H12 * B;
-      const detail::Iv mv = detail::Iv{gv, gv} + db.H12 * A + db.H22 * B;
-      db.gu = detail::Iv{std::max(db.gu.lo, mu.lo), std::min(db.gu.hi, mu.hi)};
-      db.gv = detail::Iv{std::max(db.gv.lo, mv.lo), std::min(db.gv.hi, mv.hi)};
-      const double h12 = std::max(std::abs(db.H12.lo), std::abs(db.H12.hi));
-      const double f_lo =
-          0.5 * rc.squaredNorm() - std::abs(gu) * a - std::abs(gv) * b +
-          0.5 * (std::min(0.0, db.H11.lo) * a * a + std::min(0.0, db.H22.lo) * b * b) - h12 * a * b;
-      if (f_lo > 0.0 && std::sqrt(2.0 * f_lo) > threshold()) return;
-    }
+    const double f_lo = detail::refine_about_centre(db, dc, x, a, b);
+    if (f_lo > 0.0 && std::sqrt(2.0 * f_lo) > threshold()) return;
     // -1: F increases with the parameter (minimum on the lower bound), +1: decreases, 0: open
     const int mono_u = db.gu.lo > 0.0 ? -1 : db.gu.hi < 0.0 ? 1 : 0;
     const int mono_v = db.gv.lo > 0.0 ? -1 : db.gv.hi < 0.0 ? 1 : 0;

@@ -46,29 +46,42 @@ bool to_net(const BezierPatch& b, Net& out) {
   return true;
 }
 
-PatchBounds patch_bounds(const Net& b) {
-  return patch_bounds(b.pw.data(), b.p, b.q, b.range);
+Eigen::Matrix3d tangent_frame(const SurfaceDerivs& d) {
+  const Vector3d n = d.Su.cross(d.Sv);
+  if (!(d.Su.norm() > 0.0) || !(n.norm() > 0.0) || !n.allFinite())
+    return Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d R;
+  R.row(0) = d.Su.normalized();
+  R.row(2) = n.normalized();
+  R.row(1) = R.row(2).cross(R.row(0));
+  return R;
 }
 
-PatchBounds patch_bounds(const BezierPatch& b) {
-  return patch_bounds(b.pw.data(), b.degree_u, b.degree_v, b.range);
+PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame) {
+  return patch_bounds(b.pw.data(), b.p, b.q, b.range, frame);
 }
 
-PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range) {
+PatchBounds patch_bounds(const BezierPatch& b, const Eigen::Matrix3d& frame) {
+  return patch_bounds(b.pw.data(), b.degree_u, b.degree_v, b.range, frame);
+}
+
+PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
+                         const Eigen::Matrix3d& frame) {
   PatchBounds out;
+  out.frame = frame;
   const std::size_t n = static_cast<std::size_t>((p + 1) * (q + 1));
   Box3 box;
   for (std::size_t k = 0; k < n; ++k) box.extend(pw[k].head<3>() / pw[k].w());
   const Vector3d c = 0.5 * (box.lo + box.hi);
   out.centre = c;
   const double du = range.u.hi - range.u.lo, dv = range.v.hi - range.v.lo;
-  // Homogeneous control points of the patch moved by -centre: (A - w c, w).
+  // Homogeneous control points of the patch moved by -centre and turned: (R (A - w c), w).
   thread_local std::vector<Vector4d> moved;
   moved.resize(n);
   Iv w{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
   for (std::size_t k = 0; k < n; ++k) {
-    moved[k] = pw[k];
-    moved[k].head<3>() -= pw[k].w() * c;
+    moved[k].head<3>() = frame * (pw[k].head<3>() - pw[k].w() * c);
+    moved[k].w() = pw[k].w();
     w.lo = std::min(w.lo, pw[k].w());
     w.hi = std::max(w.hi, pw[k].w());
   }
@@ -93,7 +106,9 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range)
         if (j + 1 < q) Avv.add(svv * (P(i, j + 2) - P(i, j + 1) - d));
       }
     }
-  out.S = to_ivec(Box3{box.lo - c, box.hi - c});
+  Box3 sbox;
+  for (std::size_t k = 0; k < n; ++k) sbox.extend(moved[k].head<3>() / moved[k].w());
+  out.S = to_ivec(sbox);
   // A = w S differentiated (Leibniz), solved for the derivatives of S.
   out.Su = div_pos(sub(Au.xyz(), mul(Au.w(), out.S)), w);
   out.Sv = div_pos(sub(Av.xyz(), mul(Av.w(), out.S)), w);
@@ -104,8 +119,40 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range)
   return out;
 }
 
+namespace {
+Iv meet(Iv a, Iv b) {
+  return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)};
+}
+IVec3 point(const Vector3d& v) {
+  return {{{v[0], v[0]}, {v[1], v[1]}, {v[2], v[2]}}};
+}
+}  // namespace
+
+double refine_about_centre(DistanceBounds& d, const SurfaceDerivs& dc, const Vector3d& x, double a,
+                           double bw) {
+  const Vector3d rc = x - dc.S;
+  const double gu = -dc.Su.dot(rc), gv = -dc.Sv.dot(rc);  // (16) at c
+  const Iv A{-a, a}, B{-bw, bw};
+  d.gu = meet(d.gu, Iv{gu, gu} + d.H11 * A + d.H12 * B);
+  d.gv = meet(d.gv, Iv{gv, gv} + d.H12 * A + d.H22 * B);
+  // F(c + t) >= F(c) + g.t + 1/2 (H11 tu^2 + 2 H12 tu tv + H22 tv^2) over the box
+  const double h12max = std::max(std::abs(d.H12.lo), std::abs(d.H12.hi));
+  return 0.5 * rc.squaredNorm() - std::abs(gu) * a - std::abs(gv) * bw +
+         0.5 * (std::min(0.0, d.H11.lo) * a * a + std::min(0.0, d.H22.lo) * bw * bw) -
+         h12max * a * bw;
+}
+
+bool chord_test(const PatchBounds& b, const Vector3d& r_star) {
+  const IVec3 r = point(b.frame * r_star);
+  DistanceBounds m;
+  m.H11 = norm2(b.Su) - dot(b.Suu, r);
+  m.H22 = norm2(b.Sv) - dot(b.Svv, r);
+  m.H12 = dot(b.Su, b.Sv) - dot(b.Suv, r);
+  return convex(m);
+}
+
 DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
-  const Vector3d xc = x - b.centre;
+  const Vector3d xc = b.frame * (x - b.centre);
   IVec3 r;  // x - S
   for (int k = 0; k < 3; ++k) r.c[k] = Iv{xc[k] - b.S.c[k].hi, xc[k] - b.S.c[k].lo};
   DistanceBounds d;

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 
+#include "geometry/derivatives.hpp"
 #include "geometry/refinement.hpp"
 
 namespace iga::detail {
@@ -79,21 +80,50 @@ struct Net {
 /// The element as a Net; false when its degree is above kMaxNetDegree.
 bool to_net(const BezierPatch& b, Net& out);
 
-/// Boxes over one Bezier patch, in coordinates centred at `centre` (the centre of the box of
-/// its points): S - centre and the derivatives of S with respect to the patch's parameters.
+/// Boxes over one Bezier patch, in the coordinates y = frame (X - centre), `centre` the centre
+/// of the box of its points and `frame` a rotation (rows: an orthonormal basis): S and the
+/// derivatives of S with respect to the patch's parameters. Dot products do not depend on the
+/// frame, but the boxes do: aligned with the tangents at the patch's centre, boxes of tangent
+/// vectors that turn across the patch stay tight (in world axes a tangent turning by 90
+/// degrees has a box reaching the origin).
 struct PatchBounds {
   Vector3d centre = Vector3d::Zero();
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
   IVec3 S, Su, Sv, Suu, Suv, Svv;
 };
-PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range);
-PatchBounds patch_bounds(const Net& b);
-PatchBounds patch_bounds(const BezierPatch& b);
+/// The frame with rows S_u, the part of S_v normal to it, and their normal (normalized), from
+/// the derivatives at a point of the patch; the identity where they are degenerate.
+Eigen::Matrix3d tangent_frame(const SurfaceDerivs& d);
+PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
+                         const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+PatchBounds patch_bounds(const BezierPatch& b,
+                         const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
 
 /// Interval bounds on the gradient (16) and Hessian (17) of F over the patch, for the point x.
 struct DistanceBounds {
   Iv gu, gv, H11, H12, H22;
 };
 DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x);
+
+/// Tightens the gradient bounds of `d` with the mean value form about the node's centre c,
+/// where the exact first derivatives `dc` are known (a, bw: the node's half-widths):
+/// grad F(U) in grad F(c) + H(U) (U - c), intersected with the direct bound. Returns a lower
+/// bound of F over the node: F(c) + grad F(c).t + 1/2 t.H(U).t minimized over the box.
+double refine_about_centre(DistanceBounds& d, const SurfaceDerivs& dc, const Vector3d& x, double a,
+                           double bw);
+
+/// The chord test: for a point S* = S(u*) of the patch at which F satisfies the optimality
+/// conditions (r* = x - S*), true when no point of the patch is closer to x than S*. With
+/// D = S(u) - S* and d = u - u*,
+///   F(u) - F(u*) = 1/2 |D|^2 - r*.D,
+///   D = Jm d with Jm = int_0^1 [S_u, S_v](u* + t d) dt (a matrix in the hull of the patch's),
+///   r*.D = grad(r*.S)(u*).d + 1/2 d.[r*.S_ij](xi).d, and grad(r*.S)(u*).d = -grad F(u*).d <= 0
+///     for every d into the patch (optimality),
+/// so F(u) - F(u*) >= 1/2 d.(G - Phi).d with G = [S_i.S_j] and Phi = [r*.S_ij] over the patch;
+/// G - Phi positive definite proves it. Unlike the Hessian (17), r* is fixed: near the surface
+/// Phi is small and the test holds on whole elements.
+bool chord_test(const PatchBounds& b, const Vector3d& r_star);
 
 /// True when the Hessian (17) is positive definite at every point of the patch: F is strictly
 /// convex there, so any point satisfying the bound-constrained optimality conditions on the
