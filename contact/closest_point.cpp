@@ -379,7 +379,7 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     const int mono_v = db.gv.lo > 0.0 ? -1 : db.gv.hi < 0.0 ? 1 : 0;
     if (mono_u != 0 && shared_bound(range, element, 0, mono_u > 0)) return;
     if (mono_v != 0 && shared_bound(range, element, 1, mono_v > 0)) return;
-    const bool solvable = detail::convex(db) || (mono_u != 0 && mono_v != 0) ||
+    const bool solvable = detail::convex(db, pb, x) || (mono_u != 0 && mono_v != 0) ||
                           (mono_u != 0 && db.H22.lo > 0.0) || (mono_v != 0 && db.H11.lo > 0.0);
     if (solvable) {
       // The best answer, a KKT point of the whole patch lying on this node, is the node's too.

@@ -142,13 +142,56 @@ double refine_about_centre(DistanceBounds& d, const SurfaceDerivs& dc, const Vec
          h12max * a * bw;
 }
 
+namespace {
+
+// sigma_min of the tangential block [[S_u.e1, S_v.e1], [S_u.e2, S_v.e2]] over the patch, from
+// below: the centre's sigma_min less the radius' Frobenius norm (Weyl).
+double jacobian_floor(const PatchBounds& b) {
+  Eigen::Matrix2d K0, E;
+  const IVec3* col[2] = {&b.Su, &b.Sv};
+  for (int j = 0; j < 2; ++j)
+    for (int k = 0; k < 2; ++k) {
+      const Iv& c = col[j]->c[k];
+      K0(k, j) = 0.5 * (c.lo + c.hi);
+      E(k, j) = 0.5 * (c.hi - c.lo);
+    }
+  const double T = K0.squaredNorm(), D = std::abs(K0.determinant());
+  const double disc = std::sqrt(std::max(0.0, 0.25 * T * T - D * D));
+  const double s_min2 = std::max(0.0, 0.5 * T - disc);  // smaller eigenvalue of K0^T K0
+  // the same eigenvalue as D^2 / larger one: better conditioned when it is small
+  const double s_max2 = 0.5 * T + disc;
+  const double s_min = s_max2 > 0.0 ? std::max(std::sqrt(s_min2), D / std::sqrt(s_max2)) : 0.0;
+  return std::max(0.0, s_min - E.norm());
+}
+
+// Upper bound of the largest eigenvalue of a symmetric matrix with interval entries.
+double lambda_max_upper(Iv a11, Iv a12, Iv a22) {
+  const double m12 = std::max(std::abs(a12.lo), std::abs(a12.hi));
+  return std::max(a11.hi, a22.hi) + m12;
+}
+
+bool weyl_test(const PatchBounds& b, const IVec3& r) {
+  const double sigma = jacobian_floor(b);
+  const double lam = lambda_max_upper(dot(b.Suu, r), dot(b.Suv, r), dot(b.Svv, r));
+  return sigma * sigma > lam * (1.0 + 1e-9) + 1e-300;
+}
+
+}  // namespace
+
+bool convex_weyl(const PatchBounds& b, const Vector3d& x) {
+  const Vector3d xc = b.frame * (x - b.centre);
+  IVec3 r;  // x - S
+  for (int k = 0; k < 3; ++k) r.c[k] = Iv{xc[k] - b.S.c[k].hi, xc[k] - b.S.c[k].lo};
+  return weyl_test(b, r);
+}
+
 bool chord_test(const PatchBounds& b, const Vector3d& r_star) {
   const IVec3 r = point(b.frame * r_star);
   DistanceBounds m;
   m.H11 = norm2(b.Su) - dot(b.Suu, r);
   m.H22 = norm2(b.Sv) - dot(b.Svv, r);
   m.H12 = dot(b.Su, b.Sv) - dot(b.Suv, r);
-  return convex(m);
+  return convex_gram(m) || weyl_test(b, r);
 }
 
 DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
@@ -165,13 +208,15 @@ DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
   return d;
 }
 
-void split_half(const Net& b, int dir, Net& low, Net& high) {
+void split_at(const Net& b, int dir, double t, Net& low, Net& high) {
   low.p = high.p = b.p;
   low.q = high.q = b.q;
   low.range = high.range = b.range;
   const int p = b.p;
   const int n = dir == 0 ? b.p : b.q;  // degree along the split
   const int rows = dir == 0 ? b.q + 1 : b.p + 1;
+  const Interval whole = dir == 0 ? b.range.u : b.range.v;
+  const double s = (t - whole.lo) / (whole.hi - whole.lo);  // local parameter in [0, 1]
   auto at = [&](int k, int row) {  // index of point k along the split direction in a row
     return static_cast<std::size_t>(dir == 0 ? k + (p + 1) * row : row + (p + 1) * k);
   };
@@ -183,17 +228,20 @@ void split_half(const Net& b, int dir, Net& low, Net& high) {
     for (int level = 1; level <= n; ++level) {
       for (int k = 0; k <= n - level; ++k)
         tri[static_cast<std::size_t>(k)] =
-            0.5 * (tri[static_cast<std::size_t>(k)] + tri[static_cast<std::size_t>(k + 1)]);
+            (1.0 - s) * tri[static_cast<std::size_t>(k)] + s * tri[static_cast<std::size_t>(k + 1)];
       low.pw[at(level, row)] = tri[0];
       high.pw[at(n - level, row)] = tri[static_cast<std::size_t>(n - level)];
     }
   }
   Interval& lo_range = dir == 0 ? low.range.u : low.range.v;
   Interval& hi_range = dir == 0 ? high.range.u : high.range.v;
+  lo_range.hi = t;
+  hi_range.lo = t;
+}
+
+void split_half(const Net& b, int dir, Net& low, Net& high) {
   const Interval whole = dir == 0 ? b.range.u : b.range.v;
-  const double mid = 0.5 * (whole.lo + whole.hi);
-  lo_range.hi = mid;
-  hi_range.lo = mid;
+  split_at(b, dir, 0.5 * (whole.lo + whole.hi), low, high);
 }
 
 }  // namespace iga::detail

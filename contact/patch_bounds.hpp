@@ -128,12 +128,23 @@ bool chord_test(const PatchBounds& b, const Vector3d& r_star);
 /// True when the Hessian (17) is positive definite at every point of the patch: F is strictly
 /// convex there, so any point satisfying the bound-constrained optimality conditions on the
 /// patch is its minimum over the patch.
-inline bool convex(const DistanceBounds& d) {
+inline bool convex_gram(const DistanceBounds& d) {
   const double off = std::max(d.H12.lo * d.H12.lo, d.H12.hi * d.H12.hi);
   return d.H11.lo > 0.0 && d.H22.lo > 0.0 && d.H11.lo * d.H22.lo > off * (1.0 + 1e-9);
 }
 
+/// The same from a second bound: |J t| >= sigma |t| for the 3x2 Jacobian J = [S_u, S_v] over
+/// the patch, sigma = sigma_min of the tangential 2x2 block's centre less its radius (Weyl;
+/// boxes in the patch's tangent frame keep the block close to the true Jacobian), so
+/// H = J^T J - [S_ij . r] >= sigma^2 - lambda_max([S_ij . r]) (Gershgorin on the intervals).
+bool convex_weyl(const PatchBounds& b, const Vector3d& x);
+inline bool convex(const DistanceBounds& d, const PatchBounds& b, const Vector3d& x) {
+  return convex_gram(d) || convex_weyl(b, x);
+}
+
 /// de Casteljau halving of a Bezier patch in u (dir 0) or v (dir 1).
 void split_half(const Net& b, int dir, Net& low, Net& high);
+/// de Casteljau split at the parameter t of the patch's range.
+void split_at(const Net& b, int dir, double t, Net& low, Net& high);
 
 }  // namespace iga::detail

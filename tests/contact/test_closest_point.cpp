@@ -7,6 +7,8 @@
 #include <numbers>
 #include <random>
 
+#include <Eigen/Geometry>
+
 #include "contact/analytic_projection.hpp"
 #include "contact/closest_point.hpp"
 #include "contact/patch_bounds.hpp"
@@ -361,8 +363,13 @@ TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (samp
       detail::Net net, lo, hi;
       REQUIRE(detail::to_net(b, net));
       detail::split_half(net, 0, lo, hi);
-      for (const detail::Net* n : {&net, &lo, &hi}) {
-        const detail::PatchBounds pb = detail::patch_bounds(*n);
+      // whole, halves, and the whole in a turned frame (the boxes are taken in that frame)
+      const Eigen::Matrix3d turn =
+          Eigen::AngleAxisd(0.7, Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
+      for (int variant = 0; variant < 4; ++variant) {
+        const detail::Net* n = variant == 1 ? &lo : variant == 2 ? &hi : &net;
+        const Eigen::Matrix3d frame = variant == 3 ? turn : Eigen::Matrix3d::Identity();
+        const detail::PatchBounds pb = detail::patch_bounds(*n, frame);
         auto inside = [&](const detail::IVec3& box, const Vector3d& v) {
           bool ok = true;
           for (int k = 0; k < 3; ++k) {
@@ -376,12 +383,12 @@ TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (samp
             const double u = n->range.u.lo + (n->range.u.hi - n->range.u.lo) * i / 6.0;
             const double v = n->range.v.lo + (n->range.v.hi - n->range.v.lo) * j / 6.0;
             const SurfaceDerivs d = s.derivs(u, v, 2);
-            CHECK(inside(pb.S, d.S - pb.centre));
-            CHECK(inside(pb.Su, d.Su));
-            CHECK(inside(pb.Sv, d.Sv));
-            CHECK(inside(pb.Suu, d.Suu));
-            CHECK(inside(pb.Suv, d.Suv));
-            CHECK(inside(pb.Svv, d.Svv));
+            CHECK(inside(pb.S, frame * (d.S - pb.centre)));
+            CHECK(inside(pb.Su, frame * d.Su));
+            CHECK(inside(pb.Sv, frame * d.Sv));
+            CHECK(inside(pb.Suu, frame * d.Suu));
+            CHECK(inside(pb.Suv, frame * d.Suv));
+            CHECK(inside(pb.Svv, frame * d.Svv));
           }
       }
     }
