@@ -3,12 +3,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <numbers>
 #include <optional>
+#include <sstream>
 
 #include <CLI/CLI.hpp>
 
@@ -210,8 +212,11 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   if (!csv || !steps) throw std::runtime_error("cannot write to " + out);
   // One row per case, failed ones included (status other than full_slip, T_ratio and rel_error
   // empty); csv_number never writes nan or inf.
-  csv << (ra.pitch_column ? "case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,status\n"
-                          : "case,sweep,mu,phi,T_ratio,exact,rel_error,pull,status\n");
+  csv << (ra.pitch_column
+              ? "case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,plateau_mean,"
+                "plateau_spread,status\n"
+              : "case,sweep,mu,phi,T_ratio,exact,rel_error,pull,plateau_mean,plateau_spread,"
+                "status\n");
   steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n";
   std::ofstream pressure(dir / (ra.name + "_pressure.csv"));
   if (!pressure) throw std::runtime_error("cannot write to " + out);
@@ -235,9 +240,24 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     double pull = ptr.pull ? d.at(*ptr.pull).get<double>() : 0.0;
     std::optional<Analysis> a;
     AnalysisResult r;
+    // The line pressure of the last full_slip_steps steps: the plateau's first one is written.
+    std::deque<std::string> recent_pressure;
     for (;;) {
       a.emplace(Analysis::from_json(d, model_file));
-      r = a->run(verbose ? &std::cout : nullptr);
+      recent_pressure.clear();
+      const Json& rope = d.at(ptr.phi_deg.parent_pointer());
+      auto keep_pressure = [&](const VectorXd&, double t, const AnalysisStep&) {
+        const RodContactProblem* rc = a->contact_problem();
+        if (!rc || t <= a->stop_at_full_slip_after()) return true;
+        std::ostringstream rows;
+        write_pressure_rows(rows, c.name, c.mu, phi, T0, rho, rope, rc->contact(),
+                            rc->contact().points_per_element());
+        recent_pressure.push_back(rows.str());
+        if (recent_pressure.size() > static_cast<std::size_t>(a->full_slip_steps()))
+          recent_pressure.pop_front();
+        return true;
+      };
+      r = a->run(verbose ? &std::cout : nullptr, {}, keep_pressure);
       steps_total += r.solver.steps;
       iterations_total += r.solver.total_iterations;
       t_solver += r.solver.time_total;
@@ -259,8 +279,21 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
             << s.contact.stick << "," << s.contact.slip << "," << s.iterations << "\n";
     steps.flush();
     const bool ok = r.full_slip && !r.steps.empty();
-    const double T_ratio = ok ? r.steps.back().reactions[0].norm() / T0 : 0.0,
-                 rel = T_ratio / exact - 1.0;
+    // The sliding plateau: the run stops after full_slip_steps consecutive steps of steady
+    // sliding (steady_sliding); T / T0 is read at its first step (the onset, before the drift
+    // of the discrete rope under sliding), its mean and half range over all of them reported.
+    const std::size_t n_plateau =
+        ok ? std::min(r.steps.size(), static_cast<std::size_t>(a->full_slip_steps())) : 0;
+    double T_ratio = 0.0, plateau_mean = 0.0, plateau_lo = 0.0, plateau_hi = 0.0;
+    for (std::size_t k = r.steps.size() - n_plateau; k < r.steps.size(); ++k) {
+      const double v = r.steps[k].reactions[0].norm() / T0;
+      if (k == r.steps.size() - n_plateau) T_ratio = plateau_lo = plateau_hi = v;
+      plateau_mean += v / static_cast<double>(n_plateau);
+      plateau_lo = std::min(plateau_lo, v);
+      plateau_hi = std::max(plateau_hi, v);
+    }
+    const double rel = T_ratio / exact - 1.0;
+    const double spread = ok ? 0.5 * (plateau_hi - plateau_lo) / plateau_mean : 0.0;
     std::string status = ok                     ? "full_slip"
                          : r.solver.converged() ? "no_full_slip"
                                                 : to_string(r.solver.status);
@@ -269,7 +302,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     if (ra.pitch_column) csv << csv_number(c.pitch, 10) << ",";
     csv << (ok ? csv_number(T_ratio, 10) : "") << "," << csv_number(exact, 10) << ","
         << (ok ? csv_number(rel, 10) : "") << "," << (ptr.pull ? csv_number(pull, 10) : "") << ","
-        << status << std::endl;
+        << (ok ? csv_number(plateau_mean, 10) : "") << "," << (ok ? csv_number(spread, 10) : "")
+        << "," << status << std::endl;
     if (!ok) {
       ++failed;
       std::cout << "  " << c.name << ": mu " << c.mu << " phi " << c.phi_deg << " deg pitch "
@@ -281,16 +315,15 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     }
     worst = std::max(worst, std::abs(rel));
     a->write_vtk(dir.string(), c.name, r.u, r.solver.t);
-    if (const RodContactProblem* rc = a->contact_problem())
-      write_pressure_rows(pressure, c.name, c.mu, phi, T0, rho, d.at(ptr.phi_deg.parent_pointer()),
-                          rc->contact(), rc->contact().points_per_element());
+    if (n_plateau > 0 && recent_pressure.size() == n_plateau) pressure << recent_pressure.front();
     pressure.flush();
     std::cout << "  " << std::left << std::setw(4) << c.name << " mu " << std::setw(5) << c.mu
               << " phi " << std::setw(5) << c.phi_deg << " deg";
     if (ra.pitch_column) std::cout << " pitch " << std::setw(5) << c.pitch;
     std::cout << "   T/T0 " << std::setw(10) << T_ratio << " exact " << std::setw(10) << exact
-              << " rel_error " << std::showpos << rel << std::noshowpos << "   steps "
-              << r.solver.steps << ", Newton " << r.solver.total_iterations << "\n";
+              << " rel_error " << std::showpos << rel << std::noshowpos << "   plateau spread "
+              << spread << " over " << n_plateau << " steps, steps " << r.solver.steps
+              << ", Newton " << r.solver.total_iterations << "\n";
   }
   const double secs =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();

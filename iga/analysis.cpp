@@ -447,12 +447,12 @@ RodSection parse_rod_material(const JsonCursor& m) {
   return s;
 }
 
-NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
+NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
   s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
                    "tol_residual_rel", "tol_residual_abs", "tol_residual_scaled", "tol_energy_rel",
                    "divergence_ratio", "max_residual_increases", "stop_at_full_slip_after",
-                   "hit_times", "easy_iterations", "growth_factor", "cutback_factor",
-                   "description"});
+                   "full_slip_steps", "hit_times", "easy_iterations", "growth_factor",
+                   "cutback_factor", "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
   if (s.has("t_end")) {
@@ -491,6 +491,11 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after) {
     if (n.max_residual_increases < 0) c.fail("must be >= 0");
   }
   if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
+  if (s.has("full_slip_steps")) {  // consecutive steps of steady sliding before stopping
+    const JsonCursor c = s["full_slip_steps"];
+    slip_steps = c.as_int();
+    if (slip_steps < 1) c.fail("must be >= 1");
+  }
   if (s.has("easy_iterations")) {  // a step converged in <= this many iterations grows the next
     const JsonCursor c = s["easy_iterations"];
     n.easy_iterations = c.as_int();
@@ -769,7 +774,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     a.shell_ = p.get();
     a.problem_ = std::move(p);
   }
-  if (root.has("solver")) a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_);
+  if (root.has("solver"))
+    a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_, a.full_slip_steps_);
   // Every load curve, used or not (steps.csv has a column for each), must stay finite over the
   // run's pseudo-time.
   for (const auto& [name, curve] : a.curves_)
@@ -825,7 +831,7 @@ std::string Analysis::describe() const {
 ContactCounts Analysis::contact_counts() const {
   if (rod_contact_) {
     const CurveContactCounts c = rod_contact_->contact().counts();
-    return {c.active, c.stick, c.slip};
+    return {c.active, c.stick, c.slip, c.drag_ratio(), std::min(c.slip_positive, c.slip_negative)};
   }
   if (shell_contact_) {
     const SurfaceContactCounts c = shell_contact_->contact().counts();
@@ -1126,6 +1132,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     if (pvd_contact) pvd_contact->add(t, f[1]);
   };
   VectorXd u = VectorXd::Zero(problem_->num_dofs());
+  int sliding_steps = 0;  // consecutive steps of steady sliding (the plateau so far)
   auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
     try {
       AnalysisStep st;
@@ -1150,16 +1157,21 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
         if (output_.vtk == AnalysisOutput::Vtk::kAll)
           vtk(uc, t, "step" + std::to_string(res.steps.size()));
       }
+      // The caller sees every converged step, the one that completes the plateau too.
+      if (user_callback && !user_callback(uc, t, st)) return false;
       if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
-        const bool sliding =
-            contact_mu() == 0.0 || (st.contact.active > 0 && st.contact.slip == st.contact.active);
-        if (sliding) {
-          res.full_slip = true;
-          if (log) *log << "full slip at t = " << t << ": stopping\n";
-          return false;
+        const ContactCounts& c = st.contact;
+        if (steady_sliding(c.active, c.slip, c.slip_back, c.drag_ratio, contact_mu())) {
+          if (++sliding_steps >= full_slip_steps_) {
+            res.full_slip = true;
+            if (log) *log << "full slip at t = " << t << ": stopping\n";
+            return false;
+          }
+        } else {
+          sliding_steps = 0;  // the plateau is a run of consecutive sliding steps
         }
       }
-      return user_callback ? user_callback(uc, t, st) : true;
+      return true;
     } catch (const std::exception& e) {
       error = "output of the step at t = " + fmt(t) + ": " + e.what();
       return false;

@@ -44,6 +44,8 @@ struct AnalysisOutput {
 /// Contact point counts of the contact pair at a converged step.
 struct ContactCounts {
   int active = 0, stick = 0, slip = 0;
+  double drag_ratio = 0.0;  ///< rods: friction across / along the rope (CurveContactCounts)
+  int slip_back = 0;        ///< rods: slipping points pulling the other way than the most
 };
 
 /// One converged step as recorded by Analysis::run.
@@ -105,9 +107,12 @@ class Analysis {
   const NonlinearSolverSettings& solver_settings() const { return settings_; }
   NonlinearSolverSettings& solver_settings() { return settings_; }
   const AnalysisOutput& output() const { return output_; }
-  /// Pseudo-time after which the run stops at the first step where every active contact point
-  /// slides (< 0: off). "solver": {"stop_at_full_slip_after": t}.
+  /// Pseudo-time after which the run stops once `full_slip_steps` consecutive steps slide
+  /// steadily (steady_sliding, curve_contact.hpp: every active point slips, all pulling one
+  /// way, friction along the rope) (< 0: off). "solver": {"stop_at_full_slip_after": t,
+  /// "full_slip_steps": n (1)}.
   double stop_at_full_slip_after() const { return stop_full_slip_after_; }
+  int full_slip_steps() const { return full_slip_steps_; }
 
   /// Runs from the reference state over [settings.t0, settings.t1]. Progress lines go to `log`
   /// (may be null). With a non-empty `out_dir`: steps.csv (one row per converged step, written
@@ -152,6 +157,7 @@ class Analysis {
   NonlinearSolverSettings settings_;
   AnalysisOutput output_;
   double stop_full_slip_after_ = -1.0;
+  int full_slip_steps_ = 1;
 };
 
 /// --set /json/pointer=value for the apps: the value is JSON text (a number, "string", [list]).

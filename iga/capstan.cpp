@@ -170,11 +170,24 @@ CapstanResult run_capstan(CapstanModel& model, NonlinearSolverSettings settings,
   auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& a) {
     const CurveContactCounts c = prob.contact().counts();
     reaction = prob.reactions(uc, t)[static_cast<std::size_t>(model.end_b)];
-    const CapstanStep st{t, reaction.norm() / p.T0, c.active, c.stick, c.slip, a.iterations};
+    CapstanStep st{t, reaction.norm() / p.T0, c.active, c.stick, c.slip, a.iterations};
+    st.drag_ratio = c.drag_ratio();
+    st.slip_back = std::min(c.slip_positive, c.slip_negative);
     res.steps.push_back(st);
-    const bool sliding = p.mu == 0.0 || (c.active > 0 && c.slip == c.active);
-    if (t > 1.0 + 1e-12 && sliding && res.full_slip_t < 0.0) res.full_slip_t = t;
-    res.full_slip = t > 1.0 + 1e-12 && sliding;
+    const bool sliding =
+        t > 1.0 + 1e-12 && steady_sliding(c.active, c.slip, st.slip_back, st.drag_ratio, p.mu);
+    CapstanPlateau& pl = res.plateau;
+    if (sliding) {
+      if (res.full_slip_t < 0.0) res.full_slip_t = t;
+      if (pl.steps == 0) pl = CapstanPlateau{t, st.T_ratio, st.T_ratio, st.T_ratio, st.T_ratio, 0};
+      ++pl.steps;
+      pl.min = std::min(pl.min, st.T_ratio);
+      pl.max = std::max(pl.max, st.T_ratio);
+      pl.mean += (st.T_ratio - pl.mean) / pl.steps;
+    } else if (pl.steps > 0 && pl.steps < p.plateau_steps) {
+      pl = CapstanPlateau{};  // interrupted before it was long enough: look for the next
+    }
+    res.full_slip = sliding;
     prob.current_points(uc, t, x);
     for (int e = 0; e < rod.num_elements(); ++e)
       for (int q = 0; q < rod.num_quadrature_points(e); ++q)
@@ -187,7 +200,7 @@ CapstanResult run_capstan(CapstanModel& model, NonlinearSolverSettings settings,
                     st.T_ratio, st.active, st.stick, st.slip);
       *log << line;
     }
-    return !(stop == CapstanStop::kFullSlip && res.full_slip);
+    return !(stop == CapstanStop::kFullSlip && res.plateau.steps >= p.plateau_steps);
   };
   res.solver = solver.solve(prob, u, on_step);
   res.u = u;

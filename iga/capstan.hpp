@@ -71,6 +71,7 @@ struct CapstanParameters {
   double pull = 0.05;             ///< displacement of end B over t in [1, 2]
   bool nurbs_cylinder = true;     ///< exact NURBS patch (make_cylinder), else analytic
   bool planar = true;             ///< fix every z for pitch 0 (false: a free 3-D rope)
+  int plateau_steps = 1;          ///< steps of steady sliding before kFullSlip stops
   /// If set, this rigid surface replaces the cylinder (tests: the same circle of radius
   /// `radius` in the plane z = 0 on other surfaces and parametrizations: a sphere's equator or
   /// a meridian over its pole, a cylinder with its seam or patch borders under the arc).
@@ -102,17 +103,31 @@ struct CapstanStep {
   double T_ratio = 0.0;  ///< |reaction at B| / T0
   int active = 0, stick = 0, slip = 0;
   int iterations = 0;  ///< Newton iterations of the step
+  double drag_ratio = 0.0;  ///< CurveContactCounts::drag_ratio
+  int slip_back = 0;        ///< slipping points pulling the other way than the most
+};
+
+/// The sliding plateau: the run of consecutive steps (t > 1) of steady sliding
+/// (steady_sliding, curve_contact.hpp), and T / T0 over it.
+struct CapstanPlateau {
+  double t = -1.0;     ///< its first step (-1: none)
+  double onset = 0.0;  ///< T / T0 at that step
+  double mean = 0.0, min = 0.0, max = 0.0;
+  int steps = 0;
+  /// Half the range relative to the mean: how much T / T0 swings while sliding.
+  double spread() const { return steps > 0 ? 0.5 * (max - min) / mean : 0.0; }
 };
 
 struct CapstanResult {
   NonlinearSolverResult solver;
   std::vector<CapstanStep> steps;
-  double T_ratio = 0.0;           ///< at the last converged step (= the first full slip step
-                                  ///< when the run stops there)
+  double T_ratio = 0.0;  ///< at the last converged step (the first step of the
+                         ///< plateau when kFullSlip stops with plateau_steps = 1)
+  CapstanPlateau plateau;
   double exact = 0.0;             ///< exp(mu phi)  (82)
-  bool full_slip = false;         ///< the whole contact arc slides at the last step (mu = 0:
+  bool full_slip = false;         ///< the rope slides steadily at the last step (mu = 0:
                                   ///< always, there is nothing to stick)
-  double full_slip_t = -1.0;      ///< first converged t in (1, 2] with full slip (-1: none)
+  double full_slip_t = -1.0;      ///< first converged t in (1, 2] of steady sliding (-1: none)
   double wrap_angle = 0.0;        ///< angle from the load direction at A to the tension at B
   double max_axial_strain = 0.0;  ///< largest |eps| over the rod's quadrature points, all steps
   VectorXd u;                     ///< state at the last converged step (time solver.t)
@@ -122,7 +137,7 @@ struct CapstanResult {
 
 /// How far to pull.
 enum class CapstanStop {
-  kFullSlip,  ///< stop at the first step (t > 1) at which the whole contact arc slides
+  kFullSlip,  ///< stop once the sliding plateau has CapstanParameters::plateau_steps steps
   kEnd,       ///< pull on to t = 2 (the whole `pull`)
 };
 

@@ -216,6 +216,9 @@ CurveContactCounts CurveContact::counts() const {
     if (cp.law.active) {
       ++c.active;
       (cp.law.slip ? c.slip : c.stick)++;
+      c.along += cp.weight * std::abs(cp.T);
+      c.across += cp.weight * std::abs(cp.B);
+      if (cp.law.slip) (cp.T > 0.0 ? c.slip_positive : c.slip_negative)++;
     }
   return c;
 }

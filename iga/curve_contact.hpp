@@ -38,7 +38,31 @@ struct CurveContactPoint {
 
 struct CurveContactCounts {
   int active = 0, stick = 0, slip = 0;
+  /// Weighted sums over the active points of |T| (69) and |B| (70): friction along the rope
+  /// and across it.
+  double along = 0.0, across = 0.0;
+  int slip_positive = 0, slip_negative = 0;  ///< slipping points by the sign of T (69)
+  /// across / along: the share of the friction that drags across the rope (0 when it slides
+  /// along itself)
+  double drag_ratio() const { return along > 0.0 ? across / along : 0.0; }
 };
+
+/// The rule of the sliding plateau (issue 12, item 3): the rope slides steadily along itself
+/// when every active point slips, all with the pulling force T (69) of one sign (no point
+/// still sliding back), and at most `max_drag` of the friction drags across the rope (70).
+/// While the rope still sinks into a groove or slips sideways, part of the friction goes
+/// across it: that part takes mu |N| from T and, in a groove, props the rope up (its radial
+/// component adds to the normal force's), so T / T0 is still short of its limit. A rope pulled
+/// into a V-groove (half-angle 30 deg, mu 0.3) has every point slipping from the first step
+/// of the pull, with 63 % of the friction across and T / T0 49 % low; the share then falls by
+/// about half per step (0.26, 0.11, 0.046, 0.018, 0.0075, 0.0043) and levels off near 0.004
+/// while T / T0 reaches its limit. max_drag = 0.005: its effect on the radial balance,
+/// max_drag mu cot(alpha), is below 0.3 % there. mu = 0: always (nothing sticks).
+inline bool steady_sliding(int active, int slip, int slip_back, double drag_ratio, double mu,
+                           double max_drag = 0.005) {
+  if (mu == 0.0) return true;
+  return active > 0 && slip == active && slip_back == 0 && drag_ratio <= max_drag;
+}
 
 class CurveContact {
  public:

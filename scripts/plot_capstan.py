@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Plots capstan.csv (columns case,sweep,mu,phi,T_ratio,exact,rel_error,pull,status) in the
-style of the paper's Figs. 11-12: computed T/T0 against the Euler-Eytelwein formula exp(mu phi).
+"""Plots capstan.csv (columns
+case,sweep,mu,phi,T_ratio,exact,rel_error,pull,plateau_mean,plateau_spread,status) in the style of
+the paper's Figs. 11-12: computed T/T0 against the Euler-Eytelwein formula exp(mu phi).
 
 usage: plot_capstan.py capstan.csv out.png
 One panel per sweep and fixed value: a sweep with more friction coefficients than wrap angles

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
-"""Plots helix.csv (columns case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,status) in the style of the
-paper's Fig. 14: computed T/T0 against the pitch H with the 3-D Euler formula (83)
+"""Plots helix.csv (columns
+case,sweep,mu,phi,pitch,T_ratio,exact,rel_error,pull,plateau_mean,plateau_spread,status) in the
+style of the paper's Fig. 14: computed T/T0 against the pitch H with the 3-D Euler formula (83)
 exp(mu phi R / sqrt(R^2 + (H/2pi)^2)) and the 2-D formula (82) exp(mu phi).
 
 usage: plot_helix.py helix.csv out.png

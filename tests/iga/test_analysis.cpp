@@ -41,6 +41,7 @@ TEST_CASE("analysis: data/capstan.json reproduces the C++ capstan model (make_ca
   const double json = rope_ratio("capstan.json", 0.3, 0.0, &r);
   CapstanParameters p;
   p.mu = 0.3;
+  p.plateau_steps = 3;  // as solver/full_slip_steps in the file
   CapstanModel m = make_capstan(p);
   const CapstanResult c = run_capstan(m);
   CHECK(r.solver.steps == c.solver.steps);
@@ -56,6 +57,7 @@ TEST_CASE("analysis: data/helix.json reproduces the C++ model with a pitch and (
   p.pitch = 2.0;
   p.radius = 0.98;
   p.arc_elements = 32;
+  p.plateau_steps = 3;  // as solver/full_slip_steps in the file
   CapstanModel m = make_capstan(p);
   const CapstanResult c = run_capstan(m);
   // Not bit-equal: the JSON cylinder is longer than make_capstan's (height 6 against 4), so the

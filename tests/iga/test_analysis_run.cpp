@@ -151,6 +151,8 @@ TEST_CASE("analysis: values that make no sense are refused at read time (file, p
   CHECK_THAT(error([](Json& d) { d["solver"]["t_end"] = 1e308; }),
              Catch::Contains("m.json: /solver/t_end: must be at most 1000000 (pseudo-time; scale "
                              "the load curves instead), got 1e+308"));
+  CHECK_THAT(error([](Json& d) { d["solver"]["full_slip_steps"] = 0; }),
+             Catch::Contains("m.json: /solver/full_slip_steps: must be >= 1"));
   // A curve that is finite over the run is accepted even if it overflows later.
   CHECK(error([](Json& d) {
           d["load_curves"]["grow"] = {{"type", "exponential"}, {"scale", 1}, {"rate", 300}};
