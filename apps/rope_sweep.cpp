@@ -131,7 +131,7 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   std::vector<double> mu_list, phi_list, pitch_list;
   std::vector<std::string> sets;
   std::string out = std::string("out/").append(ra.name);
-  bool quick = false, profile = false, verbose = false;
+  bool quick = false, profile = false, verbose = false, penalty = false;
   double max_error = -1.0;
   cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")
       ->capture_default_str();
@@ -141,6 +141,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
   cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
   cli.add_flag("--quick", quick, "Run the model's reduced sweep (app/quick)");
+  cli.add_flag("--penalty", penalty,
+               "Enforce contact by the penalty alone (drops the model's augmented Lagrange keys)");
   cli.add_option("--max-error", max_error, "Exit with status 3 if some |rel_error| exceeds this");
   cli.add_flag("--profile", profile,
                "Report the time shares: assembly (rod, contact), linear solves");
@@ -154,6 +156,13 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   // 2. Model: read, override, validate once (an error names the file and the JSON path).
   Json doc = read_json_file(model_file);
   for (const std::string& s : sets) apply_override(doc, model_file, s);
+  if (penalty && doc.is_object() && doc.contains("contact") && doc["contact"].is_array())
+    for (Json& c : doc["contact"]) {
+      if (!c.is_object()) continue;  // reported by the validation below
+      c["enforcement"] = "penalty";
+      c.erase("penetration_tol");
+      c.erase("max_augmentations");
+    }
   const JsonCursor root(doc, model_file);
   if (!root.has("app"))
     root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");

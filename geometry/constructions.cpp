@@ -5,6 +5,8 @@
 // (global interpolation); [KS15] eq. (11), (B.16), (B.23).
 #include "geometry/constructions.hpp"
 
+#include "geometry/refinement.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -351,6 +353,8 @@ WrapPath make_wrap_path(const WrapPathSpec& w) {
     bad("arc_elements", "must be >= 1, got " + std::to_string(w.arc_elements));
   if (w.span_elements < 1)
     bad("span_elements", "must be >= 1, got " + std::to_string(w.span_elements));
+  if (w.degree < 3 || w.degree > 5)
+    bad("degree", "must be 3, 4 or 5, got " + std::to_string(w.degree));
   if (static_cast<long>(w.arc_elements) + 2L * w.span_elements > kMaxCurveElements)
     bad(w.arc_elements >= w.span_elements ? "arc_elements" : "span_elements",
         "too large: arc_elements + 2 span_elements = " +
@@ -432,6 +436,9 @@ WrapPath make_wrap_path(const WrapPathSpec& w) {
   t.push_back(s3);
   for (double s : t) Q.push_back(path(s));
   CurveFit fit = fit_curve(Q, t, 3, knots);
+  // Degree elevation keeps the curve and each knot's continuity (C2 inside, C1 at the tangent
+  // points) and enriches the space the rod is analysed in.
+  if (w.degree > 3) fit.curve = elevate_degree(fit.curve, w.degree - 3);
   return WrapPath{std::move(fit.curve), fit.max_deviation, La, tA, tB};
 }
 

@@ -108,7 +108,9 @@ HelixApproximation make_helix_cubic(double R, double pitch, double angle, int n_
 /// The curve is the least-squares fit ([PT97] 9.4.1) of a cubic B-spline with arc-length
 /// parameter, `span_elements` equal elements on each span, `arc_elements` on the arc, and
 /// double knots (C1) at the two tangent points, where the curvature jumps; 16 samples per
-/// element, ends interpolated.
+/// element, ends interpolated. `degree` 4 or 5 elevates the fit ([PT97] 5.5): the same curve
+/// with C2 continuity at the inner knots and C1 at the tangent points, a richer space for the
+/// rod (the sliding rope's T/T0 swings far less, docs/contact.md, "The sliding plateau").
 struct WrapPathSpec {
   Vector3d center = Vector3d::Zero();
   Vector3d axis = Vector3d::UnitZ();
@@ -119,6 +121,7 @@ struct WrapPathSpec {
   double span_length = 1.0;
   int arc_elements = 10;
   int span_elements = 3;
+  int degree = 3;  ///< 3, 4 or 5
 };
 struct WrapPath {
   NurbsCurve curve;
@@ -128,8 +131,9 @@ struct WrapPath {
   Vector3d tangent_end = Vector3d::Zero();    ///< ... at the end (span B)
 };
 /// Throws ConstructionError (key: radius, angle_deg, pitch, span_length, arc_elements,
-/// span_elements, axis, mid_dir) before fitting anything for radius, angle, span_length <= 0
-/// or non-finite, a non-finite pitch, element counts < 1 or above kMaxCurveElements in all, an
+/// span_elements, degree, axis, mid_dir) before fitting anything for radius, angle,
+/// span_length <= 0 or non-finite, a non-finite pitch, a degree other than 3, 4, 5, element
+/// counts < 1 or above kMaxCurveElements in all, an
 /// axis parallel to mid_dir, or an element shorter than kMinRelativeElement times the path.
 WrapPath make_wrap_path(const WrapPathSpec& spec);
 

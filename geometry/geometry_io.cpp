@@ -494,7 +494,7 @@ GeometryEntity parse_construction(const JsonCursor& e) {
   }
   if (shape == "wrap_path") {
     e.expect_object({"type", "shape", "center", "axis", "mid_dir", "radius", "angle_deg", "pitch",
-                     "span_length", "arc_elements", "span_elements"});
+                     "span_length", "arc_elements", "span_elements", "degree"});
     WrapPathSpec w;
     if (e.has("center")) w.center = parse_vec3(e["center"]);
     if (e.has("axis")) w.axis = parse_direction(e["axis"]);
@@ -512,6 +512,7 @@ GeometryEntity parse_construction(const JsonCursor& e) {
     check_length(e["span_length"]);
     w.arc_elements = parse_count(e["arc_elements"], 1, kMaxCurveElements);
     w.span_elements = parse_count(e["span_elements"], 1, kMaxCurveElements);
+    if (e.has("degree")) w.degree = parse_count(e["degree"], 3, 5);
     return construct(e, [&] { return make_wrap_path(w).curve; });
   }
   sc.fail(

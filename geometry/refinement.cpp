@@ -8,6 +8,8 @@
 #include <string>
 
 #include <Eigen/LU>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 
 namespace iga {
 
@@ -70,16 +72,23 @@ Refined refine_rows(int p, const std::vector<double>& U, const RowNet& P, std::s
   return out;
 }
 
-// Collocation matrix B(r, c) = N_c(x_r) of a knot vector.
-Eigen::MatrixXd collocation(int p, const std::vector<double>& U, const std::vector<double>& x) {
+// Collocation matrix B(r, c) = N_c(x_r) of a knot vector: p + 1 entries a row, stored sparse
+// so that elevating a curve of many elements stays O(n).
+Eigen::SparseMatrix<double> collocation(int p, const std::vector<double>& U,
+                                        const std::vector<double>& x) {
   const int n = static_cast<int>(U.size()) - p - 1;
-  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(x.size()), n);
+  std::vector<Eigen::Triplet<double>> trip;
+  trip.reserve(x.size() * static_cast<std::size_t>(p + 1));
   BasisValues N;
   for (std::size_t r = 0; r < x.size(); ++r) {
     const int span = find_span(n, p, x[r], U);
     basis_funs(span, x[r], p, U, N);
-    for (int j = 0; j <= p; ++j) B(static_cast<Eigen::Index>(r), span - p + j) = N[j];
+    for (int j = 0; j <= p; ++j)
+      if (N[static_cast<std::size_t>(j)] != 0.0)
+        trip.emplace_back(static_cast<int>(r), span - p + j, N[static_cast<std::size_t>(j)]);
   }
+  Eigen::SparseMatrix<double> B(static_cast<Eigen::Index>(x.size()), n);
+  B.setFromTriplets(trip.begin(), trip.end());
   return B;
 }
 
@@ -100,10 +109,16 @@ Refined elevate_rows(int p, const std::vector<double>& U, const RowNet& P, int t
   }
   const KnotVector Knew(p + t, out.U);
   const std::vector<double> g = Knew.greville();
-  const Eigen::MatrixXd Bnew = collocation(p + t, out.U, g);
-  const Eigen::MatrixXd Bold = collocation(p, U, g);
+  const Eigen::SparseMatrix<double> Bnew = collocation(p + t, out.U, g);
+  const Eigen::SparseMatrix<double> Bold = collocation(p, U, g);
   const Eigen::MatrixXd rhs = Bold * P;
-  out.Q = Bnew.partialPivLu().solve(rhs);
+  // Banded and totally positive (Schoenberg-Whitney holds at the Greville abscissae): sparse LU
+  // in the natural order keeps the band.
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>> lu(Bnew);
+  if (lu.info() != Eigen::Success)
+    throw GeometryError("degree elevation: the collocation matrix is singular");
+  const Eigen::MatrixXd Q = lu.solve(rhs);
+  out.Q = Q;
   return out;
 }
 

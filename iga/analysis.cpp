@@ -579,15 +579,16 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
                                       const GeometryModel& geometry, const JsonCursor& materials,
                                       std::shared_ptr<const RigidSurface>& rigid_out,
                                       RodContactProblem*& contact_out) {
-  b.expect_object({"type", "curve", "material", "quadrature_points", "bending", "description"});
+  b.expect_object(
+      {"type", "curve", "material", "quadrature_points", "bending", "stress_free", "description"});
   const JsonCursor cc = b["curve"];
   ctx.curve = geometry.curve(cc.as_string());
   if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
   // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
-  if (const long n = ctx.curve->num_control_points(); n - ctx.curve->degree() > kMaxCurveElements)
-    cc.fail("the curve has " + std::to_string(n) + " control points, above the limit of " +
-            std::to_string(kMaxCurveElements + ctx.curve->degree()) + " of a rod body (" +
-            std::to_string(kMaxCurveElements) + " elements)");
+  if (const long n = static_cast<long>(ctx.curve->knots().breaks().size()) - 1;
+      n > kMaxCurveElements)
+    cc.fail("the curve has " + std::to_string(n) + " elements, above the limit of " +
+            std::to_string(kMaxCurveElements) + " of a rod body");
   const JsonCursor mc = b["material"];
   if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
   const JsonCursor mat = materials[mc.as_string()];
@@ -601,6 +602,8 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
         one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
             ? BendingMeasure::kTransportedFrame
             : BendingMeasure::kCurvatureMagnitude;
+  if (b.has("stress_free"))
+    opt.straight_stress_free = one_of(b["stress_free"], {"reference", "straight"}) == "straight";
   std::optional<KirchhoffRod> rod;
   try {
     rod.emplace(*ctx.curve, section, opt);

@@ -352,7 +352,10 @@ KirchhoffRod::QuadraturePoint KirchhoffRod::make_point(double xi, double weight,
     throw RodError("KirchhoffRod: the reference curve is singular (|R'| = 0) at xi = " + num(xi));
   q.wJ = weight * J;
   q.T = R1 / J;
-  const Vector3d K = R1.cross(R2) / (q.A * J);  // reference curvature vector
+  // The stress-free curvature vector: the reference curve's, or 0 for a rod straight when
+  // unloaded (RodOptions::straight_stress_free).
+  const Vector3d K =
+      options_.straight_stress_free ? Vector3d::Zero() : Vector3d(R1.cross(R2) / (q.A * J));
   q.Kmag = K.norm();
 
   if (options_.bending == BendingMeasure::kCurvatureMagnitude) {

@@ -124,6 +124,11 @@ struct RodOptions {
   /// Gauss points per element for the axial term alone; 0 means the same points as bending.
   /// Fewer points (p) relieve membrane locking of curved configurations (see the header).
   int axial_quadrature_points = 0;
+  /// true: the rod is straight when unloaded (a rope laid along a curved path): the stress-free
+  /// curvature is K = 0 whatever the reference curve's shape, W_b = 1/2 EI |kappa|^2 (isotropic;
+  /// K_a = 0 otherwise); axial strain and arc length still come from the reference curve.
+  /// false: the reference curve is stress-free (K from its shape).
+  bool straight_stress_free = false;
 };
 
 /// Element vectors and matrices of fixed capacity 3 (kMaxDegree + 1): no heap allocation.

@@ -240,9 +240,11 @@ TEST_CASE("iga info validates and summarizes the analysis sections", "[apps][iga
   const Run r = run_iga("info \"" + std::string(IGA_SOURCE_DIR) + "/data/capstan.json\"");
   INFO(r.out << r.err);
   CHECK(r.status == 0);
-  CHECK(r.out.find("analysis: rod of 16 elements (degree 3, 21 control points)") !=
+  // 10 arc + 2 x 3 span elements, the cubic fit elevated to degree 5 (C2: 3 new control points
+  // an element), 6 contact points an element.
+  CHECK(r.out.find("analysis: rod of 16 elements (degree 5, 53 control points)") !=
         std::string::npos);
-  CHECK(r.out.find("48 contact points") != std::string::npos);
+  CHECK(r.out.find("96 contact points") != std::string::npos);
 }
 
 TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
@@ -258,7 +260,7 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   // The last row's reaction at the pulled end over T0 = 10 is the capstan ratio exp(0.2 pi).
   const auto rows = csv_rows(slurp(out / "steps.csv"));
   REQUIRE(rows.size() >= 12);
-  const auto col = std::find(rows[0].begin(), rows[0].end(), "R20_norm");
+  const auto col = std::find(rows[0].begin(), rows[0].end(), "R52_norm");  // the last point
   REQUIRE(col != rows[0].end());
   CHECK(rows[0].back() == "pull");  // one column per load curve, after the reactions
   const double T_ratio =

@@ -523,6 +523,36 @@ TEST_CASE("make_wrap_path: spans tangent to a helix of the given radius and pitc
   CHECK_THROWS_AS(make_wrap_path(bad), GeometryError);
 }
 
+TEST_CASE("make_wrap_path: degree 4 and 5 are the cubic fit elevated (same curve, C2 inside)",
+          "[geometry][constructions]") {
+  WrapPathSpec w;
+  w.radius = 1.02;
+  w.angle = kPi;
+  w.arc_elements = 10;
+  w.span_elements = 3;
+  const WrapPath cubic = make_wrap_path(w);
+  for (int p : {4, 5}) {
+    w.degree = p;
+    const WrapPath r = make_wrap_path(w);
+    const NurbsCurve& C = r.curve;
+    CHECK(C.degree() == p);
+    // Same elements; C2 at the inner knots (multiplicity p - 2), C1 at the tangent points
+    // (p - 1): 16 elements add p - 2 control points each beyond the first p + 1, plus one at
+    // each tangent point.
+    CHECK(C.knots().breaks() == cubic.curve.knots().breaks());
+    CHECK(C.num_control_points() == p + 1 + 15 * (p - 2) + 2);
+    double dev = 0.0;
+    const Interval D = C.domain();
+    for (int k = 0; k <= 1000; ++k) {
+      const double s = D.lo + (D.hi - D.lo) * k / 1000.0;
+      dev = std::max(dev, (C.point(s) - cubic.curve.point(s)).norm());
+    }
+    CHECK(dev < 1e-12);
+  }
+  w.degree = 6;
+  CHECK_THROWS_WITH(make_wrap_path(w), Catch::Contains("degree must be 3, 4 or 5, got 6"));
+}
+
 namespace {
 
 /// The fit as it was computed before the banded solve: the dense m x n collocation matrix and

@@ -21,4 +21,19 @@ std::string analysis_error(const Json& base, Edit&& edit) {
   return "no error";
 }
 
+/// data/capstan.json turned back into the model of make_capstan's defaults (iga/capstan.hpp),
+/// which tests use as a fixture: a cubic rope whose wrapped shape is stress-free, EI = 1e-2,
+/// 3 contact points per element, penalty enforcement.
+inline Json cubic_penalty_capstan(Json doc) {
+  doc["geometry"]["rope"].erase("degree");
+  doc["bodies"]["rope"].erase("stress_free");
+  doc["materials"]["rope"]["EI"] = 1e-2;
+  Json& c = doc["contact"][0];
+  c["points_per_element"] = 3;
+  c.erase("enforcement");
+  c.erase("penetration_tol");
+  c.erase("max_augmentations");
+  return doc;
+}
+
 }  // namespace iga::test
