@@ -162,6 +162,7 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
       c["enforcement"] = "penalty";
       c.erase("penetration_tol");
       c.erase("max_augmentations");
+      c.erase("slip_tol");
     }
   const JsonCursor root(doc, model_file);
   if (!root.has("app"))

@@ -17,7 +17,7 @@ using Matrix23 = Eigen::Matrix<double, 2, 3>;
 
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
-                              double lambda_n) {
+                              double lambda_n, const Vector3d* lambda_t) {
   ContactPoint c;
   c.xi = foot.uv;
   const SurfaceDerivs d = s.derivs(foot.uv[0], foot.uv[1], 2);
@@ -63,9 +63,9 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   // d(P w)/dr = -(n.w) dn/dr - n (w^T dn/dr).
   const Matrix3d P = Matrix3d::Identity() - n * n.transpose();
   const Matrix3d drho_dr = J * dxi_dr;  // the foot moves with r through xi (17)
-  // The committed force T_(n), carried into the current tangent plane with its length kept:
-  // q = P T_(n), carried = |T_(n)| q / |q|.
-  const Vector3d& Tn = history.T_vector;
+  // The committed force T_(n) (or the tangential multiplier lambda_T), carried into the current
+  // tangent plane with its length kept: q = P T_(n), carried = |T_(n)| q / |q|.
+  const Vector3d& Tn = lambda_t ? *lambda_t : history.T_vector;
   const Vector3d q = P * Tn;
   const double Tn_norm = Tn.norm(), q_norm = q.norm();
   Vector3d carried = Vector3d::Zero();
@@ -80,6 +80,7 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   // the spatial form of Delta xi^i rho_i (54) (equal to first order, exact on a plane).
   const Vector3d chord = d.S - history.foot;
   const Vector3d gT = P * chord;
+  c.slip_distance = gT.norm();
   const Matrix3d dgT_dr = drho_dr - n.dot(chord) * dn_dr - n * (chord.transpose() * dn_dr);
   const Vector3d t = carried - p.eps_t * gT;  // (66): trial force, a tangent vector
   const Matrix3d dt_dr = dcarried_dr - p.eps_t * dgT_dr;

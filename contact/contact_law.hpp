@@ -22,6 +22,8 @@
 //   T_c  = |T_(n)| P T_(n) / |P T_(n)|   T_(n) carried into the current tangent plane, its
 //                              length kept (a rotation to first order, like (28))
 //   T_tr = T_c - eps_T g_T                                          (66)
+//   (augmented stick: T_c carries the multiplier lambda_T instead of T_(n), see
+//   ContactEnforcement)
 //   Phi  = |T_tr| - mu |N|  (|T_tr| = sqrt(T^i a_ij T^j) of a tangent vector)  (35)
 //   T    = T_tr (stick, Phi <= 0),  mu |N| T_tr / |T_tr| (slip)    (36)
 //   The parameter form (54), (66) breaks where the parametrization is singular or jumps: at a
@@ -57,10 +59,17 @@ namespace iga {
 ///    converged state) until the largest penetration max(-xi^3) of the active points is at
 ///    most penetration_tol; at most max_augmentations updates per load step, else the step
 ///    fails (cut back like a Newton failure). lambda_N is committed with the history.
+///  - with slip_tol > 0 the stick constraint is augmented too: the tangential multiplier
+///    lambda_T (a 3-D tangent vector per point; the slave strategy of STAS: the covariant
+///    components T_i) takes the place of the committed force T_(n) in the trial force (66)
+///    after the first update of a step, lambda_T <- T of the converged state, until the slip
+///    since the anchor |g_T| of every sticking point is at most slip_tol (exact stick: a
+///    sticking point does not move on the tool; with the penalty alone it creeps by |T|/eps_T).
 struct ContactEnforcement {
   bool augmented = false;        ///< false: penalty (default); true: augmented Lagrange
   double penetration_tol = 0.0;  ///< a length > 0 (augmented only)
   int max_augmentations = 10;    ///< >= 1 (augmented only)
+  double slip_tol = 0.0;         ///< a length > 0: augment the stick constraint; 0: do not
 };
 
 struct ContactParameters {
@@ -87,6 +96,7 @@ struct ContactPoint {
   double gap = 0.0;     ///< xi^3 (52)
   double N = 0.0;       ///< normal force (34) (augmented: lambda_N + eps_N gap), <= 0
   double phi = 0.0;     ///< slip function |T_tr| - mu |N| of the trial force (35)
+  double slip_distance = 0.0;  ///< |g_T|, the slip since the anchor (stick: elastic creep)
   Vector2d T = Vector2d::Zero();         ///< contravariant tangential force T^i (36)
   Vector3d T_vector = Vector3d::Zero();  ///< the tangential force T = T^i rho_i (3-D)
   Vector2d xi = Vector2d::Zero();        ///< foot parameters
@@ -100,10 +110,11 @@ struct ContactPoint {
 /// by the caller, e.g. RigidSurface warm-started from the history). The foot must be an
 /// interior or seam point of the patch for the linearization to be exact; at edges and
 /// vertices the tangent drops the terms of the held parameters. `lambda_n` <= 0: the normal
-/// multiplier of the augmented Lagrangian at this point (0: the penalty law (34)).
+/// multiplier of the augmented Lagrangian at this point (0: the penalty law (34)). `lambda_t`:
+/// the tangential multiplier, used in (66) in place of the committed force T_(n) (null: T_(n)).
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
-                              double lambda_n = 0.0);
+                              double lambda_n = 0.0, const Vector3d* lambda_t = nullptr);
 
 /// The history of a point at rest on its foot: anchored there, no tangential force (the start
 /// state, before the first commit).

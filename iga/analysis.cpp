@@ -70,19 +70,21 @@ std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names
 }
 /// The enforcement keys of a contact pair: "enforcement" "penalty" (default) or
 /// "augmented_lagrange" with "penetration_tol" (a length > 0, required) and
-/// "max_augmentations" (1..1000, default 10); the last two only with the augmented Lagrangian.
+/// "max_augmentations" (1..1000, default 10) and "slip_tol" (a length > 0, optional: exact
+/// stick); these only with the augmented Lagrangian.
 ContactEnforcement parse_enforcement(const JsonCursor& c) {
   ContactEnforcement e;
   if (c.has("enforcement"))
     e.augmented =
         one_of(c["enforcement"], {"penalty", "augmented_lagrange"}) == "augmented_lagrange";
   if (!e.augmented) {
-    for (const char* k : {"penetration_tol", "max_augmentations"})
+    for (const char* k : {"penetration_tol", "max_augmentations", "slip_tol"})
       if (c.has(k)) c[k].fail("applies only with \"enforcement\": \"augmented_lagrange\"");
     return e;
   }
   e.penetration_tol = positive(c["penetration_tol"]);
   e.max_augmentations = int_or(c, "max_augmentations", e.max_augmentations, 1, 1000, "1..1000");
+  if (c.has("slip_tol")) e.slip_tol = positive(c["slip_tol"]);
   return e;
 }
 
@@ -620,7 +622,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
-                     "description"});
+                     "slip_tol", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     ContactParameters cp;
@@ -681,7 +683,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
       c["type"].fail("a shell's contact is \"surface_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
                      "points_per_direction", "search_distance", "enforcement", "penetration_tol",
-                     "max_augmentations", "description"});
+                     "slip_tol", "max_augmentations", "description"});
     check_body(c, ctx);
     rigid_out = rigid_surface(c["rigid"], geometry);
     for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))

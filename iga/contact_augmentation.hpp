@@ -17,12 +17,16 @@
 // are committed with the history at converged steps and restored when a step is cut back. The
 // first solve of a step starts from multipliers extrapolated from the last two commits
 // (NormalAugmentation::predict), which spares the update where the force grows steadily.
+// With slip_tol > 0 the same updates augment the stick constraint: lambda_T <- T, so that a
+// sticking point's slip since its anchor |g_T| shrinks to the change of its force between
+// solves over eps_T (ContactEnforcement, contact/contact_law.hpp).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "contact/contact_law.hpp"
@@ -47,6 +51,17 @@ struct NormalAugmentation {
   /// of multipliers with an increasing penalty, Bertsekas). Kept for the rest of the run.
   double eps_scale = 1.0;
   double previous_gap = 0.0;  ///< max |gap| at the last update of this step (0: none yet)
+  double max_slip = 0.0;      ///< max |g_T| of the sticking points at the last augment() call
+  double previous_slip = 0.0;  ///< max |g_T| at the last update of this step (0: none yet)
+  /// Factor on eps_T of the augmented law, raised like eps_scale when the stick updates stall
+  /// (a body much stiffer than eps_T per contact point moves little per update). Unlike
+  /// eps_scale it goes back to 1 at every commit and restore: a stiff tangential law makes
+  /// Newton fragile where points change between stick and slip (kept across steps, it made one
+  /// capstan case of 23 fail at slip_tol 1e-6), so it is raised only within a step.
+  double eps_t_scale = 1.0;
+  /// The tangential multipliers lambda_T replace the committed forces in (66): set by an
+  /// update with slip_tol > 0, cleared at a commit and a restore.
+  bool tangential = false;
 
   /// Predictor for the first solve of a step at time t (before any update of the step): the
   /// multipliers extrapolated linearly in t from the last two commits, lambda_N = min(0,
@@ -65,37 +80,74 @@ struct NormalAugmentation {
   /// At a commit: the times of the last two commits.
   void commit() {
     step_updates = 0;
-    previous_gap = 0.0;
+    previous_gap = previous_slip = 0.0;
+    tangential = false;
+    eps_t_scale = 1.0;
     t_before = t_committed;
     t_committed = t_last;
     ++commits;
   }
 
+  /// After a cut-back: the step starts again from the committed multipliers.
+  void restore() {
+    step_updates = 0;
+    previous_gap = previous_slip = 0.0;
+    tangential = false;
+    eps_t_scale = 1.0;
+  }
+
   /// The Uzawa step over `points`: active(cp), gap(cp), N(cp) read the state of the last
-  /// assembly; lambda(cp) is the multiplier (a reference).
-  template <class Point, class Active, class Gap, class Force, class Lambda>
+  /// assembly; lambda(cp) is the normal multiplier (a reference). Friction (slip_tol > 0):
+  /// sticks(cp) and slip(cp) (|g_T|) of the last assembly, T(cp) its tangential force in the
+  /// form the law carries, lambda_t(cp) the tangential multiplier (a reference).
+  template <class Point, class Active, class Gap, class Force, class Lambda, class Sticks,
+            class Slip, class Traction, class LambdaT>
   AugmentResult update(std::vector<Point>& points, const ContactEnforcement& e, Active active,
-                       Gap gap, Force N, Lambda lambda) {
+                       Gap gap, Force N, Lambda lambda, Sticks sticks, Slip slip, Traction T,
+                       LambdaT lambda_t) {
     if (!e.augmented) return {};
-    max_gap = 0.0;
-    for (const Point& cp : points)
-      if (active(cp)) max_gap = std::max(max_gap, std::abs(gap(cp)));
-    char buf[160];
-    if (max_gap <= e.penetration_tol) return {};
+    max_gap = max_slip = 0.0;
+    for (const Point& cp : points) {
+      if (!active(cp)) continue;
+      max_gap = std::max(max_gap, std::abs(gap(cp)));
+      if (e.slip_tol > 0.0 && sticks(cp)) max_slip = std::max(max_slip, slip(cp));
+    }
+    const bool normal_ok = max_gap <= e.penetration_tol;
+    const bool stick_ok = !(e.slip_tol > 0.0) || max_slip <= e.slip_tol;
+    if (normal_ok && stick_ok) return {};
+    char buf[240];
     if (step_updates >= e.max_augmentations) {
-      std::snprintf(buf, sizeof buf,
-                    "contact gap %.3e (largest |gap| of a point carrying a force) above "
-                    "penetration_tol %.3e after %d augmentations (max_augmentations)",
-                    max_gap, e.penetration_tol, step_updates);
+      if (!normal_ok)
+        std::snprintf(buf, sizeof buf,
+                      "contact gap %.3e (largest |gap| of a point carrying a force) above "
+                      "penetration_tol %.3e after %d augmentations (max_augmentations)",
+                      max_gap, e.penetration_tol, step_updates);
+      else
+        std::snprintf(buf, sizeof buf,
+                      "stick slip %.3e (largest slip of a sticking point since its anchor) "
+                      "above slip_tol %.3e after %d augmentations (max_augmentations)",
+                      max_slip, e.slip_tol, step_updates);
       return {AugmentStatus::failed, buf};
     }
-    if (previous_gap > 0.0 && max_gap > 0.5 * previous_gap && eps_scale < 1e3) eps_scale *= 4.0;
+    if (!normal_ok && previous_gap > 0.0 && max_gap > 0.5 * previous_gap && eps_scale < 1e3)
+      eps_scale *= 4.0;
     previous_gap = max_gap;
+    if (!stick_ok && previous_slip > 0.0 && max_slip > 0.5 * previous_slip && eps_t_scale < 1e3)
+      eps_t_scale *= 4.0;
+    previous_slip = max_slip;
     ++step_updates;
     ++total_updates;
     for (Point& cp : points) lambda(cp) = active(cp) ? std::min(0.0, N(cp)) : 0.0;
-    std::snprintf(buf, sizeof buf, "contact gap %.3e > penetration_tol %.3e", max_gap,
-                  e.penetration_tol);
+    if (e.slip_tol > 0.0) {
+      for (Point& cp : points)
+        lambda_t(cp) = active(cp) ? T(cp) : std::decay_t<decltype(T(cp))>::Zero();
+      tangential = true;
+    }
+    if (!normal_ok)
+      std::snprintf(buf, sizeof buf, "contact gap %.3e > penetration_tol %.3e", max_gap,
+                    e.penetration_tol);
+    else
+      std::snprintf(buf, sizeof buf, "stick slip %.3e > slip_tol %.3e", max_slip, e.slip_tol);
     return {AugmentStatus::updated, buf};
   }
 };

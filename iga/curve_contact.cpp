@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "geometry/differential_geometry.hpp"
@@ -41,6 +42,11 @@ void CurveContact::set_enforcement(const ContactEnforcement& e) {
   if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
     throw std::invalid_argument("contact penetration_tol must be > 0 and finite, got " +
                                 std::to_string(e.penetration_tol));
+  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
+    throw std::invalid_argument(
+        "contact slip_tol must be > 0 and finite, with the augmented "
+        "Lagrangian, got " +
+        std::to_string(e.slip_tol));
   if (e.augmented && e.max_augmentations < 1)
     throw std::invalid_argument("contact max_augmentations must be >= 1, got " +
                                 std::to_string(e.max_augmentations));
@@ -94,6 +100,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   near_.clear();
   ContactParameters law_params = params_;
   law_params.eps_n *= augmentation_.eps_scale;  // 1 but where augmentations stalled
+  law_params.eps_t *= augmentation_.eps_t_scale;
   bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
@@ -117,7 +124,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
     }
     cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
-                              cp.lambda_n);
+                              cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
       continue;
@@ -190,11 +197,18 @@ void CurveContact::commit() {
 }
 
 AugmentResult CurveContact::augment() {
+  const bool friction = params_.mu > 0.0 && params_.eps_t > 0.0;
   return augmentation_.update(
       points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
       [](const CurveContactPoint& cp) { return cp.law.gap; },
       [](const CurveContactPoint& cp) { return cp.law.N; },
-      [](CurveContactPoint& cp) -> double& { return cp.lambda_n; });
+      [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
+      [friction](const CurveContactPoint& cp) {
+        return friction && cp.law.active && !cp.law.slip && cp.history.patch >= 0;
+      },
+      [](const CurveContactPoint& cp) { return cp.law.slip_distance; },
+      [](const CurveContactPoint& cp) -> Vector3d { return cp.law.T_vector; },
+      [](CurveContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
 }
 
 void CurveContact::predict(double t) {
@@ -206,8 +220,17 @@ void CurveContact::predict(double t) {
 
 void CurveContact::restore() {
   for (CurveContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
-  augmentation_.step_updates = 0;
-  augmentation_.previous_gap = 0.0;
+  augmentation_.restore();
+}
+
+double CurveContact::roundoff() const {
+  const double eps =
+      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+  double sum = 0.0;
+  for (const CurveContactPoint& cp : points_)
+    if (cp.law.active) sum += cp.weight * eps * (cp.x.norm() + params_.radius);
+  // 8 ulps a point: the surface point, its normal and the projection carry a few each.
+  return 8.0 * std::numeric_limits<double>::epsilon() * sum;
 }
 
 CurveContactCounts CurveContact::counts() const {

@@ -33,6 +33,7 @@ struct CurveContactPoint {
   double lambda_n = 0.0;             ///< normal multiplier lambda_N (augmented Lagrange), <= 0
   double lambda_n_committed = 0.0;   ///< lambda_N at the last converged step
   double lambda_n_before = 0.0;      ///< lambda_N at the commit before (predictor)
+  Vector3d lambda_t = Vector3d::Zero();  ///< tangential multiplier lambda_T (slip_tol > 0)
   double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
 };
 
@@ -93,6 +94,10 @@ class CurveContact {
   /// Contact points per element: points_ holds them element by element, in order.
   int points_per_element() const { return per_element_; }
   CurveContactCounts counts() const;
+  /// Round-off of the contact forces at the last assembly: 8 machine epsilons times
+  /// sum_active w (eps_N + eps_T) (|x| + R) with the law's (possibly raised) penalties, an
+  /// estimate of the error of computing each force from a gap of coordinates of size |x|.
+  double roundoff() const;
   const ContactParameters& parameters() const { return params_; }
   void set_parameters(const ContactParameters& p) { params_ = p; }
   /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);

@@ -51,6 +51,10 @@ class NonlinearProblem {
   /// Called when an attempted step is undone (cutback): multipliers go back to their values at
   /// the last commit.
   virtual void restore() {}
+  /// The round-off in |R| at the last assembly, where forces are large stiffnesses times small
+  /// differences of coordinates (contact: eps_N xi3 with xi3 = (r - rho).n - R): Newton cannot
+  /// go below it, so the solver accepts |R| at or below it. Default 0.
+  virtual double residual_roundoff() const { return 0.0; }
   /// A short status for the progress line (e.g. "contact 24 (stick 10, slip 14)").
   virtual std::string status() const { return {}; }
 };

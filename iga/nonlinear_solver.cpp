@@ -121,7 +121,8 @@ void NonlinearSolver::set_settings(const NonlinearSolverSettings& settings) {
 }
 
 void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w,
-                             StepAttempt& a, NonlinearSolverResult& r, bool break_cycles) {
+                             StepAttempt& a, NonlinearSolverResult& r, bool break_cycles,
+                             double r0_step) {
   const NonlinearSolverSettings& s = settings_;
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
@@ -163,7 +164,12 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   a.residual_norms.push_back(r0);
   if (!std::isfinite(r0)) return finish(NewtonOutcome::not_finite, "|R_0| is not finite");
   // The absolute residual test, scaled to the run's forces (a floor for unloaded starts).
-  const auto r_abs = [&] { return std::max(s.tol_residual_abs, s.tol_residual_scaled * w.r0_max); };
+  // The problem's round-off is a floor too (contact forces from large penalties: an augmented
+  // Lagrangian with a raised eps_N cannot get |R| below it).
+  const auto r_abs = [&] {
+    return std::max(
+        {s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
+  };
   if (r0 <= r_abs()) return finish(NewtonOutcome::converged, {});
 
   const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
@@ -213,9 +219,12 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
     if (!std::isfinite(rk))
       return finish(NewtonOutcome::not_finite, format("iteration %d: |R| is not finite", k));
 
-    const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * r0;
+    const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * std::max(r0, r0_step);
     const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
     if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
+    // At the round-off floor no iteration can do better: converged whatever the energy says.
+    if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
+      return finish(NewtonOutcome::converged, {});
 
     if (rk > r_div)
       return finish(NewtonOutcome::diverged,
@@ -293,7 +302,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
         }
         ++a.augmentations;
         StepAttempt b;
-        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true);
+        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true, a.residual_norms.front());
         hardest_solve = std::max(hardest_solve, b.iterations);
         a.iterations += b.iterations;
         a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(),

@@ -176,8 +176,10 @@ class NonlinearSolver {
   /// Newton iterations at time t from u (updated in place). `break_cycles` (the re-solves after
   /// a multiplier update): a correction that brings |R| back to its value two iterations
   /// before (a 2-cycle, e.g. points flipping between stick and slip) is followed by a half step.
+  /// `r0_step`: |R_0| of the step's first solve; a re-solve's relative residual test is taken
+  /// against the larger of it and its own |R_0| (which is only the multipliers' jump).
   void newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
-              NonlinearSolverResult& r, bool break_cycles = false);
+              NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0);
 
   NonlinearSolverSettings settings_;
   std::ostream* log_ = nullptr;

@@ -44,6 +44,8 @@ class RigidContactProblem : public Base {
   }
   /// The multipliers of the last commit (a step is cut back).
   void restore() override { contact_.restore(); }
+  /// The contact forces' round-off (the integral's roundoff()).
+  double residual_roundoff() const override { return contact_.roundoff(); }
   /// "contact 24 (stick 10, slip 14)" for the progress line.
   /// Augmented Lagrange: "contact 24 (stick 10, slip 14), |gap| 3.1e-05", the largest |gap| of
   /// a point carrying a force at the last check.

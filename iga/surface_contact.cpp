@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -194,6 +195,10 @@ void SurfaceContact::set_enforcement(const ContactEnforcement& e) {
   if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
     throw std::invalid_argument("SurfaceContact: penetration_tol must be > 0 and finite, got " +
                                 std::to_string(e.penetration_tol));
+  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
+    throw std::invalid_argument(
+        "SurfaceContact: slip_tol must be > 0 and finite, with the augmented Lagrangian, got " +
+        std::to_string(e.slip_tol));
   if (e.augmented && e.max_augmentations < 1)
     throw std::invalid_argument("SurfaceContact: max_augmentations must be >= 1, got " +
                                 std::to_string(e.max_augmentations));
@@ -351,7 +356,8 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
 
   // 2. Point laws, residual and element tangents.
   const double eps_n = params_.eps_n * augmentation_.eps_scale;  // 1 but where updates stalled
-  ContactParameters law_params{eps_n, params_.eps_t, params_.mu, 0.0};
+  const double eps_t = params_.eps_t * augmentation_.eps_t_scale;  // likewise
+  ContactParameters law_params{eps_n, eps_t, params_.mu, 0.0};
   for (std::size_t e = 0; e < elements_.size(); ++e) {
     element_dofs(static_cast<int>(e));
     bool any = false;
@@ -359,7 +365,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
     for (std::size_t i = e * static_cast<std::size_t>(per_element); i < (e + 1) * static_cast<std::size_t>(per_element); ++i) {
       SurfaceContactPoint& cp = points_[i];
       cp.active = cp.slip = false;
-      cp.gap = cp.N = cp.phi = 0.0;
+      cp.gap = cp.N = cp.phi = cp.slip_distance = 0.0;
       cp.T.setZero();
       cp.T_vector.setZero();
       if (!found(cp.foot.status)) continue;
@@ -370,9 +376,11 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
       Matrix39 df;
       if (master) {
         // (10)-(18), (34)-(36) by the CTRS point law with R = 0 at x_c; df/dG = df/dx_c dx_c/dG.
-        const ContactPoint law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x,
-                                                  law_params, cp.history, cp.lambda_n);
+        const ContactPoint law =
+            evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x, law_params, cp.history,
+                             cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
         cp.gap = law.gap;
+        cp.slip_distance = law.slip_distance;
         if (!law.active) continue;
         cp.N = law.N;
         cp.T = law.T;
@@ -417,11 +425,14 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
           const Vector3d d = cp.foot.point - h.foot;
           Matrix39 dd;
           dd.noalias() = g.Xg + g.n * dxi3 + xi3 * g.Ng;  // d r/dG, r = x_c + xi3 n
-          const Vector2d t = h.T + params_.eps_t * A.transpose() * d;
+          cp.slip_distance = d.norm();
+          // the committed T_i, or the tangential multiplier (augmented stick)
+          const Vector2d Tc = augmentation_.tangential ? Vector2d(cp.lambda_t.head<2>()) : h.T;
+          const Vector2d t = Tc + eps_t * A.transpose() * d;
           Matrix29 dt;
-          dt.noalias() = params_.eps_t * A.transpose() * dd;
-          dt.block<1, 3>(0, 3) += params_.eps_t * d.transpose();
-          dt.block<1, 3>(1, 6) += params_.eps_t * d.transpose();
+          dt.noalias() = eps_t * A.transpose() * dd;
+          dt.block<1, 3>(0, 3) += eps_t * d.transpose();
+          dt.block<1, 3>(1, 6) += eps_t * d.transpose();
           const Vector2d t_up = a_inv * t;
           const double m = std::sqrt(t.dot(t_up));  // |T_tr| (35)
           cp.phi = m - params_.mu * absN;
@@ -510,11 +521,18 @@ void SurfaceContact::commit() {
 }
 
 AugmentResult SurfaceContact::augment() {
+  const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
   return augmentation_.update(
       points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },
       [](const SurfaceContactPoint& cp) { return cp.gap; },
       [](const SurfaceContactPoint& cp) { return cp.N; },
-      [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; });
+      [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
+      [this](const SurfaceContactPoint& cp) { return sticks(cp); },
+      [](const SurfaceContactPoint& cp) { return cp.slip_distance; },
+      [master](const SurfaceContactPoint& cp) -> Vector3d {
+        return master ? cp.T_vector : Vector3d(cp.T[0], cp.T[1], 0.0);
+      },
+      [](SurfaceContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
 }
 
 void SurfaceContact::predict(double t) {
@@ -526,12 +544,21 @@ void SurfaceContact::predict(double t) {
 
 void SurfaceContact::restore() {
   for (SurfaceContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
-  augmentation_.step_updates = 0;
-  augmentation_.previous_gap = 0.0;
+  augmentation_.restore();
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {
   return cp.active && !cp.slip && !cp.first_contact && params_.mu > 0.0 && params_.eps_t > 0.0;
+}
+
+double SurfaceContact::roundoff() const {
+  const double eps =
+      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+  double sum = 0.0;
+  for (const SurfaceContactPoint& cp : points_)
+    if (cp.active) sum += cp.weight * eps * cp.x.norm();
+  // 8 ulps a point: the surface point, its normal and the projection carry a few each.
+  return 8.0 * std::numeric_limits<double>::epsilon() * sum;
 }
 
 SurfaceContactCounts SurfaceContact::counts() const {

@@ -150,6 +150,10 @@ struct SurfaceContactPoint {
   double lambda_n = 0.0;              ///< normal multiplier lambda_N (augmented Lagrange), <= 0
   double lambda_n_committed = 0.0;    ///< lambda_N at the last converged step
   double lambda_n_before = 0.0;       ///< lambda_N at the commit before (predictor)
+  /// Tangential multiplier lambda_T (slip_tol > 0): master, a 3-D tangent vector like
+  /// T_vector; slave, the covariant components T_i in its first two entries.
+  Vector3d lambda_t = Vector3d::Zero();
+  double slip_distance = 0.0;  ///< |g_T| (master) or the chord of the feet |d| (slave)
 };
 
 /// Active points split into sticking and sliding ones (SurfaceContact::sticks).
@@ -187,6 +191,8 @@ class SurfaceContact {
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }
   SurfaceContactCounts counts() const;
+  /// Round-off of the contact forces at the last assembly (as CurveContact::roundoff).
+  double roundoff() const;
   /// Whether an active point sticks: friction is on (mu, eps_T > 0), the point is on the stick
   /// branch of (36) and was in contact at the last converged step. Without friction every active
   /// point slides freely; in its step of first contact a point carries no tangential force

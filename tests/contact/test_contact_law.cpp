@@ -18,25 +18,26 @@ using namespace iga;
 namespace {
 
 ContactPoint at(const Surface& s, const Vector3d& r, const Vector2d& guess,
-                const ContactParameters& p, const ContactHistory& h, double lambda_n = 0.0) {
+                const ContactParameters& p, const ContactHistory& h, double lambda_n = 0.0,
+                const Vector3d* lambda_t = nullptr) {
   ProjectionResult f = closest_point_local(s, r, guess);
   f.patch = 0;
-  return evaluate_contact(s, f, r, p, h, lambda_n);
+  return evaluate_contact(s, f, r, p, h, lambda_n, lambda_t);
 }
 
 // max |K - K_fd| / max(|K|, eps_n) over the columns.
 double tangent_error(const Surface& s, const Vector3d& r, const Vector2d& guess,
                      const ContactParameters& p, const ContactHistory& h, bool& slip,
-                     double lambda_n = 0.0) {
-  const ContactPoint c = at(s, r, guess, p, h, lambda_n);
+                     double lambda_n = 0.0, const Vector3d* lambda_t = nullptr) {
+  const ContactPoint c = at(s, r, guess, p, h, lambda_n, lambda_t);
   slip = c.slip;
   const double step = 1e-6;
   Matrix3d fd;
   for (int k = 0; k < 3; ++k) {
     const Vector3d e = Vector3d::Unit(k) * step;
-    fd.col(k) =
-        (at(s, r + e, c.xi, p, h, lambda_n).force - at(s, r - e, c.xi, p, h, lambda_n).force) /
-        (2 * step);
+    fd.col(k) = (at(s, r + e, c.xi, p, h, lambda_n, lambda_t).force -
+                 at(s, r - e, c.xi, p, h, lambda_n, lambda_t).force) /
+                (2 * step);
   }
   return (fd - c.stiffness).cwiseAbs().maxCoeff() / std::max(c.stiffness.cwiseAbs().maxCoeff(), p.eps_n);
 }
@@ -343,4 +344,37 @@ TEST_CASE(
       INFO("eps_t " << eps_t << "\nK\n" << c.stiffness << "\nFD\n" << fd);
       CHECK((fd - c.stiffness).cwiseAbs().maxCoeff() <= 1e-6 * p.eps_n);
     }
+}
+
+TEST_CASE(
+    "contact law: the tangential multiplier lambda_T takes the place of T_(n) in (66), the "
+    "tangent matches finite differences in stick and slip",
+    "[contact][law][tangent][augmented]") {
+  const Cylinder cyl(Placement{}, 2.0);
+  const ContactParameters p{1000.0, 100.0, 0.4, 0.1};
+  ContactHistory h;
+  h.active = true;
+  h.patch = 0;
+  h.foot = cyl.point(0.0, 0.31);         // the anchor, 0.01 below the foot along the axis
+  h.T_vector = Vector3d(0.0, 0.0, 2.0);  // the committed force, along the axis
+  const Vector3d r(2.09, 0.0, 0.32);     // penetrating by 0.01: N = -10, mu |N| = 4
+  // lambda_T equal to T_(n): the same law bit for bit; the slip since the anchor reported
+  const ContactPoint c0 = at(cyl, r, Vector2d(0.0, 0.3), p, h);
+  const ContactPoint c1 = at(cyl, r, Vector2d(0.0, 0.3), p, h, 0.0, &h.T_vector);
+  CHECK(c0.force == c1.force);
+  CHECK(c1.slip_distance == Approx(0.01).epsilon(1e-9));
+  REQUIRE(!c0.slip);
+  CHECK((c0.T_vector - Vector3d(0.0, 0.0, 1.0)).norm() < 1e-9);  // T_(n) - eps_T g_T (66)
+  // another multiplier: T_tr = lambda_T - eps_T g_T (tangent to the cylinder here)
+  const Vector3d lt(0.0, 1.0, 1.0);
+  const ContactPoint c2 = at(cyl, r, Vector2d(0.0, 0.3), p, h, 0.0, &lt);
+  REQUIRE(!c2.slip);
+  CHECK((c2.T_vector - Vector3d(0.0, 1.0, 0.0)).norm() < 1e-9);
+  for (const Vector3d& l : {Vector3d(0.0, 1.0, 1.0), Vector3d(0.0, 3.0, -6.0)}) {  // stick, slip
+    bool slip = false;
+    const double err = tangent_error(cyl, r, Vector2d(0.0, 0.3), p, h, slip, -3.0, &l);
+    INFO("lambda_T " << l.transpose() << (slip ? " slip" : " stick") << ", error " << err);
+    CHECK(err < 1e-6);
+    CHECK(slip == (l.y() > 2.0));
+  }
 }

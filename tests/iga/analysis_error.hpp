@@ -33,6 +33,7 @@ inline Json cubic_penalty_capstan(Json doc) {
   c.erase("enforcement");
   c.erase("penetration_tol");
   c.erase("max_augmentations");
+  c.erase("slip_tol");
   return doc;
 }
 
