@@ -187,7 +187,13 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const std::size_t N = argc > 1 ? static_cast<std::size_t>(std::atol(argv[1])) : 100000;
+  // Usage: bench_projection [points per set, default 100000]
+  const long n_arg = argc > 1 ? std::atol(argv[1]) : 100000;
+  if (argc > 2 || n_arg < 1) {
+    std::fprintf(stderr, "usage: %s [points per set >= 1, default 100000]\n", argv[0]);
+    return 2;
+  }
+  const std::size_t N = static_cast<std::size_t>(n_arg);
   std::printf("closest point and ray projection, %zu points per set, one core\n", N);
   run_case("freeform", load("freeform_bicubic.json"), N);
   run_case("torus", load("torus_patch.json"), N);

@@ -2,6 +2,7 @@
 // their keys are documented in docs/model_format.md ("Analysis sections").
 #include "iga/analysis.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <optional>
 #include <ostream>
 #include <sstream>
+#include <tuple>
 
 #include "geometry/constructions.hpp"
 #include "iga/model.hpp"
@@ -956,18 +958,124 @@ std::vector<double> span_samples(const std::vector<double>& breaks, int samples)
   return s;
 }
 
+/// Contact fields over the shell (issue 12 item 6): the pressure -N (force per reference area,
+/// N of the contact law (34)), the tangential traction on the shell T_vector, the gap xi3 and the
+/// state (0 apart, 1 stick, 2 slip) of the element's n x n contact (Gauss) points, interpolated
+/// piecewise bilinearly in the parameters between them and held constant from the outer points
+/// to the element's edges (no overshoot where contact ends inside an element, unlike a
+/// polynomial through the points); the state is the nearest point's.
+class ShellContactField {
+ public:
+  ShellContactField(const SurfaceContact& contact, const NurbsSurface& S)
+      : contact_(contact), bu_(S.knots_u().breaks()), bv_(S.knots_v().breaks()) {
+    const std::size_t nu = bu_.size() - 1, nv = bv_.size() - 1;
+    elements_.resize(nu * nv);
+    for (const SurfaceContactPoint& cp : contact.points()) {
+      const auto e = static_cast<std::size_t>(cp.element);
+      if (e < elements_.size()) elements_[e].points.push_back(&cp);
+    }
+    for (Element& el : elements_) {
+      for (const SurfaceContactPoint* p : el.points) {
+        el.u.push_back(p->uv[0]);
+        el.v.push_back(p->uv[1]);
+      }
+      for (std::vector<double>* a : {&el.u, &el.v}) {
+        std::sort(a->begin(), a->end());
+        a->erase(std::unique(a->begin(), a->end()), a->end());
+      }
+      el.grid.assign(el.u.size() * el.v.size(), nullptr);
+      for (const SurfaceContactPoint* p : el.points) {
+        const auto i = std::lower_bound(el.u.begin(), el.u.end(), p->uv[0]) - el.u.begin();
+        const auto j = std::lower_bound(el.v.begin(), el.v.end(), p->uv[1]) - el.v.begin();
+        el.grid[static_cast<std::size_t>(j) * el.u.size() + static_cast<std::size_t>(i)] = p;
+      }
+    }
+  }
+
+  struct Value {
+    double pressure = 0.0, gap = 0.0, state = 0.0;
+    Vector3d traction = Vector3d::Zero();
+  };
+
+  Value at(double u, double v) const {
+    const std::size_t iu = span_of(bu_, u), iv = span_of(bv_, v);
+    const Element& el = elements_[iv * (bu_.size() - 1) + iu];
+    Value out;
+    if (el.u.empty() || el.v.empty()) return out;
+    const auto [i0, i1, s] = bracket(el.u, u);
+    const auto [j0, j1, r] = bracket(el.v, v);
+    const double w[4] = {(1 - s) * (1 - r), s * (1 - r), (1 - s) * r, s * r};
+    const SurfaceContactPoint* corner[4] = {el.point(i0, j0), el.point(i1, j0), el.point(i0, j1),
+                                            el.point(i1, j1)};
+    int nearest = 0;
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] > w[nearest]) nearest = k;
+      const SurfaceContactPoint* p = corner[k];
+      if (p == nullptr) return Value{};  // an incomplete element (not expected): no field
+      if (!p->active) continue;
+      out.pressure += w[k] * -p->N;
+      out.traction += w[k] * p->T_vector;
+    }
+    for (int k = 0; k < 4; ++k) out.gap += w[k] * corner[k]->gap;
+    const SurfaceContactPoint& q = *corner[nearest];
+    out.state = !q.active ? 0.0 : contact_.sticks(q) ? 1.0 : 2.0;
+    out.pressure = std::max(0.0, out.pressure);
+    return out;
+  }
+
+ private:
+  struct Element {
+    std::vector<const SurfaceContactPoint*> points;
+    std::vector<double> u, v;                      ///< sorted abscissae of the points
+    std::vector<const SurfaceContactPoint*> grid;  ///< [j * u.size() + i]
+    const SurfaceContactPoint* point(std::size_t i, std::size_t j) const {
+      return grid[j * u.size() + i];
+    }
+  };
+  static std::size_t span_of(const std::vector<double>& b, double x) {
+    const auto k = std::upper_bound(b.begin(), b.end(), x) - b.begin() - 1;
+    return static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, std::ssize(b) - 2));
+  }
+  /// The neighbours of x among the sorted abscissae a and the weight of the upper one.
+  static std::tuple<std::size_t, std::size_t, double> bracket(const std::vector<double>& a,
+                                                              double x) {
+    if (x <= a.front()) return {0, 0, 0.0};
+    if (x >= a.back()) return {a.size() - 1, a.size() - 1, 0.0};
+    const auto k = static_cast<std::size_t>(std::upper_bound(a.begin(), a.end(), x) - a.begin());
+    return {k - 1, k, (x - a[k - 1]) / (a[k] - a[k - 1])};
+  }
+  const SurfaceContact& contact_;
+  std::vector<double> bu_, bv_;
+  std::vector<Element> elements_;
+};
+
 /// The shell's surface sampled per element, with displacement, normal and stress resultants. A
 /// sample where the normal or the stresses cannot be evaluated (a degenerate point: a collapsed
-/// edge, a pole) gets a zero normal and zero stresses and the flag singular = 1.
+/// edge, a pole) gets a zero normal and zero stresses and the flag singular = 1. With contact:
+/// contact_pressure, contact_traction, contact_gap, contact_state (ShellContactField).
 void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
-                     const std::vector<Vector3d>& x, int samples, const std::string& title) {
+                     const std::vector<Vector3d>& x, int samples, const std::string& title,
+                     const SurfaceContact* contact) {
   const NurbsSurface& S = shell.reference();
   const std::vector<double> us = span_samples(S.knots_u().breaks(), samples);
   const std::vector<double> vs = span_samples(S.knots_v().breaks(), samples);
   std::vector<Vector3d> pts, disp, normal, nloc, mloc;
   std::vector<double> von_mises, singular;
+  std::optional<ShellContactField> field;
+  if (contact) field.emplace(*contact, S);
+  std::vector<double> c_pressure, c_gap, c_state;
+  std::vector<Vector3d> c_traction;
   for (double v : vs)
     for (double u : us) {
+      if (field) {
+        const ShellContactField::Value cv = field->at(u, v);
+        const bool finite =
+            std::isfinite(cv.pressure) && std::isfinite(cv.gap) && cv.traction.allFinite();
+        c_pressure.push_back(finite ? cv.pressure : 0.0);
+        c_gap.push_back(finite ? cv.gap : 0.0);
+        c_traction.push_back(finite ? cv.traction : Vector3d::Zero());
+        c_state.push_back(cv.state);
+      }
       const Vector3d p = shell.point(u, v, x);
       pts.push_back(p);
       disp.push_back(p - S.point(u, v));
@@ -997,7 +1105,89 @@ void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
                {"normal", normal},
                {"membrane_force_N11_N22_N12", nloc},
                {"moment_M11_M22_M12", mloc}};
+  if (field) {
+    d.scalars.push_back({"contact_pressure", c_pressure});
+    d.scalars.push_back({"contact_gap", c_gap});
+    d.scalars.push_back({"contact_state", c_state});
+    d.vectors.push_back({"contact_traction", c_traction});
+  }
   write_vtk_grid(path, pts, static_cast<int>(us.size()), static_cast<int>(vs.size()), d, title);
+}
+
+/// A contact point seen from the rigid tool: its foot, the pressure and traction the body
+/// exerts there, its state (1 stick, 2 slip) and its footprint radius.
+struct ToolFoot {
+  Vector3d x;
+  double pressure, state, radius;
+  Vector3d traction;
+};
+
+/// The contact on a grid of a rigid piece (issue 12 item 6): every grid node takes the weighted
+/// mean of the feet within their footprint radius h of it, weight (1 - d/h)^2, and 0 where no
+/// foot reaches (the state: the foot of the largest weight). h is 1.5 times the point's share of
+/// the body (sqrt of its area for shells, its length for rods), at least 0.75 times the grid's
+/// spacing so that every foot reaches a node. A transfer for viewing, not a conservative one:
+/// the mean keeps the pressure level of a uniform contact, and the field falls to 0 within h of
+/// the contact zone's edge (rods: a band of width about 2h along the rope).
+VtkPointData tool_fields(const std::vector<Vector3d>& grid, double spacing,
+                         const std::vector<ToolFoot>& feet) {
+  std::vector<double> pressure(grid.size(), 0.0), state(grid.size(), 0.0);
+  std::vector<Vector3d> traction(grid.size(), Vector3d::Zero());
+  for (std::size_t g = 0; g < grid.size(); ++g) {
+    double wsum = 0.0, wmax = 0.0;
+    for (const ToolFoot& f : feet) {
+      const double h = std::max(f.radius, 0.75 * spacing);
+      const double d = (grid[g] - f.x).norm();
+      if (!(d < h)) continue;
+      const double w = (1.0 - d / h) * (1.0 - d / h);
+      wsum += w;
+      pressure[g] += w * f.pressure;
+      traction[g] += w * f.traction;
+      if (w > wmax) {
+        wmax = w;
+        state[g] = f.state;
+      }
+    }
+    if (wsum > 0.0) {
+      pressure[g] /= wsum;
+      traction[g] /= wsum;
+    }
+    if (!std::isfinite(pressure[g]) || !traction[g].allFinite()) {
+      pressure[g] = 0.0;
+      traction[g].setZero();
+    }
+  }
+  VtkPointData d;
+  d.scalars = {{"contact_pressure", pressure}, {"contact_state", state}};
+  d.vectors = {{"contact_traction", traction}};
+  return d;
+}
+
+/// The 41 x 41 grid of a bounded rigid piece (empty for an unbounded one) and its spacing.
+constexpr int kToolGrid = 41;
+std::pair<std::vector<Vector3d>, double> tool_grid(const Surface& S) {
+  const Domain2 D = S.domain();
+  if (!std::isfinite(D.u.lo) || !std::isfinite(D.u.hi) || !std::isfinite(D.v.lo) ||
+      !std::isfinite(D.v.hi))
+    return {};
+  constexpr int n = kToolGrid;
+  std::vector<Vector3d> pts;
+  pts.reserve(n * n);
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k)
+      pts.push_back(S.derivs(D.u.lo + (D.u.hi - D.u.lo) * k / (n - 1),
+                             D.v.lo + (D.v.hi - D.v.lo) * j / (n - 1), 0)
+                        .S);
+  double spacing = 0.0;  // the largest distance between neighbouring nodes
+  for (int j = 0; j < n; ++j)
+    for (int k = 0; k < n; ++k) {
+      const Vector3d& p = pts[static_cast<std::size_t>(j * n + k)];
+      if (k + 1 < n)
+        spacing = std::max(spacing, (pts[static_cast<std::size_t>(j * n + k + 1)] - p).norm());
+      if (j + 1 < n)
+        spacing = std::max(spacing, (pts[static_cast<std::size_t>((j + 1) * n + k)] - p).norm());
+    }
+  return {std::move(pts), spacing};
 }
 
 }  // namespace
@@ -1014,11 +1204,12 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   } else {
     files.push_back(stem + "_shell.vtk");
     write_shell_vtk((fs::path(dir) / files[0]).string(), shell_->shell(), x, n,
-                    name_ + " shell, t = " + fmt(t));
+                    name_ + " shell, t = " + fmt(t),
+                    shell_contact_ ? &shell_contact_->contact() : nullptr);
   }
   VtkPointData cd, td;
   std::vector<Vector3d> pts, feet, foot_traction;
-  std::vector<double> foot_pressure, foot_state;
+  std::vector<double> foot_pressure, foot_state, foot_radius;
   if (rod_contact_) {
     std::vector<Vector3d> normal;
     std::vector<double> N, T, B, slip;
@@ -1028,6 +1219,7 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
       foot_pressure.push_back(-cp.N);
       foot_traction.push_back(-cp.law.T_vector);  // on the tool: opposite to the rope's
       foot_state.push_back(cp.law.slip ? 2.0 : 1.0);
+      foot_radius.push_back(1.5 * cp.weight);  // its length share of the rope
       pts.push_back(cp.x);
       normal.push_back(cp.law.normal);
       N.push_back(cp.N);
@@ -1046,6 +1238,7 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
       foot_pressure.push_back(-cp.N);
       foot_traction.push_back(-cp.T_vector);  // on the tool: opposite to the shell's
       foot_state.push_back(shell_contact_->contact().sticks(cp) ? 1.0 : 2.0);
+      foot_radius.push_back(1.5 * std::sqrt(cp.weight));  // its area share of the shell
       pts.push_back(cp.x);
       normal.push_back(cp.normal);
       ft.push_back(cp.T_vector);
@@ -1067,6 +1260,19 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
     td.vectors = {{"tangential_traction", foot_traction}};
     write_vtk_polydata((fs::path(dir) / files[2]).string(), feet, false, td,
                        name_ + " contact on the rigid tool, t = " + fmt(t));
+    // ... and as fields on a grid of each bounded piece of the tool (tool_fields).
+    std::vector<ToolFoot> tf;
+    for (std::size_t k = 0; k < feet.size(); ++k)
+      tf.push_back({feet[k], foot_pressure[k], foot_state[k], foot_radius[k], foot_traction[k]});
+    for (int i = 0; i < rigid_->num_patches(); ++i) {
+      const auto [grid, spacing] = tool_grid(rigid_->patch(i));
+      if (grid.empty()) continue;
+      files.push_back(stem + "_tool" + (rigid_->num_patches() == 1 ? "" : "_" + std::to_string(i)) +
+                      ".vtk");
+      write_vtk_grid((fs::path(dir) / files.back()).string(), grid, kToolGrid, kToolGrid,
+                     tool_fields(grid, spacing, tf),
+                     name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t));
+    }
   }
   return files;
 }
@@ -1076,18 +1282,9 @@ bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) 
   // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk.
   int written = 0;
   for (int i = 0; i < rigid_->num_patches(); ++i) {
-    const Surface& S = rigid_->patch(i);
-    const Domain2 D = S.domain();
-    if (!std::isfinite(D.u.lo) || !std::isfinite(D.u.hi) || !std::isfinite(D.v.lo) ||
-        !std::isfinite(D.v.hi))
-      continue;
-    constexpr int n = 41;
-    std::vector<Vector3d> pts;
-    for (int j = 0; j < n; ++j)
-      for (int k = 0; k < n; ++k)
-        pts.push_back(S.derivs(D.u.lo + (D.u.hi - D.u.lo) * k / (n - 1),
-                               D.v.lo + (D.v.hi - D.v.lo) * j / (n - 1), 0)
-                          .S);
+    const std::vector<Vector3d> pts = tool_grid(rigid_->patch(i)).first;
+    if (pts.empty()) continue;
+    constexpr int n = kToolGrid;
     const std::string file =
         rigid_->num_patches() == 1 ? stem + ".vtk" : stem + "_" + std::to_string(i) + ".vtk";
     write_vtk_grid((fs::path(dir) / file).string(), pts, n, n, {}, name_ + " rigid surface");
@@ -1131,10 +1328,21 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
       }
     }
   }
+  // The tool's contact fields: one series per bounded piece, tool.pvd or tool_<i>.pvd.
+  std::map<std::string, VtkCollection> pvd_tool;
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
     const std::vector<std::string> f = write_vtk(out_dir, stem, u, t);
     pvd_body->add(t, f[0]);
     if (pvd_contact) pvd_contact->add(t, f[1]);
+    for (std::size_t k = 3; k < f.size(); ++k) {
+      const std::string series = f[k].substr(stem.size() + 1, f[k].size() - stem.size() - 5);
+      auto it = pvd_tool.find(series);
+      if (it == pvd_tool.end())
+        it = pvd_tool
+                 .emplace(series, VtkCollection((fs::path(out_dir) / (series + ".pvd")).string()))
+                 .first;
+      it->second.add(t, f[k]);
+    }
   };
   VectorXd u = VectorXd::Zero(problem_->num_dofs());
   int sliding_steps = 0;  // consecutive steps of steady sliding (the plateau so far)

@@ -273,3 +273,72 @@ TEST_CASE(
   CHECK(penalty_swing < 1e-3);
   CHECK(quintic_swing < 2e-3);
 }
+
+TEST_CASE(
+    "analysis run: a plate pressed onto a bounded rigid plane by q writes the contact pressure q "
+    "as a field over the shell and over the tool",
+    "[iga][analysis][run][output]") {
+  // Frictionless, the plate held in its plane and free along z: it moves down rigidly by
+  // q / eps_N and the contact pressure is q at every point, so the interpolated field is q
+  // everywhere on the shell, q on the tool under the plate and 0 away from it.
+  const Json doc = Json::parse(R"({
+    "format": "iga-contact-model", "version": 1, "name": "pressed_plate",
+    "geometry": {
+      "plate": {"type": "construction", "shape": "plane", "origin": [0, 0, 0.1],
+                "du": [1, 0, 0], "dv": [0, 1, 0], "refine": {"elevate": 1, "subdivide": 4}},
+      "ground": {"type": "construction", "shape": "plane", "origin": [-1, -1, 0],
+                 "du": [3, 0, 0], "dv": [0, 3, 0]}
+    },
+    "materials": {"plate": {"type": "shell", "E": 1e4, "nu": 0.3, "thickness": 0.2}},
+    "bodies": {"plate": {"type": "shell", "surface": "plate", "material": "plate"}},
+    "boundary_conditions": [{"type": "fix", "body": "plate", "points": "all",
+                             "components": [0, 1]}],
+    "loads": [{"type": "surface_load", "body": "plate", "q": [0, 0, -2.0]}],
+    "contact": [{"type": "surface_to_rigid", "body": "plate", "rigid": "ground", "eps_N": 1e5,
+                 "face": "lower", "points_per_direction": 4}],
+    "solver": {"t_end": 1.0, "initial_step": 0.5},
+    "output": {"vtk": "last"}
+  })");
+  Analysis a = Analysis::from_json(doc, "pressed_plate.json");
+  const std::string dir = out_dir("pressed_plate");
+  const AnalysisResult r = a.run(nullptr, dir);
+  REQUIRE(r.solver.converged());
+  const std::string shell = test::slurp((fs::path(dir) / "last_shell.vtk").string());
+  const std::vector<double> p = test::vtk_array(shell, "SCALARS", "contact_pressure");
+  const std::vector<double> state = test::vtk_array(shell, "SCALARS", "contact_state");
+  const std::vector<double> traction = test::vtk_array(shell, "VECTORS", "contact_traction");
+  const std::vector<double> gap = test::vtk_array(shell, "SCALARS", "contact_gap");
+  REQUIRE(p.size() == 17 * 17);  // 4 elements x 4 samples + 1 a direction
+  REQUIRE(state.size() == p.size());
+  REQUIRE(traction.size() == 3 * p.size());
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    INFO("sample " << k);
+    CHECK(p[k] == Approx(2.0).epsilon(1e-6));
+    CHECK(state[k] == 2.0);  // in contact, frictionless: sliding
+    CHECK(gap[k] == Approx(-2.0 / 1e5).epsilon(1e-4));
+  }
+  CHECK(*std::max_element(traction.begin(), traction.end()) < 1e-12);
+  CHECK(fs::exists(fs::path(dir) / "tool.pvd"));
+  const std::string tool = test::slurp((fs::path(dir) / "last_tool.vtk").string());
+  const std::vector<double> tp = test::vtk_array(tool, "SCALARS", "contact_pressure");
+  const std::vector<double> xyz = test::vtk_points(tool);
+  REQUIRE(tp.size() == 41 * 41);
+  REQUIRE(xyz.size() == 3 * tp.size());
+  int under = 0, away = 0;
+  for (std::size_t k = 0; k < tp.size(); ++k) {
+    const double x = xyz[3 * k], y = xyz[3 * k + 1];
+    const double inside = std::min({x, y, 1.0 - x, 1.0 - y});  // < 0 outside the plate
+    INFO("tool node (" << x << ", " << y << ")");
+    if (inside > 0.1) {
+      ++under;
+      CHECK(tp[k] == Approx(2.0).epsilon(1e-6));
+    } else if (inside < -0.25) {
+      ++away;
+      CHECK(tp[k] == 0.0);
+    }
+  }
+  CHECK(under >= 81);
+  CHECK(away >= 900);
+  CHECK_FALSE(has_non_finite_text(shell));
+  CHECK_FALSE(has_non_finite_text(tool));
+}

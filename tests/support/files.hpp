@@ -1,6 +1,7 @@
 // Shared helpers of the tests: a whole file as a string, the cells of a CSV text.
 #pragma once
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -31,6 +32,38 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
     rows.push_back(cells);
   }
   return rows;
+}
+
+/// The numbers of a legacy-VTK file from the line after `at` up to the next keyword line.
+inline std::vector<double> vtk_numbers_after(const std::string& text, std::size_t at) {
+  std::vector<double> v;
+  std::istringstream in(text.substr(at + 1));
+  std::string line;
+  while (std::getline(in, line) && !line.empty() &&
+         !std::isalpha(static_cast<unsigned char>(line[0]))) {
+    std::istringstream ls(line);
+    double x = 0.0;
+    while (ls >> x) v.push_back(x);
+  }
+  return v;
+}
+
+/// The values of a legacy-VTK point array ("SCALARS <name> ..." or "VECTORS <name> ..."); empty
+/// if there is no such array.
+inline std::vector<double> vtk_array(const std::string& text, const std::string& kind,
+                                     const std::string& name) {
+  auto at = text.find("\n" + kind + " " + name + " ");
+  if (at == std::string::npos) return {};
+  at = text.find('\n', at + 1);                         // past the header
+  if (kind == "SCALARS") at = text.find('\n', at + 1);  // past LOOKUP_TABLE
+  return vtk_numbers_after(text, at);
+}
+
+/// The points of a legacy-VTK file, 3 numbers each.
+inline std::vector<double> vtk_points(const std::string& text) {
+  const auto at = text.find("\nPOINTS ");
+  if (at == std::string::npos) return {};
+  return vtk_numbers_after(text, text.find('\n', at + 1));
 }
 
 }  // namespace iga::test
