@@ -28,9 +28,7 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
       cp.weight = gw[static_cast<std::size_t>(k)] * half * ref_.derivs(cp.eta, 1).d[1].norm();
       cp.foot.patch = -1;
       points_.push_back(cp);
-      PointBasis b;
-      rational_basis(cp.eta, b.R, b.first);  // fixed eta: evaluated once, used every assembly
-      basis_.push_back(b);
+      basis_.push_back(rational_basis(ref_, cp.eta));  // fixed eta: once, used every assembly
     }
   double chord = 0.0;
   for (std::size_t e = 0; e + 1 < br.size(); ++e)
@@ -53,16 +51,6 @@ void CurveContact::set_enforcement(const ContactEnforcement& e) {
   enforcement_ = e;
 }
 
-void CurveContact::rational_basis(double eta, BasisValues& R, int& first) const {
-  const int p = ref_.degree();
-  const int span = ref_.knots().find_span(eta);
-  basis_funs(span, eta, p, ref_.knots().span(), R);
-  first = span - p;
-  double W = 0.0;
-  for (int j = 0; j <= p; ++j) W += R[j] * ref_.weight(first + j);
-  for (int j = 0; j <= p; ++j) R[j] *= ref_.weight(first + j) / W;
-}
-
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
@@ -71,7 +59,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   cold_x_.clear();
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    const BasisValues& Rb = basis_[i].R;
+    const BasisValues& Rb = basis_[i].N;
     const int first = basis_[i].first;
     cp.x.setZero();
     for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
@@ -104,7 +92,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    const BasisValues& Rb = basis_[i].R;
+    const BasisValues& Rb = basis_[i].N;
     const int first = basis_[i].first;
     // Closest point, warm-started from the last foot of this point (cold ones: done above).
     if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
@@ -143,22 +131,10 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       }
     }
     // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
-    Vector3d tangent = Vector3d::Zero();
-    {
-      BasisDerivs D;
-      const int span = ref_.knots().find_span(cp.eta);
-      ders_basis_funs(span, cp.eta, p, 1, ref_.knots().span(), D);
-      double W = 0.0, dW = 0.0;
-      Vector3d A0 = Vector3d::Zero(), A1 = Vector3d::Zero();
-      for (int j = 0; j <= p; ++j) {
-        const double w = ref_.weight(span - p + j);
-        W += D[0][j] * w;
-        dW += D[1][j] * w;
-        A0 += D[0][j] * w * x[static_cast<std::size_t>(span - p + j)];
-        A1 += D[1][j] * w * x[static_cast<std::size_t>(span - p + j)];
-      }
-      tangent = ((A1 - dW * A0 / W) / W).normalized();
-    }
+    Vector3d tangent = Vector3d::Zero();  // r' = sum R_j' x_j, normalized
+    for (int j = 0; j <= p; ++j)
+      tangent += basis_[i].dN[j] * x[static_cast<std::size_t>(first + j)];
+    tangent.normalize();
     const Vector3d e = -cp.law.normal;
     const Vector3d g = tangent.cross(e);
     // [KS15]'s T^i rho_i acts on the surface, -f_T: T = -T^i (rho_i.tau) = f_T.tau.
@@ -174,7 +150,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   if (K && !any_active)
     for (int i : near_) {
       const CurveContactPoint& cp = points_[static_cast<std::size_t>(i)];
-      const BasisValues& Rb = basis_[static_cast<std::size_t>(i)].R;
+      const BasisValues& Rb = basis_[static_cast<std::size_t>(i)].N;
       const int first = basis_[static_cast<std::size_t>(i)].first;
       const Matrix3d kn = params_.eps_n * cp.law.normal * cp.law.normal.transpose();
       for (int a = 0; a <= p; ++a)

@@ -18,6 +18,7 @@
 #include "contact/contact_law.hpp"
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_curve.hpp"
+#include "geometry/rational_basis.hpp"
 #include "iga/contact_augmentation.hpp"
 
 namespace iga {
@@ -120,9 +121,6 @@ class CurveContact {
   int broad_phase_points() const { return broad_phase_points_; }
 
  private:
-  // rational basis functions R_a at eta (first index of the non-zero ones in `first`)
-  void rational_basis(double eta, BasisValues& R, int& first) const;
-
   NurbsCurve ref_;
   const RigidSurface* rigid_;
   ContactParameters params_;
@@ -130,11 +128,8 @@ class CurveContact {
   ContactEnforcement enforcement_;
   NormalAugmentation augmentation_;
   std::vector<CurveContactPoint> points_;
-  struct PointBasis {
-    BasisValues R{};  ///< rational basis functions at the point's eta
-    int first = 0;    ///< index of the first non-zero one
-  };
-  std::vector<PointBasis> basis_;  ///< per point, parallel to points_
+  /// The rational basis at each point's eta (geometry/rational_basis.hpp), parallel to points_.
+  std::vector<RationalBasis> basis_;
   double search_distance_ = 0.0;
   int broad_phase_points_ = 0;
   bool anchored_start_ = false;  ///< the first assembly anchored the points at rest

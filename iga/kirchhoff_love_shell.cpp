@@ -37,7 +37,7 @@ struct Kinematics {
   std::array<Vector3d, 5> y;
 };
 
-void kinematics(const ShellBasis& B, std::span<const Vector3d> x, int first_u, int first_v,
+void kinematics(const SurfaceBasis& B, std::span<const Vector3d> x, int first_u, int first_v,
                 int num_u, Kinematics& k) {
   for (Vector3d& v : k.y) v.setZero();
   for (int j = 0; j < B.nv; ++j)
@@ -148,58 +148,6 @@ void density(const KirchhoffLoveShell::QuadraturePoint& q, double h, const Kinem
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
-// Rational basis
-
-void shell_basis(const NurbsSurface& s, double u, double v, ShellBasis& B) {
-  const int p = s.degree_u(), q = s.degree_v();
-  const Domain2 dom = s.domain();
-  u = std::clamp(u, dom.u.lo, dom.u.hi);
-  v = std::clamp(v, dom.v.lo, dom.v.hi);
-  B.span_u = s.knots_u().find_span(u);
-  B.span_v = s.knots_v().find_span(v);
-  B.nu = p + 1;
-  B.nv = q + 1;
-  B.num_u_total = s.num_u();
-  BasisDerivs Nu, Nv;
-  ders_basis_funs(B.span_u, u, p, 2, s.knots_u().span(), Nu);
-  ders_basis_funs(B.span_v, v, q, 2, s.knots_v().span(), Nv);
-  // Weighted tensor products and the weight function W with its derivatives ([PT97] eq. 4.20).
-  double W = 0, Wu = 0, Wv = 0, Wuu = 0, Wvv = 0, Wuv = 0;
-  const int fu = B.span_u - p, fv = B.span_v - q;
-  for (int j = 0; j <= q; ++j)
-    for (int i = 0; i <= p; ++i) {
-      const std::size_t k = static_cast<std::size_t>(i + B.nu * j);
-      const double w = s.weight(fu + i, fv + j);
-      B.R[k] = Nu[0][i] * Nv[0][j] * w;
-      B.d1[k] = Nu[1][i] * Nv[0][j] * w;
-      B.d2[k] = Nu[0][i] * Nv[1][j] * w;
-      B.d11[k] = Nu[2][i] * Nv[0][j] * w;
-      B.d22[k] = Nu[0][i] * Nv[2][j] * w;
-      B.d12[k] = Nu[1][i] * Nv[1][j] * w;
-      W += B.R[k];
-      Wu += B.d1[k];
-      Wv += B.d2[k];
-      Wuu += B.d11[k];
-      Wvv += B.d22[k];
-      Wuv += B.d12[k];
-    }
-  // Quotient rule: R = N/W, R_a = (N_a - R W_a)/W, R_aa = (N_aa - 2 R_a W_a - R W_aa)/W,
-  // R_uv = (N_uv - R_u W_v - R_v W_u - R W_uv)/W.
-  for (int k = 0; k < B.count(); ++k) {
-    const std::size_t l = static_cast<std::size_t>(k);
-    const double R = B.R[l] / W;
-    const double Ru = (B.d1[l] - R * Wu) / W;
-    const double Rv = (B.d2[l] - R * Wv) / W;
-    B.d11[l] = (B.d11[l] - 2.0 * Ru * Wu - R * Wuu) / W;
-    B.d22[l] = (B.d22[l] - 2.0 * Rv * Wv - R * Wvv) / W;
-    B.d12[l] = (B.d12[l] - Ru * Wv - Rv * Wu - R * Wuv) / W;
-    B.R[l] = R;
-    B.d1[l] = Ru;
-    B.d2[l] = Rv;
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
 // KirchhoffLoveShell
 
 KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial material,
@@ -266,7 +214,7 @@ KirchhoffLoveShell::QuadraturePoint KirchhoffLoveShell::make_point(double u, dou
   q.u = u;
   q.v = v;
   q.w_param = w_param;
-  shell_basis(reference_, u, v, q.basis);
+  rational_basis(reference_, u, v, q.basis);
   Kinematics k;
   kinematics(q.basis, X_, q.basis.span_u - reference_.degree_u(),
              q.basis.span_v - reference_.degree_v(), reference_.num_u(), k);
@@ -334,7 +282,7 @@ void KirchhoffLoveShell::element_kernel(int e, std::span<const Vector3d> x, doub
   Eigen::Matrix<double, 15, 3> G;
   for (int g = 0; g < el.qp_count; ++g) {
     const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + g)];
-    const ShellBasis& B = q.basis;
+    const SurfaceBasis& B = q.basis;
     kinematics(B, x, fu, fv, reference_.num_u(), kin);
     density<Order>(q, material_.thickness, kin, d);
     if (energy) *energy += q.wJ * d.W;  // Pi_e = int W dA
@@ -415,8 +363,8 @@ void KirchhoffLoveShell::assemble(std::span<const Vector3d> x, Eigen::VectorXd& 
 }
 
 Vector3d KirchhoffLoveShell::point(double u, double v, std::span<const Vector3d> x) const {
-  ShellBasis B;
-  shell_basis(reference_, u, v, B);
+  SurfaceBasis B;
+  rational_basis(reference_, u, v, B);
   Vector3d r = Vector3d::Zero();
   for (int k = 0; k < B.count(); ++k)
     r.noalias() += B.R[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(B.global_index(k))];
@@ -424,8 +372,8 @@ Vector3d KirchhoffLoveShell::point(double u, double v, std::span<const Vector3d>
 }
 
 Vector3d KirchhoffLoveShell::normal(double u, double v, std::span<const Vector3d> x) const {
-  ShellBasis B;
-  shell_basis(reference_, u, v, B);
+  SurfaceBasis B;
+  rational_basis(reference_, u, v, B);
   Kinematics k;
   kinematics(B, x, B.span_u - reference_.degree_u(), B.span_v - reference_.degree_v(),
              reference_.num_u(), k);

@@ -16,7 +16,7 @@
 // Notation (symbol -> code):
 //   theta^1, theta^2 = (u, v)    surface parameters                      u, v
 //   X_I, x_I                     reference / current control points     X, x
-//   R_I, R_I,a, R_I,ab           rational basis and derivatives          ShellBasis::R, d1, d2,
+//   R_I, R_I,a, R_I,ab           rational basis and derivatives          SurfaceBasis::R, d1, d2,
 //                                                                        d11, d22, d12
 //   A_a, a_a                     covariant base vectors (ref./current)   A1, A2 / a1, a2
 //   A_ab, a_ab                   metric coefficients                     Aab / a (2x2)
@@ -50,6 +50,7 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/nurbs_surface.hpp"
+#include "geometry/rational_basis.hpp"
 #include "iga/dof_map.hpp"
 
 namespace iga {
@@ -72,27 +73,12 @@ struct ShellOptions {
 };
 
 /// Largest degree per direction of a shell patch (fixed-capacity element arrays).
-inline constexpr int kMaxShellDegree = 5;
+inline constexpr int kMaxShellDegree = kMaxSurfaceBasisDegree;
 inline constexpr int kMaxShellElementPoints = (kMaxShellDegree + 1) * (kMaxShellDegree + 1);
 inline constexpr int kMaxShellElementDofs = 3 * kMaxShellElementPoints;
 using ShellElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShellElementDofs, 1>;
 using ShellElementMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
                                          kMaxShellElementDofs, kMaxShellElementDofs>;
-
-/// The (p+1)(q+1) non-zero rational basis functions at (u, v) and their first and second
-/// derivatives; local function k = i + (p+1) j is control point global_index(k).
-struct ShellBasis {
-  int span_u = 0, span_v = 0;  ///< knot spans; the first control point is (span_u-p, span_v-q)
-  int nu = 0, nv = 0;          ///< p + 1, q + 1
-  int num_u_total = 0;         ///< control points in u of the patch (for global indices)
-  std::array<double, kMaxShellElementPoints> R{}, d1{}, d2{}, d11{}, d22{}, d12{};
-  int count() const { return nu * nv; }
-  int global_index(int k) const {
-    return (span_u - nu + 1 + k % nu) + num_u_total * (span_v - nv + 1 + k / nu);
-  }
-};
-/// [PT97] A2.3 in both directions, R = N M w / W and the quotient rule for the derivatives.
-void shell_basis(const NurbsSurface& s, double u, double v, ShellBasis& B);
 
 /// Strains and stress resultants at one point (output; VTK later).
 struct ShellStresses {
@@ -160,7 +146,7 @@ class KirchhoffLoveShell {
     Matrix2d Aab = Matrix2d::Zero();   ///< A_ab
     Vector3d Bv = Vector3d::Zero();    ///< B_11, B_22, B_12
     Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  ///< C in Voigt form (without h)
-    ShellBasis basis;
+    SurfaceBasis basis;
   };
   const QuadraturePoint& quadrature_point(int e, int q) const;
 

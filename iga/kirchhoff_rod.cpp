@@ -240,35 +240,6 @@ RodSection RodSection::rectangular(double E, double w, double h, const Vector3d&
   return {E * w * h, E * w * h * h * h / 12.0, E * h * w * w * w / 12.0, width_direction};
 }
 
-RationalBasis rational_basis(const NurbsCurve& c, double xi) {
-  // [PT97] A2.3 for N, N', N''; R_j = N_j w_j / W with W = sum N_j w_j, then the quotient rule:
-  // R_j' = (N_j' w_j - R_j W') / W,  R_j'' = (N_j'' w_j - 2 R_j' W' - R_j W'') / W.
-  const int p = c.degree();
-  const Interval dom = c.domain();
-  xi = std::clamp(xi, dom.lo, dom.hi);
-  const int span = c.knots().find_span(xi);
-  BasisDerivs ders;
-  ders_basis_funs(span, xi, p, 2, c.knots().span(), ders);
-  RationalBasis B;
-  B.first = span - p;
-  B.count = p + 1;
-  double W = 0.0, W1 = 0.0, W2 = 0.0;
-  for (int j = 0; j <= p; ++j) {
-    const double wj = c.weight(B.first + j);
-    W += ders[0][j] * wj;
-    W1 += ders[1][j] * wj;
-    W2 += (p >= 2 ? ders[2][j] : 0.0) * wj;
-  }
-  for (int j = 0; j <= p; ++j) {
-    const double wj = c.weight(B.first + j);
-    const std::size_t k = static_cast<std::size_t>(j);
-    B.N[k] = ders[0][j] * wj / W;
-    B.dN[k] = (ders[1][j] * wj - B.N[k] * W1) / W;
-    B.ddN[k] = ((p >= 2 ? ders[2][j] : 0.0) * wj - 2.0 * B.dN[k] * W1 - B.N[k] * W2) / W;
-  }
-  return B;
-}
-
 // ---------------------------------------------------------------------------------------------
 // KirchhoffRod
 

@@ -86,6 +86,7 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/nurbs_curve.hpp"
+#include "geometry/rational_basis.hpp"
 #include "iga/control_point_problem.hpp"
 
 namespace iga {
@@ -136,15 +137,6 @@ inline constexpr int kMaxRodElementDofs = 3 * (kMaxDegree + 1);
 using RodElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRodElementDofs, 1>;
 using RodElementMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0,
                                        kMaxRodElementDofs, kMaxRodElementDofs>;
-
-/// The p+1 rational basis functions R_j = N_{first+j} w / W and their first two derivatives at xi
-/// ([PT97] A2.3 and the quotient rule, eq. 4.8 in basis form).
-struct RationalBasis {
-  int first = 0;  ///< index of the first non-zero function (span - p)
-  int count = 0;  ///< p + 1
-  BasisValues N{}, dN{}, ddN{};
-};
-RationalBasis rational_basis(const NurbsCurve& c, double xi);
 
 /// Strains and section forces at one point of the rod (output, tests).
 struct RodStrains {

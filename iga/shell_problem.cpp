@@ -22,7 +22,7 @@ bool along_u(SurfaceEdge e) {  // the edge runs in u (v fixed)
 }
 
 /// Surface derivatives sum_k dR[k] x_k over the basis functions of B.
-Vector3d combine(const ShellBasis& B, const std::array<double, kMaxShellElementPoints>& dR,
+Vector3d combine(const SurfaceBasis& B, const std::array<double, kMaxShellElementPoints>& dR,
                  std::span<const Vector3d> x) {
   Vector3d r = Vector3d::Zero();
   for (int k = 0; k < B.count(); ++k)
@@ -169,15 +169,15 @@ void ShellProblem::add_edge_load(SurfaceEdge edge, const Vector3d& q, LoadCurve 
   gauss_legendre(ng, gx, gw);
   const std::vector<double> br = kv.breaks();
   std::vector<Vector3d> f(static_cast<std::size_t>(num_control_points()), Vector3d::Zero());
-  ShellBasis B;
+  SurfaceBasis B;
   for (std::size_t e = 0; e + 1 < br.size(); ++e) {
     const double mid = 0.5 * (br[e] + br[e + 1]), half = 0.5 * (br[e + 1] - br[e]);
     for (int g = 0; g < ng; ++g) {
       const double s = mid + half * gx[static_cast<std::size_t>(g)];
       if (u_run)
-        shell_basis(S, s, fixed, B);
+        rational_basis(S, s, fixed, B);
       else
-        shell_basis(S, fixed, s, B);
+        rational_basis(S, fixed, s, B);
       const Vector3d At = combine(B, u_run ? B.d1 : B.d2, reference_points());
       const double w = half * gw[static_cast<std::size_t>(g)] * At.norm();  // dS = |A_t| ds
       for (int k = 0; k < B.count(); ++k)
@@ -188,8 +188,8 @@ void ShellProblem::add_edge_load(SurfaceEdge edge, const Vector3d& q, LoadCurve 
 }
 
 void ShellProblem::add_point_load(double u, double v, const Vector3d& F, LoadCurve curve) {
-  ShellBasis B;
-  shell_basis(shell_.reference(), u, v, B);
+  SurfaceBasis B;
+  rational_basis(shell_.reference(), u, v, B);
   std::vector<std::pair<int, Vector3d>> forces;
   for (int k = 0; k < B.count(); ++k)
     if (B.R[static_cast<std::size_t>(k)] != 0.0)
@@ -205,7 +205,7 @@ void ShellProblem::add_pressure_terms(std::span<const Vector3d> x, double t, Vec
   for (int e = 0; e < shell_.num_elements(); ++e)
     for (int q = 0; q < shell_.num_quadrature_points(e); ++q) {
       const KirchhoffLoveShell::QuadraturePoint& qp = shell_.quadrature_point(e, q);
-      const ShellBasis& B = qp.basis;
+      const SurfaceBasis& B = qp.basis;
       const Vector3d a1 = combine(B, B.d1, x), a2 = combine(B, B.d2, x);
       const double w = p * qp.w_param;
       const Vector3d f = w * a1.cross(a2);  // p a_3 da = p (a_1 x a_2) du dv

@@ -2,6 +2,8 @@
 // surface_contact.hpp for the strategies, the sign conventions and the search.
 #include "iga/surface_contact.hpp"
 
+#include "geometry/rational_basis.hpp"
+
 #include <array>
 #include <cmath>
 #include <limits>
@@ -25,37 +27,6 @@ using Matrix29 = Eigen::Matrix<double, 2, 9>;
 using Matrix99 = Eigen::Matrix<double, 9, 9>;
 using Matrix32 = Eigen::Matrix<double, 3, 2>;
 using RowVector9 = Eigen::Matrix<double, 1, 9>;
-
-// Rational basis functions of a NURBS surface and their first derivatives at (u, v)
-// ([PT97] A2.3 in each direction, eq. 4.20 in basis form: R = N M w / W and the quotient rule).
-// out[3 k + 0..2] = (R_k, R_k,u, R_k,v) for k = a + (p+1) b, control point (first_u + a,
-// first_v + b).
-void rational_surface_basis(const NurbsSurface& s, double u, double v, double* out, int& first_u,
-                            int& first_v) {
-  const int p = s.degree_u(), q = s.degree_v();
-  const int su = s.knots_u().find_span(u), sv = s.knots_v().find_span(v);
-  BasisDerivs Du, Dv;
-  ders_basis_funs(su, u, p, 1, s.knots_u().span(), Du);
-  ders_basis_funs(sv, v, q, 1, s.knots_v().span(), Dv);
-  first_u = su - p;
-  first_v = sv - q;
-  double W = 0.0, Wu = 0.0, Wv = 0.0;
-  for (int b = 0; b <= q; ++b)
-    for (int a = 0; a <= p; ++a) {
-      const double w = s.weight(first_u + a, first_v + b);
-      W += Du[0][a] * Dv[0][b] * w;
-      Wu += Du[1][a] * Dv[0][b] * w;
-      Wv += Du[0][a] * Dv[1][b] * w;
-    }
-  for (int b = 0; b <= q; ++b)
-    for (int a = 0; a <= p; ++a) {
-      const double w = s.weight(first_u + a, first_v + b);
-      double* o = out + 3 * (a + (p + 1) * b);
-      o[0] = Du[0][a] * Dv[0][b] * w / W;
-      o[1] = (Du[1][a] * Dv[0][b] * w - o[0] * Wu) / W;
-      o[2] = (Du[0][a] * Dv[1][b] * w - o[0] * Wv) / W;
-    }
-}
 
 // The shell's geometry at a contact point: G = (rho, a1, a2), the normal and its derivatives,
 // the contact point x_c = rho + c n and dx_c/dG.
@@ -153,7 +124,17 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
           cp.foot.status = ProjectionStatus::far;
           basis_.resize(basis_.size() + 3 * static_cast<std::size_t>(nen_));
           double* B = basis_.data() + basis_.size() - 3 * static_cast<std::size_t>(nen_);
-          rational_surface_basis(ref_, cp.uv[0], cp.uv[1], B, el.first_u, el.first_v);
+          // (R_k, R_k,u, R_k,v) for k = a + (p+1) b, control point (first_u + a, first_v + b)
+          SurfaceBasis sb;
+          rational_basis(ref_, cp.uv[0], cp.uv[1], sb);
+          el.first_u = sb.first_u();
+          el.first_v = sb.first_v();
+          for (int k = 0; k < nen_; ++k) {
+            const auto l = static_cast<std::size_t>(k);
+            B[3 * k] = sb.R[l];
+            B[3 * k + 1] = sb.d1[l];
+            B[3 * k + 2] = sb.d2[l];
+          }
           for (int b = 0, k = 0; b <= q; ++b)
             for (int a = 0; a <= p; ++a, ++k) cps[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
           PointGeometry g;

@@ -1,0 +1,58 @@
+// The non-zero rational basis functions of a NURBS curve or surface at a parameter and their
+// derivatives up to the second: one implementation for the rod, the shell and the contact
+// integrals (which evaluate them at fixed quadrature points).
+// References: [PT97] Piegl & Tiller, The NURBS Book, 2nd ed.: A2.3 (B-spline basis and
+// derivatives), eq. 4.8 and 4.20 (rational basis, here differentiated by the quotient rule).
+//
+// Notation (symbol -> code):
+//   N_j, N_j', N_j''      B-spline basis and derivatives (A2.3)
+//   w_j                   weights
+//   W = sum N_j w_j       weight function, W', W''
+//   R_j = N_j w_j / W     rational basis                          N (curve), R (surface)
+//   R_j' = (N_j' w_j - R_j W') / W                                 dN; d1, d2
+//   R_j'' = (N_j'' w_j - 2 R_j' W' - R_j W'') / W                  ddN; d11, d22
+//   R_uv = (N_uv w - R_u W_v - R_v W_u - R W_uv) / W                d12
+#pragma once
+
+#include <array>
+
+#include "geometry/bspline_basis.hpp"
+#include "geometry/nurbs_curve.hpp"
+#include "geometry/nurbs_surface.hpp"
+
+namespace iga {
+
+/// The p+1 rational basis functions of a curve, R_j = N_{first+j} w / W, and their first two
+/// derivatives at xi.
+struct RationalBasis {
+  int first = 0;  ///< index of the first non-zero function (span - p)
+  int count = 0;  ///< p + 1
+  BasisValues N{}, dN{}, ddN{};
+};
+/// xi is clamped to the curve's domain.
+RationalBasis rational_basis(const NurbsCurve& c, double xi);
+
+/// Largest degree per direction that SurfaceBasis holds (fixed capacity, no heap allocation).
+inline constexpr int kMaxSurfaceBasisDegree = 5;
+inline constexpr int kMaxSurfaceBasisPoints =
+    (kMaxSurfaceBasisDegree + 1) * (kMaxSurfaceBasisDegree + 1);
+
+/// The (p+1)(q+1) non-zero rational basis functions of a surface at (u, v) and their first and
+/// second derivatives; local function k = i + (p+1) j is control point global_index(k).
+struct SurfaceBasis {
+  int span_u = 0, span_v = 0;  ///< knot spans; the first control point is (span_u-p, span_v-q)
+  int nu = 0, nv = 0;          ///< p + 1, q + 1
+  int num_u_total = 0;         ///< control points in u of the patch (for global indices)
+  std::array<double, kMaxSurfaceBasisPoints> R{}, d1{}, d2{}, d11{}, d22{}, d12{};
+  int count() const { return nu * nv; }
+  int first_u() const { return span_u - nu + 1; }
+  int first_v() const { return span_v - nv + 1; }
+  int global_index(int k) const {
+    return (first_u() + k % nu) + num_u_total * (first_v() + k / nu);
+  }
+};
+/// (u, v) is clamped to the domain. Throws GeometryError for a degree above
+/// kMaxSurfaceBasisDegree.
+void rational_basis(const NurbsSurface& s, double u, double v, SurfaceBasis& B);
+
+}  // namespace iga
