@@ -3,6 +3,7 @@
 #include "iga/analysis.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -958,12 +959,22 @@ std::vector<double> span_samples(const std::vector<double>& breaks, int samples)
   return s;
 }
 
-/// Contact fields over the shell (issue 12 item 6): the pressure -N (force per reference area,
-/// N of the contact law (34)), the tangential traction on the shell T_vector, the gap xi3 and the
-/// state (0 apart, 1 stick, 2 slip) of the element's n x n contact (Gauss) points, interpolated
-/// piecewise bilinearly in the parameters between them and held constant from the outer points
-/// to the element's edges (no overshoot where contact ends inside an element, unlike a
-/// polynomial through the points); the state is the nearest point's.
+/// Contact fields over the shell (issue 12 item 6): the pressure -N, the tangential traction on
+/// the shell T_vector, the gap xi3 and the state (0 apart, 1 stick, 2 slip) of the element's
+/// n x n contact (Gauss) points, evaluated anywhere in the element. N of the contact law (34) and
+/// T_vector are forces per reference area: the contact integral weights them with cp.weight, the
+/// Gauss weight times the reference area element. The interpolation:
+///  - where all points of the element are in contact and in one state (pressure and traction
+///    are smooth there): tensor-product Lagrange interpolation through the points' parameters,
+///    f(u, v) = sum_ij f_ij l_i(u) l_j(v), l_i(u) = prod_{k != i} (u - u_k) / (u_i - u_k). It
+///    reproduces a field of degree n - 1 in each parameter, e.g. the penalty pressure on a flat
+///    tool, eps_N times the gap of a polynomial shell, up to the rational part of the normal;
+///  - where the edge of the contact zone or of a stick zone runs through the element (a kink
+///    between the points: a polynomial through them would overshoot): piecewise bilinear between
+///    the neighbouring points, held constant from the outer points to the element's edges.
+/// The pressure is clamped at >= 0; the state is the nearest point's. The gap is interpolated
+/// among the points that have a foot within the search distance (the others have no gap); where
+/// none has, it is unknown: 0 and gap_known = false.
 class ShellContactField {
  public:
   ShellContactField(const SurfaceContact& contact, const NurbsSurface& S)
@@ -989,36 +1000,26 @@ class ShellContactField {
         const auto j = std::lower_bound(el.v.begin(), el.v.end(), p->uv[1]) - el.v.begin();
         el.grid[static_cast<std::size_t>(j) * el.u.size() + static_cast<std::size_t>(i)] = p;
       }
+      // Smooth: a complete tensor grid of points, all in contact, all in the same state.
+      el.smooth = !el.points.empty() && el.points.size() == el.grid.size() &&
+                  std::none_of(el.grid.begin(), el.grid.end(),
+                               [](const SurfaceContactPoint* p) { return p == nullptr; });
+      for (const SurfaceContactPoint* p : el.points)
+        el.smooth = el.smooth && p->active && state(*p) == state(*el.points.front());
     }
   }
 
   struct Value {
     double pressure = 0.0, gap = 0.0, state = 0.0;
     Vector3d traction = Vector3d::Zero();
+    bool gap_known = false;
   };
 
   Value at(double u, double v) const {
     const std::size_t iu = span_of(bu_, u), iv = span_of(bv_, v);
     const Element& el = elements_[iv * (bu_.size() - 1) + iu];
-    Value out;
-    if (el.u.empty() || el.v.empty()) return out;
-    const auto [i0, i1, s] = bracket(el.u, u);
-    const auto [j0, j1, r] = bracket(el.v, v);
-    const double w[4] = {(1 - s) * (1 - r), s * (1 - r), (1 - s) * r, s * r};
-    const SurfaceContactPoint* corner[4] = {el.point(i0, j0), el.point(i1, j0), el.point(i0, j1),
-                                            el.point(i1, j1)};
-    int nearest = 0;
-    for (int k = 0; k < 4; ++k) {
-      if (w[k] > w[nearest]) nearest = k;
-      const SurfaceContactPoint* p = corner[k];
-      if (p == nullptr) return Value{};  // an incomplete element (not expected): no field
-      if (!p->active) continue;
-      out.pressure += w[k] * -p->N;
-      out.traction += w[k] * p->T_vector;
-    }
-    for (int k = 0; k < 4; ++k) out.gap += w[k] * corner[k]->gap;
-    const SurfaceContactPoint& q = *corner[nearest];
-    out.state = !q.active ? 0.0 : contact_.sticks(q) ? 1.0 : 2.0;
+    if (el.u.empty() || el.v.empty()) return {};
+    Value out = el.smooth ? lagrange(el, u, v) : bilinear(el, u, v);
     out.pressure = std::max(0.0, out.pressure);
     return out;
   }
@@ -1028,10 +1029,72 @@ class ShellContactField {
     std::vector<const SurfaceContactPoint*> points;
     std::vector<double> u, v;                      ///< sorted abscissae of the points
     std::vector<const SurfaceContactPoint*> grid;  ///< [j * u.size() + i]
+    bool smooth = false;  ///< all points in contact, in one state: Lagrange interpolation
     const SurfaceContactPoint* point(std::size_t i, std::size_t j) const {
       return grid[j * u.size() + i];
     }
   };
+
+  double state(const SurfaceContactPoint& p) const {
+    return !p.active ? 0.0 : contact_.sticks(p) ? 1.0 : 2.0;
+  }
+
+  /// The Lagrange basis through the abscissae a at x: l_i(x) = prod_{k != i} (x - a_k) / (a_i -
+  /// a_k).
+  static std::vector<double> lagrange_basis(const std::vector<double>& a, double x) {
+    std::vector<double> l(a.size(), 1.0);
+    for (std::size_t i = 0; i < a.size(); ++i)
+      for (std::size_t k = 0; k < a.size(); ++k)
+        if (k != i) l[i] *= (x - a[k]) / (a[i] - a[k]);
+    return l;
+  }
+
+  /// A smooth element: f(u, v) = sum_ij f_ij l_i(u) l_j(v) (every point active, with a foot).
+  Value lagrange(const Element& el, double u, double v) const {
+    const std::vector<double> lu = lagrange_basis(el.u, u), lv = lagrange_basis(el.v, v);
+    Value out;
+    for (std::size_t j = 0; j < el.v.size(); ++j)
+      for (std::size_t i = 0; i < el.u.size(); ++i) {
+        const SurfaceContactPoint& p = *el.point(i, j);
+        const double w = lu[i] * lv[j];
+        out.pressure += w * -p.N;
+        out.traction += w * p.T_vector;
+        out.gap += w * p.gap;
+      }
+    out.state = state(*el.points.front());
+    out.gap_known = true;
+    return out;
+  }
+
+  /// An element with a contact or stick edge: bilinear between the 4 neighbouring points, the
+  /// outer points' values held to the element's edges.
+  Value bilinear(const Element& el, double u, double v) const {
+    const auto [i0, i1, s] = bracket(el.u, u);
+    const auto [j0, j1, r] = bracket(el.v, v);
+    const double w[4] = {(1 - s) * (1 - r), s * (1 - r), (1 - s) * r, s * r};
+    const SurfaceContactPoint* corner[4] = {el.point(i0, j0), el.point(i1, j0), el.point(i0, j1),
+                                            el.point(i1, j1)};
+    Value out;
+    int nearest = 0;
+    double wgap = 0.0;  // the weight of the corners with a gap
+    for (int k = 0; k < 4; ++k) {
+      if (w[k] > w[nearest]) nearest = k;
+      const SurfaceContactPoint* p = corner[k];
+      if (p == nullptr) return Value{};  // an incomplete element (not expected): no field
+      if (found(p->foot.status)) {
+        wgap += w[k];
+        out.gap += w[k] * p->gap;
+      }
+      if (!p->active) continue;
+      out.pressure += w[k] * -p->N;
+      out.traction += w[k] * p->T_vector;
+    }
+    out.gap_known = wgap > 0.0;
+    out.gap = out.gap_known ? out.gap / wgap : 0.0;
+    out.state = state(*corner[nearest]);
+    return out;
+  }
+
   static std::size_t span_of(const std::vector<double>& b, double x) {
     const auto k = std::upper_bound(b.begin(), b.end(), x) - b.begin() - 1;
     return static_cast<std::size_t>(std::clamp<std::ptrdiff_t>(k, 0, std::ssize(b) - 2));
@@ -1052,7 +1115,9 @@ class ShellContactField {
 /// The shell's surface sampled per element, with displacement, normal and stress resultants. A
 /// sample where the normal or the stresses cannot be evaluated (a degenerate point: a collapsed
 /// edge, a pole) gets a zero normal and zero stresses and the flag singular = 1. With contact:
-/// contact_pressure, contact_traction, contact_gap, contact_state (ShellContactField).
+/// contact_pressure, contact_traction, contact_gap, contact_state (ShellContactField) and the
+/// flag contact_undefined = 1 where the gap is unknown (no point near has a foot) or a value is
+/// not finite; such values are written as 0.
 void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
                      const std::vector<Vector3d>& x, int samples, const std::string& title,
                      const SurfaceContact* contact) {
@@ -1063,7 +1128,7 @@ void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
   std::vector<double> von_mises, singular;
   std::optional<ShellContactField> field;
   if (contact) field.emplace(*contact, S);
-  std::vector<double> c_pressure, c_gap, c_state;
+  std::vector<double> c_pressure, c_gap, c_state, c_undefined;
   std::vector<Vector3d> c_traction;
   for (double v : vs)
     for (double u : us) {
@@ -1075,6 +1140,7 @@ void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
         c_gap.push_back(finite ? cv.gap : 0.0);
         c_traction.push_back(finite ? cv.traction : Vector3d::Zero());
         c_state.push_back(cv.state);
+        c_undefined.push_back(finite && cv.gap_known ? 0.0 : 1.0);
       }
       const Vector3d p = shell.point(u, v, x);
       pts.push_back(p);
@@ -1109,6 +1175,7 @@ void write_shell_vtk(const std::string& path, const KirchhoffLoveShell& shell,
     d.scalars.push_back({"contact_pressure", c_pressure});
     d.scalars.push_back({"contact_gap", c_gap});
     d.scalars.push_back({"contact_state", c_state});
+    d.scalars.push_back({"contact_undefined", c_undefined});
     d.vectors.push_back({"contact_traction", c_traction});
   }
   write_vtk_grid(path, pts, static_cast<int>(us.size()), static_cast<int>(vs.size()), d, title);
@@ -1128,33 +1195,56 @@ struct ToolFoot {
 /// the body (sqrt of its area for shells, its length for rods), at least 0.75 times the grid's
 /// spacing so that every foot reaches a node. A transfer for viewing, not a conservative one:
 /// the mean keeps the pressure level of a uniform contact, and the field falls to 0 within h of
-/// the contact zone's edge (rods: a band of width about 2h along the rope).
+/// the contact zone's edge (rods: a band of width about 2h along the rope). The feet are sorted
+/// into cubic cells of the largest h, so a node looks at the 27 cells around its own only.
 VtkPointData tool_fields(const std::vector<Vector3d>& grid, double spacing,
                          const std::vector<ToolFoot>& feet) {
   std::vector<double> pressure(grid.size(), 0.0), state(grid.size(), 0.0);
   std::vector<Vector3d> traction(grid.size(), Vector3d::Zero());
+  // The cells: key floor(x / c) per coordinate, c the largest footprint radius.
+  double c = 0.75 * spacing;
+  for (const ToolFoot& f : feet)
+    if (std::isfinite(f.radius)) c = std::max(c, f.radius);
+  using Cell = std::array<long long, 3>;
+  const auto cell_of = [c](const Vector3d& x) {
+    Cell k;
+    for (int i = 0; i < 3; ++i)  // clamped: a far or huge coordinate stays a valid key
+      k[static_cast<std::size_t>(i)] =
+          static_cast<long long>(std::clamp(std::floor(x[i] / c), -1e15, 1e15));
+    return k;
+  };
+  std::vector<std::pair<Cell, std::size_t>> sorted;  // (cell, foot), by cell
+  if (c > 0.0 && std::isfinite(c))
+    for (std::size_t i = 0; i < feet.size(); ++i)
+      if (feet[i].x.allFinite()) sorted.push_back({cell_of(feet[i].x), i});
+  std::sort(sorted.begin(), sorted.end());
   for (std::size_t g = 0; g < grid.size(); ++g) {
+    if (sorted.empty() || !grid[g].allFinite()) continue;
     double wsum = 0.0, wmax = 0.0;
-    for (const ToolFoot& f : feet) {
-      const double h = std::max(f.radius, 0.75 * spacing);
-      const double d = (grid[g] - f.x).norm();
-      if (!(d < h)) continue;
-      const double w = (1.0 - d / h) * (1.0 - d / h);
-      wsum += w;
-      pressure[g] += w * f.pressure;
-      traction[g] += w * f.traction;
-      if (w > wmax) {
-        wmax = w;
-        state[g] = f.state;
-      }
-    }
-    if (wsum > 0.0) {
+    const Cell home = cell_of(grid[g]);
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const Cell key{home[0] + dx, home[1] + dy, home[2] + dz};
+          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{key, std::size_t{0}});
+          for (; it != sorted.end() && it->first == key; ++it) {
+            const ToolFoot& f = feet[it->second];
+            const double h = std::max(f.radius, 0.75 * spacing);
+            const double d = (grid[g] - f.x).norm();
+            if (!(d < h)) continue;
+            const double w = (1.0 - d / h) * (1.0 - d / h);
+            wsum += w;
+            pressure[g] += w * f.pressure;
+            traction[g] += w * f.traction;
+            if (w > wmax) {
+              wmax = w;
+              state[g] = f.state;
+            }
+          }
+        }
+    if (wsum > 0.0) {  // a non-finite value (a foot's): 0 and non_finite = 1 (write_vtk_grid)
       pressure[g] /= wsum;
       traction[g] /= wsum;
-    }
-    if (!std::isfinite(pressure[g]) || !traction[g].allFinite()) {
-      pressure[g] = 0.0;
-      traction[g].setZero();
     }
   }
   VtkPointData d;

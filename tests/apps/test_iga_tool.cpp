@@ -289,6 +289,14 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   const double tight = 10.0 * std::exp(0.2 * M_PI) / 1.02;
   CHECK(largest <= 1.01 * tight);
   CHECK(largest >= 0.8 * tight);
+  // The rod keeps its other contact fields, one value per sample, the state 0, 1 or 2 and some
+  // of the arc sliding at full slip.
+  for (const char* f : {"contact_traction_T", "contact_traction_B", "contact_state"})
+    CHECK(iga::test::vtk_array(vtk, "SCALARS", f).size() == 257);
+  const std::vector<double> state = iga::test::vtk_array(vtk, "SCALARS", "contact_state");
+  CHECK(std::all_of(state.begin(), state.end(),
+                    [](double s) { return s == 0.0 || s == 1.0 || s == 2.0; }));
+  CHECK(std::count(state.begin(), state.end(), 2.0) > 0);
 }
 
 TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the shell files",
