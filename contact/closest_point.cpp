@@ -156,6 +156,149 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
         samples_[e].push_back({uv, s_.point(uv[0], uv[1])});
       }
   }
+  breaks_u_ = s_.knots_u().breaks();
+  breaks_v_ = s_.knots_v().breaks();
+  build_tree();
+}
+
+int PatchProjector::element_of(const Vector2d& uv) const {
+  auto index = [](const std::vector<double>& b, double t) {
+    const auto it = std::upper_bound(b.begin() + 1, b.end() - 1, t);
+    return static_cast<int>(it - b.begin()) - 1;
+  };
+  return index(breaks_u_, uv[0]) +
+         (static_cast<int>(breaks_u_.size()) - 1) * index(breaks_v_, uv[1]);
+}
+
+namespace {
+
+// The control points of a node, projected, and their box.
+template <class N>
+void finish_node(N& n) {
+  n.box = Box3{};
+  for (int k = 0; k < n.net.size(); ++k) {
+    const Vector4d& q = n.net.pw[static_cast<std::size_t>(k)];
+    n.points[static_cast<std::size_t>(k)] = q.head<3>() / q.w();
+    n.box.extend(n.points[static_cast<std::size_t>(k)]);
+  }
+}
+
+}  // namespace
+
+void PatchProjector::build_tree() {
+  const int nu = static_cast<int>(breaks_u_.size()) - 1,
+            nv = static_cast<int>(breaks_v_.size()) - 1;
+  const std::size_t n_el = elements_.size();
+  if (static_cast<std::size_t>(nu * nv) != n_el) return;
+  for (const BezierPatch& b : elements_)
+    if (b.degree_u > detail::kMaxNetDegree || b.degree_v > detail::kMaxNetDegree) return;
+  // Depth: as deep as the budget allows, at most 3 (64 leaves per element).
+  int depth = 0;
+  while (depth < 3 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= kTreeNodes)
+    ++depth;
+  // Nodes level by level; grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l.
+  std::vector<std::vector<int>> grid(static_cast<std::size_t>(depth + 1));
+  std::vector<std::array<int, 2>> cell;  // (I, J) of each node at its level
+  std::vector<int> level;
+  auto make = [&](Node& n) {
+    finish_node(n);
+    const Domain2& r = n.net.range;
+    n.centre = s_.derivs(0.5 * (r.u.lo + r.u.hi), 0.5 * (r.v.lo + r.v.hi), 1);
+    n.bounds = detail::patch_bounds(n.net, detail::tangent_frame(n.centre));
+  };
+  tree_.resize(n_el);
+  grid[0].assign(n_el, -1);
+  for (std::size_t e = 0; e < n_el; ++e) {
+    detail::to_net(elements_[e], tree_[e].net);
+    make(tree_[e]);
+    cell.push_back({elements_[e].element_u, elements_[e].element_v});
+    level.push_back(0);
+    grid[0][static_cast<std::size_t>(elements_[e].element_u + nu * elements_[e].element_v)] =
+        static_cast<int>(e);
+  }
+  std::size_t first = 0, last = n_el;  // nodes of the current level
+  for (int l = 1; l <= depth; ++l) {
+    const int wu = nu << l;
+    grid[static_cast<std::size_t>(l)].assign(static_cast<std::size_t>(wu * (nv << l)), -1);
+    for (std::size_t k = first; k < last; ++k) {
+      tree_[k].child = static_cast<int>(tree_.size());
+      Node c[4];
+      detail::Net lo, hi;
+      detail::split_half(tree_[k].net, 0, lo, hi);
+      detail::split_half(lo, 1, c[0].net, c[1].net);
+      detail::split_half(hi, 1, c[2].net, c[3].net);
+      for (int q = 0; q < 4; ++q) {
+        make(c[q]);
+        const int I = 2 * cell[k][0] + q / 2, J = 2 * cell[k][1] + q % 2;
+        grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(I + wu * J)] =
+            static_cast<int>(tree_.size());
+        cell.push_back({I, J});
+        level.push_back(l);
+        tree_.push_back(c[q]);
+      }
+    }
+    first = last;
+    last = tree_.size();
+  }
+  // Regions: the cells around each node, across a border between cells that is an element
+  // border only where the surface is C1 there (interior knot multiplicity below the degree).
+  auto c1 = [](const KnotVector& kv, const std::vector<double>& br, int I, int l) {
+    if (I % (1 << l) != 0) return true;  // inside an element
+    return kv.multiplicity(br[static_cast<std::size_t>(I >> l)]) < kv.degree();
+  };
+  for (std::size_t k = 0; k < tree_.size(); ++k) {
+    const int l = level[k], I = cell[k][0], J = cell[k][1];
+    const int wu = nu << l, wv = nv << l;
+    const int i0 = I > 0 && c1(s_.knots_u(), breaks_u_, I, l) ? I - 1 : I;
+    const int i1 = I + 1 < wu && c1(s_.knots_u(), breaks_u_, I + 1, l) ? I + 1 : I;
+    const int j0 = J > 0 && c1(s_.knots_v(), breaks_v_, J, l) ? J - 1 : J;
+    const int j1 = J + 1 < wv && c1(s_.knots_v(), breaks_v_, J + 1, l) ? J + 1 : J;
+    Node& n = tree_[k];
+    n.region = n.net.range;
+    n.region_bounds = n.bounds;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        if (i == I && j == J) continue;
+        const Node& m = tree_[static_cast<std::size_t>(
+            grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])];
+        detail::unite(n.region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
+        n.region.u = {std::min(n.region.u.lo, m.net.range.u.lo),
+                      std::max(n.region.u.hi, m.net.range.u.hi)};
+        n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
+                      std::max(n.region.v.hi, m.net.range.v.hi)};
+      }
+  }
+  // The gaps: the least box distance from a node to the tree's nodes outside its region
+  // (descending into nodes that overlap it, and into nodes no farther than the least so far).
+  auto box_gap2 = [](const Box3& a, const Box3& b) {
+    const Vector3d g = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+    return g.squaredNorm();
+  };
+  auto within = [](const Domain2& a, const Domain2& b) {
+    return a.u.lo >= b.u.lo && a.u.hi <= b.u.hi && a.v.lo >= b.v.lo && a.v.hi <= b.v.hi;
+  };
+  auto apart = [](const Domain2& a, const Domain2& b) {
+    return a.u.lo >= b.u.hi || a.u.hi <= b.u.lo || a.v.lo >= b.v.hi || a.v.hi <= b.v.lo;
+  };
+  for (Node& n : tree_) {
+    double g2 = std::numeric_limits<double>::infinity();
+    auto descend = [&](auto&& self, const Node& m) -> void {
+      if (within(m.net.range, n.region)) return;
+      const double d2 = box_gap2(n.box, m.box);
+      if (d2 >= g2) return;
+      if (apart(m.net.range, n.region)) {
+        g2 = d2;
+        return;
+      }
+      if (m.child < 0) {  // overlaps the region but is not split further: no gap
+        g2 = 0.0;
+        return;
+      }
+      for (int k = 0; k < 4; ++k) self(self, tree_[static_cast<std::size_t>(m.child + k)]);
+    };
+    for (std::size_t e = 0; e < n_el; ++e) descend(descend, tree_[e]);
+    n.gap = std::sqrt(g2) * (1.0 - 1e-12);
+  }
 }
 
 ProjectionResult PatchProjector::project_within(const Vector3d& x, double max_distance,
@@ -170,23 +313,6 @@ ProjectionResult PatchProjector::project_among(const Vector3d& x, std::span<cons
 }
 
 namespace {
-
-// A piece of a Bezier element met by the subdivision of the certified search.
-struct Node {
-  detail::Net net;
-  std::array<Vector3d, std::tuple_size_v<decltype(detail::Net::pw)>> points;  // projected
-  Box3 box;
-  detail::PatchBounds bounds;  // computed when the node passes the hull bound
-};
-
-void finish_node(Node& n) {
-  n.box = Box3{};
-  for (int k = 0; k < n.net.size(); ++k) {
-    const Vector4d& q = n.net.pw[static_cast<std::size_t>(k)];
-    n.points[static_cast<std::size_t>(k)] = q.head<3>() / q.w();
-    n.box.extend(n.points[static_cast<std::size_t>(k)]);
-  }
-}
 
 // Lower bound of |x - S| over a Bezier piece from its control points (convex hull property):
 // the distance to their box, and for the unit directions d from the box centre towards x and
@@ -208,6 +334,17 @@ double hull_lower_bound(const Box3& box, const Vector3d* pts, std::size_t n, con
     lb = std::max(lb, dirs[k].dot(x) - support);
   }
   return lb;
+}
+
+// Squared distance from x to the box of the points of a piece in its bounds' frame.
+double frame_box_distance2(const detail::PatchBounds& b, const Vector3d& x) {
+  const Vector3d y = b.frame * (x - b.centre);
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({b.S.c[k].lo - y[k], y[k] - b.S.c[k].hi, 0.0});
+    d2 += g * g;
+  }
+  return d2;
 }
 
 bool inside(const Domain2& r, const Vector2d& uv) {
@@ -250,7 +387,8 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   Domain2 best_range;  // the node that gave the best answer
   int iterations = 0;
   bool certified = opt.certify;
-  if (start && found(start->status)) {
+  const bool warm = start && found(start->status);
+  if (warm) {
     best = *start;
     best_d = (start->point - x).norm();
     best_patch_kkt = true;
@@ -264,7 +402,7 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   // that distance exists), so that far elements are pruned before any Newton.
   double ub = max_distance;
   Vector2d ub_uv = Vector2d::Zero();
-  {
+  if (!warm) {
     const auto first = std::min_element(order.begin(), order.end());
     for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
       const double d = (smp.x - x).norm();
@@ -278,6 +416,41 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   const bool all_elements = ids == nullptr;
   const double tol = 1e-11 * (box_.hi - box_.lo).norm();
   auto threshold = [&] { return std::min(ub, best_d - tol); };
+  // Regions proven to hold no point closer than the best (at most kMaxProven kept).
+  constexpr int kMaxProven = 4;
+  const Domain2* proven[kMaxProven];
+  int n_proven = 0;
+  auto is_proven = [&](const Domain2& r) {
+    for (int k = 0; k < n_proven; ++k)
+      if (r.u.lo >= proven[k]->u.lo && r.u.hi <= proven[k]->u.hi && r.v.lo >= proven[k]->v.lo &&
+          r.v.hi <= proven[k]->v.hi)
+        return true;
+    return false;
+  };
+  // When the best answer satisfies the optimality conditions of the patch: the chord test on
+  // the regions of the tree's nodes that hold it, coarsest first; the first that passes is
+  // proven.
+  bool everything_proven = false;
+  auto prove_region = [&] {
+    if (!opt.certify || !best_patch_kkt || tree_.empty() || n_proven == kMaxProven) return;
+    const Vector3d r_star = x - best.point;
+    const Node* n = &tree_[static_cast<std::size_t>(element_of(best.uv))];
+    while (true) {
+      if (inside(n->region, best.uv) && !is_proven(n->region) &&
+          detail::chord_test(n->region_bounds, r_star)) {
+        proven[n_proven++] = &n->region;
+        // Every surface point outside the region is at least gap from the foot, so at least
+        // gap - best_d from x: the foot is the global minimum when best_d <= gap / 2.
+        if (best_d <= 0.5 * n->gap) everything_proven = true;
+        return;
+      }
+      if (n->child < 0) return;
+      const Domain2& r = n->net.range;
+      n = &tree_[static_cast<std::size_t>(n->child +
+                                          (best.uv[0] >= 0.5 * (r.u.lo + r.u.hi) ? 2 : 0) +
+                                          (best.uv[1] >= 0.5 * (r.v.lo + r.v.hi) ? 1 : 0))];
+    }
+  };
   auto consider = [&](const ProjectionResult& r, int e, const Domain2& node_range, bool patch_kkt) {
     iterations += r.iterations;
     if (!found(r.status)) return;
@@ -296,8 +469,10 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       };
       best_patch_kkt = patch_kkt || (off(r.uv[0], node_range.u, dom.u, cu) &&
                                      off(r.uv[1], node_range.v, dom.v, cv));
+      prove_region();
     }
   };
+  prove_region();  // the start's
   // Whether the minimum of F over a node, lying on its bound `side` (0 lo, 1 hi) in direction
   // `dir`, is held by another node: the bound is inside the element, or (all elements
   // searched) an element border inside the patch or a seam.
@@ -347,28 +522,34 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
           element, range, false);
   };
   constexpr int kMaxDepth = 10;
-  // Visits a node; `element` is its Bezier element, `seeds` the element's samples (depth 0).
-  auto visit = [&](auto&& self, Node* node_ptr, int element, int depth) -> void {
-    const std::size_t e = static_cast<std::size_t>(element);
-    const Box3& box = node_ptr ? node_ptr->box : boxes_[e];
-    const Vector3d* pts = node_ptr ? node_ptr->points.data() : hull_.data() + hull_offset_[e];
-    const std::size_t n_pts = node_ptr ? static_cast<std::size_t>(node_ptr->net.size())
-                                       : hull_offset_[e + 1] - hull_offset_[e];
-    const Domain2& range = node_ptr ? node_ptr->net.range : elements_[e].range;
-    if (hull_lower_bound(box, pts, n_pts, x, best_d < kInf ? &best.point : nullptr) > threshold())
+  // Visits a node: one of the tree (`stored`: its bounds and centre precomputed) or a piece
+  // split off below the tree's depth; `element` is its Bezier element.
+  auto visit = [&](auto&& self, const Node& node, bool stored, int element, int depth) -> void {
+    const Domain2& range = node.net.range;
+    if (is_proven(range)) return;
+    if (hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()), x,
+                         best_d < kInf ? &best.point : nullptr) > threshold())
       return;
     if (!opt.certify) {  // the sampled search: seeded Newtons in the element, no proof
       seed_newtons(element);
       return;
     }
+    // The distance to the box of the node's points in its tangent frame (thin across the
+    // surface: close to the distance to the piece where the surface curves towards x).
+    if (stored && std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
     // The exact derivatives at the node's centre: the frame of its bounds, the mean value
     // forms, and a surface point there as an upper bound.
     const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
-    const SurfaceDerivs dc = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
+    SurfaceDerivs dc_here;
+    detail::PatchBounds pb_here;
+    if (!stored) {
+      dc_here = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
+      pb_here = detail::patch_bounds(node.net, detail::tangent_frame(dc_here));
+    }
+    const SurfaceDerivs& dc = stored ? node.centre : dc_here;
     const double dist_c = (x - dc.S).norm();
     if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
-    if (node_ptr) node_ptr->bounds = detail::patch_bounds(node_ptr->net, detail::tangent_frame(dc));
-    const detail::PatchBounds& pb = node_ptr ? node_ptr->bounds : bounds_[e];
+    const detail::PatchBounds& pb = stored ? node.bounds : pb_here;
     // The node holding the best answer, an optimum of the patch: the chord test.
     if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point)) return;
     detail::DistanceBounds db = detail::distance_bounds(pb, x);
@@ -384,6 +565,14 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     if (solvable) {
       // The best answer, a KKT point of the whole patch lying on this node, is the node's too.
       if (best_patch_kkt && inside(range, best.uv)) return;
+      // F convex on the node lies above its tangent plane at the centre c:
+      // F >= F(c) - |F_,1(c)| a - |F_,2(c)| b over the node.
+      if (detail::convex(db, pb, x)) {
+        const Vector3d rc = x - dc.S;
+        const double lb =
+            0.5 * rc.squaredNorm() - std::abs(dc.Su.dot(rc)) * a - std::abs(dc.Sv.dot(rc)) * b;
+        if (lb > 0.0 && std::sqrt(2.0 * lb) > threshold()) return;
+      }
       Vector2d s0(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
       if (mono_u != 0) s0[0] = mono_u < 0 ? range.u.lo : range.u.hi;
       if (mono_v != 0) s0[1] = mono_v < 0 ? range.v.lo : range.v.hi;
@@ -391,9 +580,12 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       consider(r, element, range, false);
       if (found(r.status)) return;
     }
-    if (depth == 0) {
+    if (depth == 0 && !warm) {  // seeds for a good optimum early (a warm start has one)
       seed_newtons(element);
-      if (hull_lower_bound(box, pts, n_pts, x, &best.point) > threshold()) return;
+      if (is_proven(range) ||
+          hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()),
+                           x, &best.point) > threshold())
+        return;
     }
     if (depth >= kMaxDepth) {
       const Vector2d c(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
@@ -401,32 +593,43 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       certified = false;
       return;
     }
+    std::pair<double, int> by_bound[4];
+    if (stored && node.child >= 0) {  // the tree's children
+      const Node* c = &tree_[static_cast<std::size_t>(node.child)];
+      for (int k = 0; k < 4; ++k) by_bound[k] = {box_distance2(c[k].box, x), k};
+      std::sort(by_bound, by_bound + 4);
+      for (const auto& [lb2, k] : by_bound) self(self, c[k], true, element, depth + 1);
+      return;
+    }
     Node children[4];
     {
-      detail::Net whole, lo, hi;
-      const detail::Net* parent = &whole;
-      if (node_ptr)
-        parent = &node_ptr->net;
-      else if (!detail::to_net(elements_[e], whole)) {  // degree above the nets' capacity
-        certified = false;
-        return;
-      }
-      detail::split_half(*parent, 0, lo, hi);
+      detail::Net lo, hi;
+      detail::split_half(node.net, 0, lo, hi);
       detail::split_half(lo, 1, children[0].net, children[1].net);
       detail::split_half(hi, 1, children[2].net, children[3].net);
     }
-    std::pair<double, int> by_bound[4];
     for (int k = 0; k < 4; ++k) {
       finish_node(children[k]);
       by_bound[k] = {box_distance2(children[k].box, x), k};
     }
     std::sort(by_bound, by_bound + 4);
-    for (const auto& [lb2, k] : by_bound) self(self, &children[k], element, depth + 1);
+    for (const auto& [lb2, k] : by_bound) self(self, children[k], false, element, depth + 1);
   };
   for (const auto& [lb2, e] : order) {
+    if (everything_proven) break;
     const double t = threshold();
     if (t < 0.0 || lb2 > t * t) break;
-    visit(visit, nullptr, e, 0);
+    if (!tree_.empty()) {
+      visit(visit, tree_[static_cast<std::size_t>(e)], true, e, 0);
+    } else {  // degrees above the nets' capacity: the sampled search, not certified
+      const std::size_t k = static_cast<std::size_t>(e);
+      if (hull_lower_bound(boxes_[k], hull_.data() + hull_offset_[k],
+                           hull_offset_[k + 1] - hull_offset_[k], x,
+                           best_d < kInf ? &best.point : nullptr) > threshold())
+        continue;
+      seed_newtons(e);
+      certified = false;
+    }
   }
   if (best_d == kInf) {
     if (ub < max_distance) {  // only the sample's node held points this close: solve there
@@ -476,6 +679,21 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   return r;
 }
 
+bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r) const {
+  if (tree_.empty()) return false;
+  const Vector3d r_star = x - r.point;
+  const double d = r_star.norm();
+  const Node* n = &tree_[static_cast<std::size_t>(element_of(r.uv))];
+  while (true) {
+    if (inside(n->region, r.uv) && detail::chord_test(n->region_bounds, r_star))
+      return d <= 0.5 * n->gap;
+    if (n->child < 0) return false;
+    const Domain2& g = n->net.range;
+    n = &tree_[static_cast<std::size_t>(n->child + (r.uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
+                                        (r.uv[1] >= 0.5 * (g.v.lo + g.v.hi) ? 1 : 0))];
+  }
+}
+
 ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOptions& opt) const {
   return project_within(x, kInf, opt);
 }
@@ -485,7 +703,13 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& gues
   // The local Newton from the guess, then the certified search bounded by its answer: it
   // either proves that answer global or finds the closer foot (the true foot may have jumped).
   ProjectionResult r = closest_point_local(s_, x, guess, opt);
-  if (opt.certify) return search(x, nullptr, boxes_.size(), kInf, opt, &r);
+  if (opt.certify) {
+    if (found(r.status) && proves_global(x, r)) {
+      r.certified = true;
+      return r;
+    }
+    return search(x, nullptr, boxes_.size(), kInf, opt, &r);
+  }
   if (r.status == ProjectionStatus::not_converged) {
     const int used = r.iterations;
     r = project(x, opt);

@@ -9,7 +9,9 @@
 // node (patch_bounds.hpp) proves the answer the global minimum, also on edges and corners.
 #pragma once
 
+#include <array>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include "contact/patch_bounds.hpp"
@@ -79,6 +81,33 @@ class PatchProjector {
   std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
   std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])
   Box3 box_;
+  // The subdivision of the certified search, precomputed to a fixed depth (kTreeNodes at most):
+  // nodes 0 .. n_elements - 1 are the elements, each node's four children are consecutive.
+  // Each node has a region, the node and those of its level around it (across element
+  // borders where the surface is C1), with the boxes of the derivatives over it: a foot that
+  // satisfies the optimality conditions and passes the chord test on a region proves the whole
+  // region in one test, instead of a subdivision of the nodes around the foot.
+  struct Node {
+    detail::Net net;
+    std::array<Vector3d, std::tuple_size_v<decltype(detail::Net::pw)>> points;  // projected
+    Box3 box;
+    detail::PatchBounds bounds;  // in the tangent frame at the centre
+    SurfaceDerivs centre;        // S, S_u, S_v at the centre of net.range
+    int child = -1;              // the tree's: first of the four children (-1: none)
+    Domain2 region;
+    detail::PatchBounds region_bounds;
+    double gap =
+        0.0;  // lower bound of the distance from the node's points to those outside its region
+  };
+  static constexpr std::size_t kTreeNodes = 4096;
+  std::vector<Node> tree_;
+  std::vector<double> breaks_u_, breaks_v_;  // element borders
+  void build_tree();
+  // The certificate of a foot r that satisfies the optimality conditions of the patch, without
+  // a search: the chord test on the coarsest region holding it that passes, and x no farther
+  // from the foot than half the region's gap.
+  bool proves_global(const Vector3d& x, const ProjectionResult& r) const;
+  int element_of(const Vector2d& uv) const;
 };
 
 /// Closest point on a NURBS curve: warm (local Newton from u0, clamped to the domain, ends are

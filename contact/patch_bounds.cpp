@@ -119,6 +119,21 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
   return out;
 }
 
+void unite(PatchBounds& a, const PatchBounds& b) {
+  auto hull = [](IVec3& u, const IVec3& v, const Vector3d& shift) {
+    for (int k = 0; k < 3; ++k)
+      u.c[k] = {std::min(u.c[k].lo, v.c[k].lo + shift[k]),
+                std::max(u.c[k].hi, v.c[k].hi + shift[k])};
+  };
+  hull(a.S, b.S, a.frame * (b.centre - a.centre));  // b's points in a's coordinates
+  const Vector3d none = Vector3d::Zero();
+  hull(a.Su, b.Su, none);
+  hull(a.Sv, b.Sv, none);
+  hull(a.Suu, b.Suu, none);
+  hull(a.Suv, b.Suv, none);
+  hull(a.Svv, b.Svv, none);
+}
+
 namespace {
 Iv meet(Iv a, Iv b) {
   return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)};

@@ -99,6 +99,11 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
 PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
 PatchBounds patch_bounds(const BezierPatch& b,
                          const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+/// Widens `a` to hold `b` too (both in the same frame): the boxes of a region made of the two
+/// patches. The chord test on the union holds for points of a convex parameter region covered
+/// by the patches where the surface is C1 (the chord's Taylor remainder needs a continuous
+/// first derivative along it).
+void unite(PatchBounds& a, const PatchBounds& b);
 
 /// Interval bounds on the gradient (16) and Hessian (17) of F over the patch, for the point x.
 struct DistanceBounds {

@@ -352,6 +352,35 @@ TEST_CASE("PatchProjector: certified cold and warm projections on random points 
   }
 }
 
+TEST_CASE("PatchProjector: a warm start on the farther of two sheets is not certified as it is",
+          "[contact][closest][certified]") {
+  // A hairpin: two flat sheets z = 0 and z = 1 joined by a bend (quadratic in u, extruded in
+  // y). From x between them, 0.7 above the lower sheet and 0.3 below the upper one, a warm
+  // start on the lower sheet converges to its foot, a local minimum that passes the chord
+  // test on its region; the certificate without a search must refuse it (the upper sheet,
+  // outside the region, is closer than half the region's gap allows), and the search must
+  // return the upper foot, certified.
+  const std::vector<Vector3d> polygon = {{4, 0, 0},  {2, 0, 0}, {0, 0, 0}, {-1, 0, 0},
+                                         {-1, 0, 1}, {0, 0, 1}, {2, 0, 1}, {4, 0, 1}};
+  std::vector<Vector3d> pts;
+  for (double y : {0.0, 1.0})
+    for (const Vector3d& q : polygon) pts.push_back(q + Vector3d(0, y, 0));
+  const NurbsSurface s(2, {0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6}, 1, {0, 0, 1, 1}, pts);
+  const PatchProjector P(s);
+  const Vector3d x(2.5, 0.5, 0.7);
+  const ProjectionResult local = closest_point_local(s, x, Vector2d(0.5, 0.5));
+  REQUIRE(found(local.status));
+  REQUIRE(std::abs(local.point.z()) < 1e-12);  // the lower sheet's foot: a local minimum
+  const ProjectionResult warm = P.project(x, Vector2d(0.5, 0.5));
+  CHECK(warm.certified);
+  CHECK(warm.point.z() == Approx(1.0).margin(1e-12));
+  CHECK((warm.point - x).norm() == Approx(0.3).epsilon(1e-12));
+  // From the upper sheet's own foot the certificate holds at once.
+  const ProjectionResult upper = P.project(x, warm.uv);
+  CHECK(upper.certified);
+  CHECK((upper.point - warm.point).norm() < 1e-12);
+}
+
 TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (sampled check)",
           "[contact][closest][certified]") {
   // The interval bounds of S and its first and second derivatives over a Bezier element must
