@@ -268,10 +268,21 @@ void PatchProjector::build_tree() {
                       std::max(n.region.v.hi, m.net.range.v.hi)};
       }
   }
-  // The gaps: the least box distance from a node to the tree's nodes outside its region
-  // (descending into nodes that overlap it, and into nodes no farther than the least so far).
+  // The gaps: a lower bound of the distance from a node to the surface outside its region, the
+  // least over the leaves outside it of the distance between their boxes, axis-aligned or in
+  // the tangent frame of either (a branch and bound down the tree).
   auto box_gap2 = [](const Box3& a, const Box3& b) {
     const Vector3d g = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+    return g.squaredNorm();
+  };
+  // the distance between a's box in its frame and the box of b's points in that frame
+  auto frame_gap2 = [](const Node& a, const Node& b) {
+    Box3 in_a, own;
+    for (int k = 0; k < b.net.size(); ++k)
+      in_a.extend(a.bounds.frame * (b.points[static_cast<std::size_t>(k)] - a.bounds.centre));
+    own.lo << a.bounds.S.c[0].lo, a.bounds.S.c[1].lo, a.bounds.S.c[2].lo;
+    own.hi << a.bounds.S.c[0].hi, a.bounds.S.c[1].hi, a.bounds.S.c[2].hi;
+    const Vector3d g = (own.lo - in_a.hi).cwiseMax(in_a.lo - own.hi).cwiseMax(0.0);
     return g.squaredNorm();
   };
   auto within = [](const Domain2& a, const Domain2& b) {
@@ -284,14 +295,13 @@ void PatchProjector::build_tree() {
     double g2 = std::numeric_limits<double>::infinity();
     auto descend = [&](auto&& self, const Node& m) -> void {
       if (within(m.net.range, n.region)) return;
-      const double d2 = box_gap2(n.box, m.box);
-      if (d2 >= g2) return;
-      if (apart(m.net.range, n.region)) {
-        g2 = d2;
-        return;
-      }
-      if (m.child < 0) {  // overlaps the region but is not split further: no gap
-        g2 = 0.0;
+      if (box_gap2(n.box, m.box) >= g2) return;
+      if (m.child < 0) {
+        // a leaf overlapping the region (not split further) leaves no gap
+        g2 = apart(m.net.range, n.region)
+                 ? std::min(g2, std::max(box_gap2(n.box, m.box),
+                                         std::max(frame_gap2(n, m), frame_gap2(m, n))))
+                 : 0.0;
         return;
       }
       for (int k = 0; k < 4; ++k) self(self, tree_[static_cast<std::size_t>(m.child + k)]);
@@ -685,8 +695,10 @@ bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r)
   const double d = r_star.norm();
   const Node* n = &tree_[static_cast<std::size_t>(element_of(r.uv))];
   while (true) {
-    if (inside(n->region, r.uv) && detail::chord_test(n->region_bounds, r_star))
-      return d <= 0.5 * n->gap;
+    if (inside(n->region, r.uv) && detail::chord_test(n->region_bounds, r_star)) {
+      if (d <= 0.5 * n->gap) return true;
+      return ball_clear(x, d - 1e-11 * (box_.hi - box_.lo).norm(), n->region);
+    }
     if (n->child < 0) return false;
     const Domain2& g = n->net.range;
     n = &tree_[static_cast<std::size_t>(n->child + (r.uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
@@ -694,7 +706,53 @@ bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r)
   }
 }
 
+bool PatchProjector::ball_clear(const Vector3d& x, double radius, const Domain2& region) const {
+  if (!(radius > 0.0)) return false;
+  const double r2 = radius * radius;
+  auto clear = [&](auto&& self, const Node& m) -> bool {
+    const Domain2& g = m.net.range;
+    if (g.u.lo >= region.u.lo && g.u.hi <= region.u.hi && g.v.lo >= region.v.lo &&
+        g.v.hi <= region.v.hi)
+      return true;
+    if (box_distance2(m.box, x) >= r2 || frame_box_distance2(m.bounds, x) >= r2) return true;
+    if (m.child < 0) return false;  // a piece outside the region may hold a closer point
+    for (int k = 0; k < 4; ++k)
+      if (!self(self, tree_[static_cast<std::size_t>(m.child + k)])) return false;
+    return true;
+  };
+  for (std::size_t e = 0; e < elements_.size(); ++e)
+    if (!clear(clear, tree_[e])) return false;
+  return true;
+}
+
 ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOptions& opt) const {
+  std::size_t first = 0;
+  double first2 = kInf;
+  if (opt.certify && !tree_.empty())
+    for (std::size_t e = 0; e < boxes_.size(); ++e) {
+      const double d2 = box_distance2(boxes_[e], x);
+      if (d2 < first2) first2 = d2, first = e;
+    }
+  // Near the surface (within the size of the nearest element's box) first the Newton from the
+  // nearest sample of that element: its answer proven global without a search where the
+  // certificate holds (the chord test fails far from a curved surface: there, search at once).
+  if (first2 < (boxes_[first].hi - boxes_[first].lo).squaredNorm()) {
+    const Sample* seed = &samples_[first].front();
+    double seed2 = kInf;
+    for (const Sample& smp : samples_[first]) {
+      const double d2 = (smp.x - x).squaredNorm();
+      if (d2 < seed2) seed2 = d2, seed = &smp;
+    }
+    ProjectionResult r = closest_point_local(s_, x, seed->uv, opt);
+    if (found(r.status) && proves_global(x, r)) {
+      r.certified = true;
+      return r;
+    }
+    const int used = r.iterations;
+    r = search(x, nullptr, boxes_.size(), kInf, opt);
+    r.iterations += used;
+    return r;
+  }
   return project_within(x, kInf, opt);
 }
 

@@ -107,6 +107,9 @@ class PatchProjector {
   // a search: the chord test on the coarsest region holding it that passes, and x no farther
   // from the foot than half the region's gap.
   bool proves_global(const Vector3d& x, const ProjectionResult& r) const;
+  // Whether every piece of the tree outside `region` is at least `radius` from x (boxes,
+  // axis-aligned and in the pieces' tangent frames).
+  bool ball_clear(const Vector3d& x, double radius, const Domain2& region) const;
   int element_of(const Vector2d& uv) const;
 };
 

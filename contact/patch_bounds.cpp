@@ -3,6 +3,7 @@
 
 #include <limits>
 #include <tuple>
+#include <type_traits>
 #include <vector>
 
 namespace iga::detail {
@@ -33,6 +34,125 @@ IVec3 mul(Iv s, const IVec3& a) {
 }
 IVec3 div_pos(const IVec3& a, Iv w) {
   return {{div_pos(a.c[0], w), div_pos(a.c[1], w), div_pos(a.c[2], w)}};
+}
+
+// A polynomial in Bernstein form of degree (m, n) on the patch's range, coefficients u fastest
+// (T: double or Vector3d): the numerators and denominators of the rational patch's derivatives.
+template <class T>
+struct Poly {
+  int m = 0, n = 0;
+  std::vector<T> c;
+  const T& at(int i, int j) const { return c[static_cast<std::size_t>(i + (m + 1) * j)]; }
+  T& at(int i, int j) { return c[static_cast<std::size_t>(i + (m + 1) * j)]; }
+};
+template <class T>
+T zero() {
+  if constexpr (std::is_same_v<T, double>)
+    return 0.0;
+  else
+    return T::Zero();
+}
+template <class T>
+Poly<T> make_poly(int m, int n) {
+  Poly<T> f;
+  f.m = m;
+  f.n = n;
+  f.c.assign(static_cast<std::size_t>((m + 1) * (n + 1)), zero<T>());
+  return f;
+}
+// Binomial coefficients C(n, k) for n < 32 (degrees up to 3 kMaxNetDegree).
+struct Binomials {
+  double c[32][32] = {};
+  Binomials() {
+    for (int n = 0; n < 32; ++n) {
+      c[n][0] = 1.0;
+      for (int k = 1; k <= n; ++k) c[n][k] = c[n - 1][k - 1] + (k < n ? c[n - 1][k] : 0.0);
+    }
+  }
+};
+double binom(int n, int k) {
+  static const Binomials table;
+  return table.c[n][k];
+}
+// d/du (dir 0) or d/dv (dir 1), `scale` = 1 / (width of the range in that direction)
+template <class T>
+Poly<T> derivative(const Poly<T>& f, int dir, double scale) {
+  const int m = dir == 0 ? f.m - 1 : f.m, n = dir == 0 ? f.n : f.n - 1;
+  Poly<T> g = make_poly<T>(std::max(m, 0), std::max(n, 0));
+  if (m < 0 || n < 0) return g;  // a constant's derivative: zero
+  const double k = (dir == 0 ? f.m : f.n) * scale;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= m; ++i)
+      g.at(i, j) = k * (dir == 0 ? f.at(i + 1, j) - f.at(i, j) : f.at(i, j + 1) - f.at(i, j));
+  return g;
+}
+template <class T>
+Poly<T> elevate(Poly<T> f, int m, int n) {
+  while (f.m < m) {
+    Poly<T> g = make_poly<T>(f.m + 1, f.n);
+    for (int j = 0; j <= f.n; ++j)
+      for (int i = 0; i <= g.m; ++i) {
+        const double a = static_cast<double>(i) / g.m;
+        g.at(i, j) = (i > 0 ? T(a * f.at(i - 1, j)) : zero<T>()) +
+                     (i < g.m ? T((1.0 - a) * f.at(i, j)) : zero<T>());
+      }
+    f = std::move(g);
+  }
+  while (f.n < n) {
+    Poly<T> g = make_poly<T>(f.m, f.n + 1);
+    for (int j = 0; j <= g.n; ++j)
+      for (int i = 0; i <= f.m; ++i) {
+        const double a = static_cast<double>(j) / g.n;
+        g.at(i, j) = (j > 0 ? T(a * f.at(i, j - 1)) : zero<T>()) +
+                     (j < g.n ? T((1.0 - a) * f.at(i, j)) : zero<T>());
+      }
+    f = std::move(g);
+  }
+  return f;
+}
+template <class T>
+Poly<T> times(const Poly<T>& f, const Poly<double>& g) {
+  Poly<T> h = make_poly<T>(f.m + g.m, f.n + g.n);
+  double cu[32][32];  // C(f.m, a) C(g.m, b) / C(h.m, a + b)
+  for (int b = 0; b <= g.m; ++b)
+    for (int a = 0; a <= f.m; ++a) cu[a][b] = binom(f.m, a) * binom(g.m, b) / binom(h.m, a + b);
+  for (int d = 0; d <= g.n; ++d)
+    for (int c = 0; c <= f.n; ++c) {
+      const double bv = binom(f.n, c) * binom(g.n, d) / binom(h.n, c + d);
+      for (int b = 0; b <= g.m; ++b) {
+        const double gb = bv * g.at(b, d);
+        for (int a = 0; a <= f.m; ++a) h.at(a + b, c + d) += (cu[a][b] * gb) * f.at(a, c);
+      }
+    }
+  return h;
+}
+template <class T>
+Poly<T> minus(const Poly<T>& f, const Poly<T>& g) {
+  const int m = std::max(f.m, g.m), n = std::max(f.n, g.n);
+  Poly<T> a = elevate(f, m, n);
+  const Poly<T> b = elevate(g, m, n);
+  for (std::size_t k = 0; k < a.c.size(); ++k) a.c[k] = a.c[k] - b.c[k];
+  return a;
+}
+// The box of N / D over the patch from the rational convex hull property (D's coefficients
+// positive): N / D lies in the hull of the ratios of their coefficients in one basis.
+IVec3 ratio_box(const Poly<Vector3d>& N, const Poly<double>& D) {
+  const int m = std::max(N.m, D.m), n = std::max(N.n, D.n);
+  const Poly<Vector3d> a = elevate(N, m, n);
+  const Poly<double> b = elevate(D, m, n);
+  Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t k = 0; k < a.c.size(); ++k) {
+    const Vector3d q = a.c[k] / b.c[k];
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  return {{{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}}};
+}
+IVec3 meet3(const IVec3& a, const IVec3& b) {
+  IVec3 r;
+  for (int k = 0; k < 3; ++k)
+    r.c[k] = {std::max(a.c[k].lo, b.c[k].lo), std::min(a.c[k].hi, b.c[k].hi)};
+  return r;
 }
 
 }  // namespace
@@ -116,6 +236,33 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
   out.Svv = div_pos(sub(sub(Avv.xyz(), mul(2.0 * Av.w(), out.Sv)), mul(Avv.w(), out.S)), w);
   out.Suv = div_pos(
       sub(sub(sub(Auv.xyz(), mul(Au.w(), out.Sv)), mul(Av.w(), out.Su)), mul(Auv.w(), out.S)), w);
+  if (w.lo < w.hi) {
+    // Rational: the interval quotient rule above ignores that S, its derivatives and w move
+    // together, and is loose. The derivatives as rational Bezier functions instead, with the
+    // denominators w^2 and w^3 (positive coefficients):
+    //   S_u = (A_u w - A w_u) / w^2 = N_u / w^2,
+    //   S_uu = (N_u,u w - 2 N_u w_u) / w^3, S_uv = (N_u,v w - 2 N_u w_v) / w^3, and alike in v.
+    Poly<Vector3d> A = make_poly<Vector3d>(p, q);
+    Poly<double> W = make_poly<double>(p, q);
+    for (int j = 0; j <= q; ++j)
+      for (int i = 0; i <= p; ++i) {
+        A.at(i, j) = P(i, j).head<3>();
+        W.at(i, j) = P(i, j).w();
+      }
+    const double iu = 1.0 / du, iv = 1.0 / dv;
+    const Poly<double> Wu = derivative(W, 0, iu), Wv = derivative(W, 1, iv);
+    const Poly<Vector3d> Nu = minus(times(derivative(A, 0, iu), W), times(A, Wu));
+    const Poly<Vector3d> Nv = minus(times(derivative(A, 1, iv), W), times(A, Wv));
+    const Poly<double> W2 = times(W, W), W3 = times(W2, W);
+    Poly<double> Wu2 = Wu, Wv2 = Wv;  // 2 w_u, 2 w_v
+    for (double& k : Wu2.c) k *= 2.0;
+    for (double& k : Wv2.c) k *= 2.0;
+    out.Su = meet3(out.Su, ratio_box(Nu, W2));
+    out.Sv = meet3(out.Sv, ratio_box(Nv, W2));
+    out.Suu = meet3(out.Suu, ratio_box(minus(times(derivative(Nu, 0, iu), W), times(Nu, Wu2)), W3));
+    out.Suv = meet3(out.Suv, ratio_box(minus(times(derivative(Nu, 1, iv), W), times(Nu, Wv2)), W3));
+    out.Svv = meet3(out.Svv, ratio_box(minus(times(derivative(Nv, 1, iv), W), times(Nv, Wv2)), W3));
+  }
   return out;
 }
 

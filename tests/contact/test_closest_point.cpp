@@ -352,6 +352,42 @@ TEST_CASE("PatchProjector: certified cold and warm projections on random points 
   }
 }
 
+TEST_CASE("patch_bounds: a rational patch's derivative boxes are tight enough for the chord test",
+          "[contact][closest][certified]") {
+  // The derivatives of a rational patch bounded as rational Bezier functions (numerators over
+  // w^2 and w^3): on every quarter of a quarter of the torus's elements (22.5 degrees of arc),
+  // the boxes of S_u and S_v prove the Gram matrix positive definite, so the chord test holds
+  // on the surface (r* = 0) and 1 % of the tube radius off it. The interval quotient rule
+  // alone gave S_u in [11, 24] x [-4.3, 4.9] for |S_u| = 17 there and failed.
+  const NurbsSurface s = test::data_surface("torus_patch.json");
+  int pieces = 0;
+  for (const BezierPatch& b : bezier_extract(s)) {
+    detail::Net net, half[2], quarter[4], sixteenth[16];
+    REQUIRE(detail::to_net(b, net));
+    detail::split_half(net, 0, half[0], half[1]);
+    for (int i = 0; i < 2; ++i) detail::split_half(half[i], 1, quarter[2 * i], quarter[2 * i + 1]);
+    int k = 0;
+    for (const detail::Net& q : quarter) {
+      detail::Net lo, hi;
+      detail::split_half(q, 0, lo, hi);
+      detail::split_half(lo, 1, sixteenth[k], sixteenth[k + 1]);
+      detail::split_half(hi, 1, sixteenth[k + 2], sixteenth[k + 3]);
+      k += 4;
+    }
+    for (const detail::Net& n : sixteenth) {
+      const SurfaceDerivs dc =
+          s.derivs(0.5 * (n.range.u.lo + n.range.u.hi), 0.5 * (n.range.v.lo + n.range.v.hi), 1);
+      const detail::PatchBounds pb = detail::patch_bounds(n, detail::tangent_frame(dc));
+      const Vector3d normal = dc.Su.cross(dc.Sv).normalized();
+      CHECK(detail::chord_test(pb, Vector3d::Zero()));
+      CHECK(detail::chord_test(pb, 0.01 * normal));
+      CHECK(detail::chord_test(pb, -0.01 * normal));
+      ++pieces;
+    }
+  }
+  CHECK(pieces == 256);
+}
+
 TEST_CASE("PatchProjector: a warm start on the farther of two sheets is not certified as it is",
           "[contact][closest][certified]") {
   // A hairpin: two flat sheets z = 0 and z = 1 joined by a bend (quadratic in u, extruded in
