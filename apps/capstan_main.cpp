@@ -17,13 +17,14 @@
 // (contact points with N, T, B, slip) for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 
+#include "apps/resources.hpp"
 #include "apps/rope_sweep.hpp"
 
 int main(int argc, char** argv) {
   const iga::app::RopeApp app{
       "capstan", "capstan: rope on a rigid cylinder, T/T0 against exp(mu phi) ([KS15] Sect. 6.3)",
-      std::string(IGA_SOURCE_DIR) + "/data/capstan.json", false,
-      std::string(IGA_SOURCE_DIR) + "/scripts/plot_capstan.py"};
+      iga::app::resource("data/capstan.json"), false,
+      iga::app::resource("scripts/plot_capstan.py")};
   try {
     return iga::app::run_rope_app(app, argc, argv);
   } catch (const std::exception& e) {

@@ -12,13 +12,13 @@
 // <case>_rod.vtk and <case>_contact.vtk for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 
+#include "apps/resources.hpp"
 #include "apps/rope_sweep.hpp"
 
 int main(int argc, char** argv) {
   const iga::app::RopeApp app{
       "helix", "helix: rope as a helix on a rigid cylinder, T/T0 against (83) ([KS15] Sect. 6.4)",
-      std::string(IGA_SOURCE_DIR) + "/data/helix.json", true,
-      std::string(IGA_SOURCE_DIR) + "/scripts/plot_helix.py"};
+      iga::app::resource("data/helix.json"), true, iga::app::resource("scripts/plot_helix.py")};
   try {
     return iga::app::run_rope_app(app, argc, argv);
   } catch (const std::exception& e) {

@@ -12,7 +12,7 @@
 
 #include "apps/iga_commands.hpp"
 #include "geometry/differential_geometry.hpp"
-#include "iga/model.hpp"
+#include "iga/model/model.hpp"
 
 namespace iga::app {
 

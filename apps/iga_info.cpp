@@ -4,8 +4,8 @@
 #include <sstream>
 
 #include "apps/iga_commands.hpp"
-#include "iga/analysis.hpp"
-#include "iga/model.hpp"
+#include "iga/model/analysis.hpp"
+#include "iga/model/model.hpp"
 
 namespace iga::app {
 

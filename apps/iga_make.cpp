@@ -8,7 +8,7 @@
 #include "apps/iga_commands.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
-#include "iga/model.hpp"
+#include "iga/model/model.hpp"
 
 namespace iga::app {
 

@@ -18,7 +18,7 @@
 
 #include "apps/iga_commands.hpp"
 #include "contact/rigid_surface.hpp"
-#include "iga/model.hpp"
+#include "iga/model/model.hpp"
 
 namespace iga::app {
 

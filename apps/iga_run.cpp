@@ -9,7 +9,7 @@
 #include <memory>
 
 #include "apps/iga_commands.hpp"
-#include "iga/analysis.hpp"
+#include "iga/model/analysis.hpp"
 
 namespace iga::app {
 

@@ -14,8 +14,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "iga/analysis.hpp"
-#include "iga/output_format.hpp"
+#include "iga/model/analysis.hpp"
+#include "iga/output/output_format.hpp"
 
 namespace iga::app {
 

@@ -1,7 +1,7 @@
 // The driver of the rope apps `capstan` ([KS15] Sect. 6.3) and `helix` (Sect. 6.4): sweeps of a
 // rope-over-cylinder model (data/capstan.json, data/helix.json, loaded by the generic loader of
-// iga/analysis.hpp) over the friction coefficient mu, the wrap angle phi and the helix pitch H,
-// each case run until the whole contact arc slides, T / T0 compared with (83)
+// iga/model/analysis.hpp) over the friction coefficient mu, the wrap angle phi and the helix pitch
+// H, each case run until the whole contact arc slides, T / T0 compared with (83)
 //   T / T0 = exp(mu phi rho / sqrt(rho^2 + (H / 2 pi)^2)),  rho the centre line radius,
 // which is the Euler-Eytelwein formula (82) exp(mu phi) for H = 0.
 //

@@ -46,8 +46,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include "iga/analysis.hpp"
-#include "iga/vtk_writer.hpp"
+#include "apps/resources.hpp"
+#include "iga/model/analysis.hpp"
+#include "iga/output/vtk_writer.hpp"
 
 namespace {
 
@@ -305,7 +306,7 @@ int main(int argc, char** argv) try {
   CLI::App cli{
       "saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. "
       "6.1-6.2)"};
-  std::string model_file = std::string(IGA_SOURCE_DIR) + "/data/saddle.json";
+  std::string model_file = iga::app::resource("data/saddle.json");
   std::vector<double> mu_list;
   std::vector<std::string> sets;
   std::string strategy, out = "out/saddle";
@@ -578,8 +579,8 @@ int main(int argc, char** argv) try {
   }
 
   // 5. Plots.
-  const std::string cmd = "/usr/bin/python3 \"" + std::string(IGA_SOURCE_DIR) +
-                          "/scripts/plot_saddle.py\" \"" + dir.string() + "\" 2>&1";
+  const std::string cmd = "/usr/bin/python3 \"" + iga::app::resource("scripts/plot_saddle.py") +
+                          "\" \"" + dir.string() + "\" 2>&1";
   if (std::system(cmd.c_str()) != 0)
     std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";
   return failed > 0 ? 2 : 0;

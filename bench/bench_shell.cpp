@@ -1,4 +1,4 @@
-// Benchmarks of the Kirchhoff-Love shell (iga/kirchhoff_love_shell.hpp) on a 20 x 20 bicubic
+// Benchmarks of the Kirchhoff-Love shell (iga/shell/kirchhoff_love_shell.hpp) on a 20 x 20 bicubic
 // plate (randomly perturbed current state): the element tangent (forces + consistent tangent,
 // 16 Gauss points, 48 x 48) per element, and one global assembly into triplets plus the
 // sparse matrix. Run: build/release/bench/bench_shell --benchmark_repetitions=5
@@ -10,7 +10,7 @@
 
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
-#include "iga/kirchhoff_love_shell.hpp"
+#include "iga/shell/kirchhoff_love_shell.hpp"
 
 using namespace iga;
 

@@ -1,7 +1,7 @@
-// Benchmarks of the STAS contact integral (iga/surface_contact.hpp) at the size of [KS15]
-// Sect. 6.1-6.2: a 20 x 20 plate (20 x 20 bicubic elements, 7 x 7 contact points per element,
-// 19,600 points) lying on the rigid hyperboloid z = a x y, a = 2.5e-2, over [-10, 10]^2, every
-// point penetrating by 0.01 (all active). One iteration = one assemble. Arguments:
+// Benchmarks of the STAS contact integral (iga/contact_integrals/surface_contact.hpp) at the size
+// of [KS15] Sect. 6.1-6.2: a 20 x 20 plate (20 x 20 bicubic elements, 7 x 7 contact points per
+// element, 19,600 points) lying on the rigid hyperboloid z = a x y, a = 2.5e-2, over [-10, 10]^2,
+// every point penetrating by 0.01 (all active). One iteration = one assemble. Arguments:
 //   strategy (0 master, 1 slave), tangent (0 residual only, 1 residual and triplets),
 //   rigid (0 bilinear NURBS patch, 1 analytic Hyperboloid).
 // BM_SurfaceContactWarm: the steady state of a Newton iteration (every point warm-started from
@@ -17,7 +17,7 @@
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
-#include "iga/surface_contact.hpp"
+#include "iga/contact_integrals/surface_contact.hpp"
 
 using namespace iga;
 

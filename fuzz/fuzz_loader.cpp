@@ -8,7 +8,7 @@
 #include <string>
 
 #include "geometry/json_reader.hpp"
-#include "iga/analysis.hpp"
+#include "iga/model/analysis.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

@@ -17,7 +17,7 @@
 #include "contact/rigid_surface.hpp"
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
-#include "iga/analysis.hpp"
+#include "iga/model/analysis.hpp"
 
 namespace {
 

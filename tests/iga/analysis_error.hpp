@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "iga/analysis.hpp"
+#include "iga/model/analysis.hpp"
 
 namespace iga::test {
 
@@ -21,9 +21,9 @@ std::string analysis_error(const Json& base, Edit&& edit) {
   return "no error";
 }
 
-/// data/capstan.json turned back into the model of make_capstan's defaults (iga/capstan.hpp),
-/// which tests use as a fixture: a cubic rope whose wrapped shape is stress-free, EI = 1e-2,
-/// 3 contact points per element, penalty enforcement.
+/// data/capstan.json turned back into the model of make_capstan's defaults
+/// (tests/support/capstan.hpp), which tests use as a fixture: a cubic rope whose wrapped shape is
+/// stress-free, EI = 1e-2, 3 contact points per element, penalty enforcement.
 inline Json cubic_penalty_capstan(Json doc) {
   doc["geometry"]["rope"].erase("degree");
   doc["bodies"]["rope"].erase("stress_free");

@@ -1,0 +1,225 @@
+// CTRS contact integral ([KS15] Sects. 4-5, eqs. (52), (66)-(70), (77)-(78)).
+#include "iga/contact_integrals/curve_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "geometry/differential_geometry.hpp"
+#include "iga/core/quadrature.hpp"
+
+namespace iga {
+
+CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
+                           const ContactParameters& params, int points_per_element)
+    : ref_(reference), rigid_(&rigid), params_(params), per_element_(points_per_element) {
+  if (points_per_element < 1 || points_per_element > 16)
+    throw std::invalid_argument("contact points per element must be in 1..16, got " +
+                                std::to_string(points_per_element));
+  std::array<double, kMaxGaussPoints> gx{}, gw{};
+  gauss_legendre(points_per_element, gx, gw);
+  const std::vector<double> br = ref_.knots().breaks();
+  for (std::size_t e = 0; e + 1 < br.size(); ++e)
+    for (int k = 0; k < points_per_element; ++k) {
+      CurveContactPoint cp;
+      const double half = 0.5 * (br[e + 1] - br[e]);
+      cp.eta = br[e] + half * (1.0 + gx[static_cast<std::size_t>(k)]);
+      cp.weight = gw[static_cast<std::size_t>(k)] * half * ref_.derivs(cp.eta, 1).d[1].norm();
+      cp.foot.patch = -1;
+      points_.push_back(cp);
+      basis_.push_back(rational_basis(ref_, cp.eta));  // fixed eta: once, used every assembly
+    }
+  double chord = 0.0;
+  for (std::size_t e = 0; e + 1 < br.size(); ++e)
+    chord = std::max(chord, (ref_.point(br[e + 1]) - ref_.point(br[e])).norm());
+  search_distance_ = params_.radius + chord;
+}
+
+void CurveContact::set_enforcement(const ContactEnforcement& e) {
+  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
+    throw std::invalid_argument("contact penetration_tol must be > 0 and finite, got " +
+                                std::to_string(e.penetration_tol));
+  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
+    throw std::invalid_argument(
+        "contact slip_tol must be > 0 and finite, with the augmented "
+        "Lagrangian, got " +
+        std::to_string(e.slip_tol));
+  if (e.augmented && e.max_augmentations < 1)
+    throw std::invalid_argument("contact max_augmentations must be >= 1, got " +
+                                std::to_string(e.max_augmentations));
+  enforcement_ = e;
+}
+
+void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                            std::vector<Eigen::Triplet<double>>* K) {
+  const int p = ref_.degree();
+  // Current positions (77); the points without a warm start go through the broad phase.
+  cold_.clear();
+  cold_x_.clear();
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    CurveContactPoint& cp = points_[i];
+    const BasisValues& Rb = basis_[i].N;
+    const int first = basis_[i].first;
+    cp.x.setZero();
+    for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
+    if (cp.foot.patch < 0 || !found(cp.foot.status)) {
+      cold_.push_back(static_cast<int>(i));
+      cold_x_.push_back(cp.x);
+    }
+  }
+  broad_phase_points_ = static_cast<int>(cold_.size());
+  if (!cold_.empty()) {
+    const std::vector<ProjectionResult> feet =
+        rigid_->closest_points(cold_x_, search_distance_, /*use_cgal=*/true);
+    for (std::size_t k = 0; k < cold_.size(); ++k) {
+      CurveContactPoint& cp = points_[static_cast<std::size_t>(cold_[k])];
+      cp.foot = feet[k];
+      if (!found(cp.foot.status)) cp.foot.patch = -1;  // stays cold
+    }
+  }
+  // The start state anchors friction: before the first commit, a point with a foot has no
+  // history yet, and without one it would carry no friction in the first step (a rope laid on
+  // an inclined surface would have nothing to hold it). The first assembly is at the start
+  // state, so its feet are where the points rest.
+  const bool anchor_start = !anchored_start_;
+  anchored_start_ = true;
+  std::size_t next_cold = 0;
+  near_.clear();
+  ContactParameters law_params = params_;
+  law_params.eps_n *= augmentation_.eps_scale;  // 1 but where augmentations stalled
+  law_params.eps_t *= augmentation_.eps_t_scale;
+  bool any_active = false;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    CurveContactPoint& cp = points_[i];
+    const BasisValues& Rb = basis_[i].N;
+    const int first = basis_[i].first;
+    // Closest point, warm-started from the last foot of this point (cold ones: done above).
+    if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
+      ++next_cold;
+    else
+      cp.foot = rigid_->closest_point(cp.x, cp.foot);
+    cp.law = ContactPoint();
+    cp.N = cp.T = cp.B = 0.0;
+    if (!found(cp.foot.status)) continue;
+    if (anchor_start && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
+    // A foot on an open edge or corner of the rigid body with the point off the surface normal
+    // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
+    // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
+    if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
+      const Vector3d d = cp.x - cp.foot.point;
+      const Vector3d& nrm = cp.foot.normal;
+      if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
+    }
+    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
+                              cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
+    if (!cp.law.active) {
+      if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
+      continue;
+    }
+    any_active = true;
+    // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
+    for (int a = 0; a <= p; ++a) {
+      const int A = first + a;
+      R.segment<3>(3 * A) -= cp.weight * Rb[a] * cp.law.force;
+      if (!K) continue;
+      for (int b = 0; b <= p; ++b) {
+        const int B = first + b;
+        const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
+        for (int r = 0; r < 3; ++r)
+          for (int j = 0; j < 3; ++j) K->emplace_back(3 * A + r, 3 * B + j, k(r, j));
+      }
+    }
+    // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
+    Vector3d tangent = Vector3d::Zero();  // r' = sum R_j' x_j, normalized
+    for (int j = 0; j <= p; ++j)
+      tangent += basis_[i].dN[j] * x[static_cast<std::size_t>(first + j)];
+    tangent.normalize();
+    const Vector3d e = -cp.law.normal;
+    const Vector3d g = tangent.cross(e);
+    // [KS15]'s T^i rho_i acts on the surface, -f_T: T = -T^i (rho_i.tau) = f_T.tau.
+    cp.N = cp.law.N;                      // (68)
+    cp.T = cp.law.T_vector.dot(tangent);  // (69)
+    cp.B = cp.law.T_vector.dot(g);        // (70)
+  }
+  // No point in contact, some a hair above the surface: the tangent gets their normal penalty
+  // stiffness eps_N n n^T (no force, so the residual and the converged state are unchanged).
+  // Without it a body held only by the contact (a rope pinned at one end, its Gauss points a
+  // round-off above the cylinder it is fitted to) has a rigid mode at the start, and the first
+  // Newton correction is huge (|R| ~ 1e21 with 2 points per element on data/capstan.json).
+  if (K && !any_active)
+    for (int i : near_) {
+      const CurveContactPoint& cp = points_[static_cast<std::size_t>(i)];
+      const BasisValues& Rb = basis_[static_cast<std::size_t>(i)].N;
+      const int first = basis_[static_cast<std::size_t>(i)].first;
+      const Matrix3d kn = params_.eps_n * cp.law.normal * cp.law.normal.transpose();
+      for (int a = 0; a <= p; ++a)
+        for (int b = 0; b <= p; ++b) {
+          const Matrix3d k = cp.weight * Rb[a] * Rb[b] * kn;
+          for (int r = 0; r < 3; ++r)
+            for (int j = 0; j < 3; ++j)
+              K->emplace_back(3 * (first + a) + r, 3 * (first + b) + j, k(r, j));
+        }
+    }
+}
+
+void CurveContact::commit() {
+  for (CurveContactPoint& cp : points_) {
+    cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
+    cp.lambda_n_before = cp.lambda_n_committed;
+    cp.lambda_n_committed = cp.lambda_n;
+  }
+  augmentation_.commit();
+}
+
+AugmentResult CurveContact::augment() {
+  const bool friction = params_.mu > 0.0 && params_.eps_t > 0.0;
+  return augmentation_.update(
+      points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
+      [](const CurveContactPoint& cp) { return cp.law.gap; },
+      [](const CurveContactPoint& cp) { return cp.law.N; },
+      [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
+      [friction](const CurveContactPoint& cp) {
+        return friction && cp.law.active && !cp.law.slip && cp.history.patch >= 0;
+      },
+      [](const CurveContactPoint& cp) { return cp.law.slip_distance; },
+      [](const CurveContactPoint& cp) -> Vector3d { return cp.law.T_vector; },
+      [](CurveContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
+}
+
+void CurveContact::predict(double t) {
+  augmentation_.predict(
+      points_, enforcement_, t, [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
+      [](const CurveContactPoint& cp) { return cp.lambda_n_committed; },
+      [](const CurveContactPoint& cp) { return cp.lambda_n_before; });
+}
+
+void CurveContact::restore() {
+  for (CurveContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
+  augmentation_.restore();
+}
+
+double CurveContact::roundoff() const {
+  const double eps =
+      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+  double sum = 0.0;
+  for (const CurveContactPoint& cp : points_)
+    if (cp.law.active) sum += cp.weight * eps * (cp.x.norm() + params_.radius);
+  // 8 ulps a point: the surface point, its normal and the projection carry a few each.
+  return 8.0 * std::numeric_limits<double>::epsilon() * sum;
+}
+
+CurveContactCounts CurveContact::counts() const {
+  CurveContactCounts c;
+  for (const CurveContactPoint& cp : points_)
+    if (cp.law.active) {
+      ++c.active;
+      (cp.law.slip ? c.slip : c.stick)++;
+      c.along += cp.weight * std::abs(cp.T);
+      c.across += cp.weight * std::abs(cp.B);
+      if (cp.law.slip) (cp.T > 0.0 ? c.slip_positive : c.slip_negative)++;
+    }
+  return c;
+}
+
+}  // namespace iga

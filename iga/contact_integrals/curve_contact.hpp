@@ -1,0 +1,142 @@
+// Contact of a deformable curve (a rope's or rod's centre line) with a rigid surface: the
+// CTRS contact integral of [KS15] Sects. 4-5 (see ../shared/paper/EQUATIONS.md §4).
+// Contact points are Gauss points along the curve (a number per element); each is projected
+// onto the rigid surface (closest point, warm-started from its last foot; points without one go
+// through a CGAL broad phase against the rigid patches' elements first), the point law of
+// contact/contact_law.hpp gives the force f and df/dr, and with r_s = sum_a R_a(eta) x_a (77)
+//   residual    R_a  -= int R_a f ds,      tangent  K_ab -= int R_a R_b (df/dr) ds,
+// ds the reference arc length (the residual convention of iga/core/nonlinear_problem.hpp:
+// R = f_int - f_ext, contact forces are external). The forces are kept for output in the
+// curve's Serret-Frenet frame: N (68), pulling T (69), dragging B (70).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "contact/contact_law.hpp"
+#include "contact/rigid_surface.hpp"
+#include "geometry/nurbs_curve.hpp"
+#include "geometry/rational_basis.hpp"
+#include "iga/contact_integrals/contact_augmentation.hpp"
+
+namespace iga {
+
+/// One contact point's state for output.
+struct CurveContactPoint {
+  double eta = 0.0;                      ///< curve parameter
+  double weight = 0.0;                   ///< quadrature weight times reference ds/deta
+  Vector3d x = Vector3d::Zero();         ///< current position r_s
+  ProjectionResult foot;                 ///< its projection (warm start of the next evaluation)
+  ContactPoint law;                      ///< the point law's state
+  ContactHistory history;                ///< committed state of the last converged step
+  double lambda_n = 0.0;                 ///< normal multiplier lambda_N (augmented Lagrange), <= 0
+  double lambda_n_committed = 0.0;       ///< lambda_N at the last converged step
+  double lambda_n_before = 0.0;          ///< lambda_N at the commit before (predictor)
+  Vector3d lambda_t = Vector3d::Zero();  ///< tangential multiplier lambda_T (slip_tol > 0)
+  double N = 0.0, T = 0.0, B = 0.0;      ///< normal (68), pulling (69) and dragging (70) forces
+};
+
+struct CurveContactCounts {
+  int active = 0, stick = 0, slip = 0;
+  /// Weighted sums over the active points of |T| (69) and |B| (70): friction along the rope
+  /// and across it.
+  double along = 0.0, across = 0.0;
+  int slip_positive = 0, slip_negative = 0;  ///< slipping points by the sign of T (69)
+  /// across / along: the share of the friction that drags across the rope (0 when it slides
+  /// along itself)
+  double drag_ratio() const { return along > 0.0 ? across / along : 0.0; }
+};
+
+/// The rule of the sliding plateau (issue 12, item 3): the rope slides steadily along itself
+/// when every active point slips, all with the pulling force T (69) of one sign (no point
+/// still sliding back), and at most `max_drag` of the friction drags across the rope (70).
+/// While the rope still sinks into a groove or slips sideways, part of the friction goes
+/// across it: that part takes mu |N| from T and, in a groove, props the rope up (its radial
+/// component adds to the normal force's), so T / T0 is still short of its limit. A rope pulled
+/// into a V-groove (half-angle 30 deg, mu 0.3) has every point slipping from the first step
+/// of the pull, with 63 % of the friction across and T / T0 49 % low; the share then falls by
+/// about half per step (0.26, 0.11, 0.046, 0.018, 0.0075, 0.0043) and levels off near 0.004
+/// while T / T0 reaches its limit. max_drag = 0.005: its effect on the radial balance,
+/// max_drag mu cot(alpha), is below 0.3 % there. mu = 0: always (nothing sticks).
+inline bool steady_sliding(int active, int slip, int slip_back, double drag_ratio, double mu,
+                           double max_drag = 0.005) {
+  if (mu == 0.0) return true;
+  return active > 0 && slip == active && slip_back == 0 && drag_ratio <= max_drag;
+}
+
+class CurveContact {
+ public:
+  /// `reference`: the curve in its reference configuration (knots, degree, weights are those
+  /// of the current configuration too); `points_per_element` Gauss points per element.
+  CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
+               const ContactParameters& params, int points_per_element);
+
+  /// Adds the contact contributions at the current control points x (3 unknowns per control
+  /// point, dof 3 a + k) to R and, if K is not null, to the triplets of the tangent.
+  void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                std::vector<Eigen::Triplet<double>>* K);
+  /// Stores the current state of every point as history (after a converged step), with the
+  /// multipliers.
+  void commit();
+  /// Augmented Lagrange (parameters().enforcement): the Uzawa update of the multipliers from
+  /// the state of the last assembly (iga/contact_integrals/contact_augmentation.hpp); penalty:
+  /// satisfied.
+  AugmentResult augment();
+  /// Augmented Lagrange: multipliers for the first solve of a step at time t, extrapolated
+  /// from the last two commits (NormalAugmentation::predict); no effect after an update.
+  void predict(double t);
+  /// Multipliers back to the last commit (a step cut back).
+  void restore();
+  /// Multiplier updates and the last largest penetration (augmented Lagrange).
+  const NormalAugmentation& augmentation() const { return augmentation_; }
+
+  const std::vector<CurveContactPoint>& points() const { return points_; }
+  /// Contact points per element: points_ holds them element by element, in order.
+  int points_per_element() const { return per_element_; }
+  CurveContactCounts counts() const;
+  /// Round-off of the contact forces at the last assembly: 8 machine epsilons times
+  /// sum_active w (eps_N + eps_T) (|x| + R) with the law's (possibly raised) penalties, an
+  /// estimate of the error of computing each force from a gap of coordinates of size |x|.
+  double roundoff() const;
+  const ContactParameters& parameters() const { return params_; }
+  void set_parameters(const ContactParameters& p) { params_ = p; }
+  /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);
+  /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
+  const ContactEnforcement& enforcement() const { return enforcement_; }
+  void set_enforcement(const ContactEnforcement& e);
+  /// Points without a warm start (first assembly, or no foot last time) are projected in one
+  /// batch: a CGAL box-intersection broad phase (RigidSurface::closest_points) between the
+  /// points and the Bezier elements of the rigid patches, inflated by this distance, then the
+  /// projection among each point's candidates; farther points are inactive (status far).
+  /// Default: rope radius + the longest reference element chord.
+  double search_distance() const { return search_distance_; }
+  void set_search_distance(double d) { search_distance_ = d; }
+  /// A point at most this far above the surface counts as near contact: while no point is in
+  /// contact, the near points add their normal penalty stiffness to the tangent (not to the
+  /// residual), so that a body held only by the contact has no rigid mode at the start.
+  /// 1e-3 of the search distance.
+  double near_distance() const { return 1e-3 * search_distance_; }
+  /// Points projected through the broad phase in the last assembly (the others warm-started).
+  int broad_phase_points() const { return broad_phase_points_; }
+
+ private:
+  NurbsCurve ref_;
+  const RigidSurface* rigid_;
+  ContactParameters params_;
+  int per_element_ = 1;  ///< contact points per element
+  ContactEnforcement enforcement_;
+  NormalAugmentation augmentation_;
+  std::vector<CurveContactPoint> points_;
+  /// The rational basis at each point's eta (geometry/rational_basis.hpp), parallel to points_.
+  std::vector<RationalBasis> basis_;
+  double search_distance_ = 0.0;
+  int broad_phase_points_ = 0;
+  bool anchored_start_ = false;  ///< the first assembly anchored the points at rest
+  std::vector<int> cold_;        ///< work: points without a warm start
+  std::vector<Vector3d> cold_x_;
+  std::vector<int> near_;  ///< work: points near contact (see near_distance)
+};
+
+}  // namespace iga

@@ -1,0 +1,573 @@
+// STAS contact integral ([KS15] Sects. 2-3: (2)-(5), (10)-(18), (27)-(28), (33)-(39)); see
+// surface_contact.hpp for the strategies, the sign conventions and the search.
+#include "iga/contact_integrals/surface_contact.hpp"
+
+#include "geometry/rational_basis.hpp"
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/LU>
+
+#include "contact/analytic_projection.hpp"
+#include "contact/contact_search.hpp"
+#include "contact/ray_projection.hpp"
+#include "geometry/differential_geometry.hpp"
+#include "iga/core/quadrature.hpp"
+
+namespace iga {
+
+namespace {
+
+using Matrix39 = Eigen::Matrix<double, 3, 9>;
+using Matrix29 = Eigen::Matrix<double, 2, 9>;
+using Matrix99 = Eigen::Matrix<double, 9, 9>;
+using Matrix32 = Eigen::Matrix<double, 3, 2>;
+using RowVector9 = Eigen::Matrix<double, 1, 9>;
+
+// The shell's geometry at a contact point: G = (rho, a1, a2), the normal and its derivatives,
+// the contact point x_c = rho + c n and dx_c/dG.
+struct PointGeometry {
+  Vector3d rho, a1, a2, n;
+  double j = 0.0;           // |a1 x a2|
+  Matrix3d C1, C2;          // d(a1 x a2)/da1 = -[a2]x, d(a1 x a2)/da2 = [a1]x
+  Matrix3d dn_da1, dn_da2;  // (I - n n^T) C_i / j
+  Vector3d x;               // x_c
+  Matrix39 Xg;              // dx_c/dG = [I, c dn/da1, c dn/da2]
+  Matrix39 Ng;              // dn/dG = [0, dn/da1, dn/da2]
+};
+
+void point_geometry(const double* B, int nen, const int* cps, const std::vector<Vector3d>& x,
+                    double c, PointGeometry& g) {
+  g.rho.setZero();
+  g.a1.setZero();
+  g.a2.setZero();
+  for (int k = 0; k < nen; ++k) {
+    const Vector3d& X = x[static_cast<std::size_t>(cps[k])];
+    g.rho += B[3 * k] * X;
+    g.a1 += B[3 * k + 1] * X;
+    g.a2 += B[3 * k + 2] * X;
+  }
+  const Vector3d cr = g.a1.cross(g.a2);
+  g.j = cr.norm();
+  g.n = cr / g.j;
+  g.C1 = -skew(g.a2);
+  g.C2 = skew(g.a1);
+  const Matrix3d P = Matrix3d::Identity() - g.n * g.n.transpose();
+  g.dn_da1.noalias() = P * g.C1 / g.j;
+  g.dn_da2.noalias() = P * g.C2 / g.j;
+  g.x = g.rho + c * g.n;
+  g.Xg << Matrix3d::Identity(), c * g.dn_da1, c * g.dn_da2;
+  g.Ng << Matrix3d::Zero(), g.dn_da1, g.dn_da2;
+}
+
+// d^2 (f.n)/d(a1, a2)^2 for a fixed vector f (6 x 6): with phi(c) = f.c/|c|, c = a1 x a2,
+// grad phi = P f/j, Hess phi = (-f n^T - n f^T - (f.n)(I - 3 n n^T))/j^2, and c bilinear:
+// d^2 (g.c)/da1 da2 = -[g]x.
+Eigen::Matrix<double, 6, 6> normal_hessian(const PointGeometry& g, const Vector3d& f) {
+  const double fn = f.dot(g.n);
+  const Vector3d grad = (f - fn * g.n) / g.j;
+  const Matrix3d Hc = (-f * g.n.transpose() - g.n * f.transpose() -
+                       fn * (Matrix3d::Identity() - 3.0 * g.n * g.n.transpose())) /
+                      (g.j * g.j);
+  Eigen::Matrix<double, 6, 6> H;
+  const Matrix3d H12 = g.C1.transpose() * Hc * g.C2 - skew(grad);
+  H.topLeftCorner<3, 3>() = g.C1.transpose() * Hc * g.C1;
+  H.topRightCorner<3, 3>() = H12;
+  H.bottomLeftCorner<3, 3>() = H12.transpose();
+  H.bottomRightCorner<3, 3>() = g.C2.transpose() * Hc * g.C2;
+  return H;
+}
+
+// (da u) as a 2 x 9 matrix in dG, da_ij = da_i.a_j + a_i.da_j, for a fixed 2-vector u.
+Matrix29 metric_times(const Vector3d& a1, const Vector3d& a2, const Vector2d& u) {
+  const Vector3d v = u[0] * a1 + u[1] * a2;
+  Matrix29 D;
+  D << Eigen::RowVector3d::Zero(), v.transpose() + u[0] * a1.transpose(), u[1] * a1.transpose(),
+      Eigen::RowVector3d::Zero(), u[0] * a2.transpose(), v.transpose() + u[1] * a2.transpose();
+  return D;
+}
+
+double shell_face_sign(ShellFace f) {
+  return f == ShellFace::kLower ? -1.0 : f == ShellFace::kUpper ? 1.0 : 0.0;
+}
+
+}  // namespace
+
+SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface& rigid,
+                               const SurfaceContactParameters& params)
+    : ref_(reference), rigid_(&rigid), params_(params) {
+  check(params);
+  const int np = params.points_per_direction;
+  const int p = ref_.degree_u(), q = ref_.degree_v();
+  nen_ = (p + 1) * (q + 1);
+  std::array<double, kMaxGaussPoints> gx{}, gw{};
+  gauss_legendre(np, gx, gw);
+  const std::vector<double> bu = ref_.knots_u().breaks(), bv = ref_.knots_v().breaks();
+  const std::vector<Vector3d> X = ref_.control_points();
+  std::vector<int> cps(static_cast<std::size_t>(nen_));
+  for (std::size_t ev = 0; ev + 1 < bv.size(); ++ev)
+    for (std::size_t eu = 0; eu + 1 < bu.size(); ++eu) {
+      const double hu = 0.5 * (bu[eu + 1] - bu[eu]), hv = 0.5 * (bv[ev + 1] - bv[ev]);
+      Element el;
+      const int e = static_cast<int>(elements_.size());
+      for (int jv = 0; jv < np; ++jv)
+        for (int iu = 0; iu < np; ++iu) {
+          SurfaceContactPoint cp;
+          cp.element = e;
+          cp.uv = Vector2d(bu[eu] + hu * (1.0 + gx[static_cast<std::size_t>(iu)]),
+                           bv[ev] + hv * (1.0 + gx[static_cast<std::size_t>(jv)]));
+          cp.foot.patch = -1;
+          cp.foot.status = ProjectionStatus::far;
+          basis_.resize(basis_.size() + 3 * static_cast<std::size_t>(nen_));
+          double* B = basis_.data() + basis_.size() - 3 * static_cast<std::size_t>(nen_);
+          // (R_k, R_k,u, R_k,v) for k = a + (p+1) b, control point (first_u + a, first_v + b)
+          SurfaceBasis sb;
+          rational_basis(ref_, cp.uv[0], cp.uv[1], sb);
+          el.first_u = sb.first_u();
+          el.first_v = sb.first_v();
+          for (int k = 0; k < nen_; ++k) {
+            const auto l = static_cast<std::size_t>(k);
+            B[3 * k] = sb.R[l];
+            B[3 * k + 1] = sb.d1[l];
+            B[3 * k + 2] = sb.d2[l];
+          }
+          for (int b = 0, k = 0; b <= q; ++b)
+            for (int a = 0; a <= p; ++a, ++k)
+              cps[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
+          PointGeometry g;
+          point_geometry(B, nen_, cps.data(), X, 0.0, g);  // reference area element |A1 x A2|
+          cp.weight =
+              gw[static_cast<std::size_t>(iu)] * gw[static_cast<std::size_t>(jv)] * hu * hv * g.j;
+          points_.push_back(cp);
+        }
+      elements_.push_back(el);
+    }
+  for (int i = 0; i < rigid.num_patches(); ++i)
+    if (const PatchProjector* P = rigid.nurbs(i))
+      for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
+        rigid_boxes_.push_back(P->element_boxes()[e]);
+        rigid_tags_.emplace_back(i, static_cast<int>(e));
+      }
+  Ke_.setZero(9 * nen_, nen_);
+  Z_.setZero(9 * nen_, 3 * np * np);
+  Nall_.setZero(nen_, 3 * np * np);
+  dofs_.resize(static_cast<std::size_t>(nen_));
+  cold_.reserve(points_.size());
+  cold_x_.reserve(points_.size());
+}
+
+void SurfaceContact::check(const SurfaceContactParameters& p) const {
+  auto fail = [](const std::string& what, double v) {
+    throw std::invalid_argument("SurfaceContactParameters: " + what + ", got " + std::to_string(v));
+  };
+  if (!(p.eps_n > 0.0) || !std::isfinite(p.eps_n)) fail("eps_n must be > 0 and finite", p.eps_n);
+  if (!(p.eps_t >= 0.0) || !std::isfinite(p.eps_t)) fail("eps_t must be >= 0 and finite", p.eps_t);
+  if (!(p.mu >= 0.0) || !std::isfinite(p.mu)) fail("mu must be >= 0 and finite", p.mu);
+  if (!(p.thickness >= 0.0) || !std::isfinite(p.thickness))
+    fail("thickness must be >= 0 and finite", p.thickness);
+  if (!(p.search_distance > 0.0) || !std::isfinite(p.search_distance))
+    fail("search_distance must be > 0 and finite", p.search_distance);
+  if (p.points_per_direction < 1 || p.points_per_direction > kMaxGaussPoints)
+    fail("points_per_direction must be in 1..20", p.points_per_direction);
+}
+
+void SurfaceContact::set_enforcement(const ContactEnforcement& e) {
+  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
+    throw std::invalid_argument("SurfaceContact: penetration_tol must be > 0 and finite, got " +
+                                std::to_string(e.penetration_tol));
+  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
+    throw std::invalid_argument(
+        "SurfaceContact: slip_tol must be > 0 and finite, with the augmented Lagrangian, got " +
+        std::to_string(e.slip_tol));
+  if (e.augmented && e.max_augmentations < 1)
+    throw std::invalid_argument("SurfaceContact: max_augmentations must be >= 1, got " +
+                                std::to_string(e.max_augmentations));
+  enforcement_ = e;
+}
+
+void SurfaceContact::set_parameters(const SurfaceContactParameters& p) {
+  check(p);
+  if (p.points_per_direction != params_.points_per_direction)
+    throw std::invalid_argument(
+        "SurfaceContact::set_parameters: points_per_direction cannot change (" +
+        std::to_string(params_.points_per_direction) + " -> " +
+        std::to_string(p.points_per_direction) + ")");
+  params_ = p;
+}
+
+bool SurfaceContact::warm_project(SurfaceContactPoint& cp) const {
+  const ProjectionResult& prev = cp.foot;
+  if (prev.patch < 0 || !found(prev.status)) return false;
+  const Surface& s = rigid_->patch(prev.patch);
+  const auto* analytic =
+      rigid_->nurbs(prev.patch) ? nullptr : static_cast<const AnalyticSurface*>(&s);
+  ProjectionResult r;
+  if (params_.strategy == SurfaceContactStrategy::kRigidMaster)  // (18) from the last foot
+    r = analytic ? closest_point_analytic(*analytic, cp.x) : closest_point_local(s, cp.x, prev.uv);
+  else  // (5) from the last hit
+    r = analytic ? ray_project_analytic(*analytic, cp.x, cp.normal)
+                 : ray_project_local(s, cp.x, cp.normal, prev.uv, prev.distance);
+  if (r.status != ProjectionStatus::interior || !(std::abs(r.distance) <= params_.search_distance))
+    return false;
+  r.patch = prev.patch;
+  cp.foot = r;
+  return true;
+}
+
+void SurfaceContact::polish(ProjectionResult& foot, const Vector3d& x, const Vector3d& n) const {
+  // The projections stop at a scaled residual of 1e-13 (projection.hpp), i.e. a foot error of
+  // ~1e-13 times the patch size: enough for the gap, but the friction force eps_T Delta alpha
+  // sees it directly. One more Newton step ((18) or (5)) brings it to round-off, so that the
+  // residual is the smooth function of x that the tangent differentiates.
+  if (foot.status != ProjectionStatus::interior || !rigid_->nurbs(foot.patch)) return;
+  const Surface& s = rigid_->patch(foot.patch);
+  const SurfaceDerivs d = s.derivs(foot.uv[0], foot.uv[1], 2);
+  Vector2d uv = foot.uv;
+  double xi3 = foot.distance;
+  if (params_.strategy == SurfaceContactStrategy::kRigidMaster) {
+    const Vector3d r = x - d.S;
+    Matrix2d H;  // (17)
+    H << d.Su.squaredNorm() - d.Suu.dot(r), d.Su.dot(d.Sv) - d.Suv.dot(r),
+        d.Su.dot(d.Sv) - d.Suv.dot(r), d.Sv.squaredNorm() - d.Svv.dot(r);
+    uv += H.inverse() * Vector2d(d.Su.dot(r), d.Sv.dot(r));  // (18) with (16)
+  } else {
+    Matrix3d J;  // (4)
+    J << d.Su, d.Sv, -n;
+    const Vector3d step = -J.inverse() * (d.S - x - xi3 * n);  // (5) with (3)
+    uv += step.head<2>();
+    xi3 += step[2];
+  }
+  const Domain2 dom = s.domain();
+  if (!uv.allFinite() || uv[0] <= dom.u.lo || uv[0] >= dom.u.hi || uv[1] <= dom.v.lo ||
+      uv[1] >= dom.v.hi || (uv - foot.uv).norm() > 1e-6 * (1.0 + foot.uv.norm()))
+    return;  // not a polish: keep the projection's answer
+  const SurfaceDerivs e = s.derivs(uv[0], uv[1], 1);
+  const Vector3d cr = e.Su.cross(e.Sv);
+  foot.uv = uv;
+  foot.point = e.S;
+  foot.normal = s.normal_sign() * cr / cr.norm();
+  foot.distance = params_.strategy == SurfaceContactStrategy::kRigidMaster
+                      ? std::copysign((x - e.S).norm(), (x - e.S).dot(foot.normal))
+                      : xi3;
+}
+
+void SurfaceContact::cold_project() {
+  if (cold_.empty()) return;
+  const double d = params_.search_distance;
+  if (params_.strategy == SurfaceContactStrategy::kRigidMaster) {
+    // CGAL broad phase over all rigid Bezier elements, closest point among the candidates.
+    const std::vector<ProjectionResult> r = rigid_->closest_points(cold_x_, d, /*use_cgal=*/true);
+    for (std::size_t k = 0; k < cold_.size(); ++k)
+      points_[static_cast<std::size_t>(cold_[k])].foot = r[k];
+    return;
+  }
+  // Slave: the same broad phase gives the candidate patches; a ray hit within distance d lies
+  // in an element box enlarged by d around the point, so no hit is missed.
+  const std::vector<SearchPair> pairs =
+      rigid_boxes_.empty() ? std::vector<SearchPair>{} : broad_phase(cold_x_, rigid_boxes_, d);
+  std::size_t k = 0;
+  for (std::size_t q = 0; q < cold_.size(); ++q) {
+    SurfaceContactPoint& cp = points_[static_cast<std::size_t>(cold_[q])];
+    ProjectionResult best;
+    best.status = ProjectionStatus::far;
+    best.patch = -1;
+    bool tangent = false;
+    auto consider = [&](ProjectionResult r, int piece) {
+      r.patch = piece;
+      tangent = tangent || r.status == ProjectionStatus::tangent;
+      if (!found(r.status) || std::abs(r.distance) > d) return;
+      if (!found(best.status) || std::abs(r.distance) < std::abs(best.distance)) best = r;
+    };
+    int last_piece = -1;
+    for (; k < pairs.size() && pairs[k].query == static_cast<int>(q); ++k) {
+      const int piece = rigid_tags_[static_cast<std::size_t>(pairs[k].box)].first;
+      if (piece == last_piece) continue;  // pairs are sorted: one ray projection per piece
+      last_piece = piece;
+      consider(ray_project(*rigid_->nurbs(piece), cp.x, cp.normal), piece);
+    }
+    for (int i = 0; i < rigid_->num_patches(); ++i)
+      if (!rigid_->nurbs(i))
+        consider(ray_project_analytic(static_cast<const AnalyticSurface&>(rigid_->patch(i)), cp.x,
+                                      cp.normal),
+                 i);
+    if (!found(best.status) && tangent) best.status = ProjectionStatus::tangent;
+    cp.foot = best;
+  }
+}
+
+void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                              std::vector<Eigen::Triplet<double>>* K) {
+  const int n_cp = ref_.num_u() * ref_.num_v();
+  if (static_cast<int>(x.size()) != n_cp || R.size() != 3 * static_cast<Eigen::Index>(x.size()))
+    throw std::invalid_argument("SurfaceContact::assemble: expected " + std::to_string(n_cp) +
+                                " control points and a residual of size " +
+                                std::to_string(3 * n_cp) + ", got " + std::to_string(x.size()) +
+                                " and " + std::to_string(R.size()));
+  const int p = ref_.degree_u(), q = ref_.degree_v();
+  const double c = shell_face_sign(params_.face) * 0.5 * params_.thickness;
+  const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
+  const int per_element = params_.points_per_direction * params_.points_per_direction;
+  auto element_dofs = [&](int e) {
+    const Element& el = elements_[static_cast<std::size_t>(e)];
+    for (int b = 0, k = 0; b <= q; ++b)
+      for (int a = 0; a <= p; ++a, ++k)
+        dofs_[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
+  };
+  const double* const B0 = basis_.data();
+  const std::size_t stride = 3 * static_cast<std::size_t>(nen_);
+
+  // 1. Contact points on the face and warm-started projections; the rest is searched at once.
+  cold_.clear();
+  cold_x_.clear();
+  PointGeometry g;
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    SurfaceContactPoint& cp = points_[i];
+    if (i % static_cast<std::size_t>(per_element) == 0) element_dofs(cp.element);
+    point_geometry(B0 + i * stride, nen_, dofs_.data(), x, c, g);
+    cp.x = g.x;
+    cp.normal = g.n;
+    if (!warm_project(cp)) {
+      cold_.push_back(static_cast<int>(i));
+      cold_x_.push_back(cp.x);
+    }
+  }
+  cold_project();
+
+  // The start state anchors friction (master strategy): before the first commit, a point with
+  // a foot has no history yet, and without one it would carry no friction in the first step;
+  // the first assembly is at the start state, so its feet are where the points rest.
+  if (!anchored_start_ && master)
+    for (SurfaceContactPoint& cp : points_)
+      if (found(cp.foot.status) && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
+  anchored_start_ = true;
+
+  // 2. Point laws, residual and element tangents.
+  const double eps_n = params_.eps_n * augmentation_.eps_scale;    // 1 but where updates stalled
+  const double eps_t = params_.eps_t * augmentation_.eps_t_scale;  // likewise
+  ContactParameters law_params{eps_n, eps_t, params_.mu, 0.0};
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    element_dofs(static_cast<int>(e));
+    bool any = false;
+    int n_active = 0;  // points of this element with a tangent contribution
+    for (std::size_t i = e * static_cast<std::size_t>(per_element);
+         i < (e + 1) * static_cast<std::size_t>(per_element); ++i) {
+      SurfaceContactPoint& cp = points_[i];
+      cp.active = cp.slip = false;
+      cp.gap = cp.N = cp.phi = cp.slip_distance = 0.0;
+      cp.T.setZero();
+      cp.T_vector.setZero();
+      if (!found(cp.foot.status)) continue;
+      const double* B = B0 + i * stride;
+      point_geometry(B, nen_, dofs_.data(), x, c, g);
+      polish(cp.foot, g.x, g.n);
+      Vector3d f;
+      Matrix39 df;
+      if (master) {
+        // (10)-(18), (34)-(36) by the CTRS point law with R = 0 at x_c; df/dG = df/dx_c dx_c/dG.
+        const ContactPoint law =
+            evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x, law_params, cp.history,
+                             cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
+        cp.gap = law.gap;
+        cp.slip_distance = law.slip_distance;
+        if (!law.active) continue;
+        cp.N = law.N;
+        cp.T = law.T;
+        cp.T_vector = law.T_vector;
+        cp.phi = law.phi;
+        cp.slip = law.slip;
+        f = law.force;
+        df.noalias() = law.stiffness * g.Xg;
+      } else {
+        // (2)-(5): the hit r = x_c + xi3 n with its rigid basis r_1, r_2.
+        const SurfaceDerivs rd =
+            rigid_->patch(cp.foot.patch).derivs(cp.foot.uv[0], cp.foot.uv[1], 1);
+        const double xi3 = cp.foot.distance;
+        const double sigma = g.n.dot(cp.foot.normal) >= 0.0 ? 1.0 : -1.0;
+        cp.gap = -sigma * xi3;
+        // (34), augmented: N = min(0, lambda_N + eps_N gap); lambda_N = 0 is the penalty law.
+        const double lambda = cp.lambda_n;
+        if (lambda == 0.0 ? cp.gap > 0.0 : lambda + eps_n * cp.gap > 0.0) continue;
+        Matrix3d J;  // (4)
+        J << rd.Su, rd.Sv, -g.n;
+        const Matrix3d J_inv = J.inverse();
+        // implicit function theorem on F = r(alpha) - x_c - xi3 n = 0 (3)
+        Matrix39 dy;
+        dy.noalias() = J_inv * (g.Xg + xi3 * g.Ng);
+        const RowVector9 dxi3 = dy.row(2);
+        cp.N = eps_n * cp.gap + lambda;  // (34), <= 0
+        const double absN = -cp.N;
+        // f_N = -N nu = eps_N xi3 n - lambda_N sigma n
+        f = eps_n * xi3 * g.n;
+        df.noalias() = eps_n * (g.n * dxi3 + xi3 * g.Ng);
+        if (lambda != 0.0) {
+          f -= lambda * sigma * g.n;
+          df.noalias() -= lambda * sigma * g.Ng;
+        }
+        const ContactHistory& h = cp.history;
+        // no tangential force in the step of first contact (contact/contact_law.hpp)
+        if (params_.mu > 0.0 && params_.eps_t > 0.0 && h.patch >= 0 && h.active) {
+          Matrix32 A;
+          A << g.a1, g.a2;
+          const Matrix2d a = A.transpose() * A;
+          const Matrix2d a_inv = a.inverse();
+          // (28) with the chord d; (35): T_tr_i = T_i^(k) + eps_T d.rho_i
+          const Vector3d d = cp.foot.point - h.foot;
+          Matrix39 dd;
+          dd.noalias() = g.Xg + g.n * dxi3 + xi3 * g.Ng;  // d r/dG, r = x_c + xi3 n
+          cp.slip_distance = d.norm();
+          // the committed T_i, or the tangential multiplier (augmented stick)
+          const Vector2d Tc = augmentation_.tangential ? Vector2d(cp.lambda_t.head<2>()) : h.T;
+          const Vector2d t = Tc + eps_t * A.transpose() * d;
+          Matrix29 dt;
+          dt.noalias() = eps_t * A.transpose() * dd;
+          dt.block<1, 3>(0, 3) += eps_t * d.transpose();
+          dt.block<1, 3>(1, 6) += eps_t * d.transpose();
+          const Vector2d t_up = a_inv * t;
+          const double m = std::sqrt(t.dot(t_up));  // |T_tr| (35)
+          cp.phi = m - params_.mu * absN;
+          Matrix29 dT;
+          if (cp.phi <= 0.0 || m == 0.0) {  // stick (36)
+            cp.T = t;
+            dT = dt;
+          } else {  // slip (36): T = mu |N| T_tr/|T_tr|
+            cp.slip = true;
+            cp.T = params_.mu * absN * t / m;
+            const RowVector9 dm =
+                (t_up.transpose() * dt - 0.5 * t_up.transpose() * metric_times(g.a1, g.a2, t_up)) /
+                m;
+            const RowVector9 dabsN = eps_n * sigma * dxi3;
+            dT.noalias() =
+                params_.mu * (t / m) * dabsN + (params_.mu * absN / m) * (dt - t * dm / m);
+          }
+          // f_T = -T_i rho^i = -A a^-1 T
+          const Vector2d u = a_inv * cp.T;
+          cp.T_vector = -A * u;
+          f += cp.T_vector;
+          Matrix29 du;
+          du.noalias() = a_inv * (dT - metric_times(g.a1, g.a2, u));
+          df.noalias() -= A * du;
+          df.block<3, 3>(0, 3) -= u[0] * Matrix3d::Identity();
+          df.block<3, 3>(0, 6) -= u[1] * Matrix3d::Identity();
+        }
+      }
+      cp.active = true;
+      cp.first_contact = !cp.history.active;
+      any = true;
+      // R_a -= w (dx_c/dX_a)^T f: with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f.
+      const Eigen::Matrix<double, 9, 1> rG = g.Xg.transpose() * f;
+      for (int k = 0; k < nen_; ++k) {
+        const double* Bk = B + 3 * k;
+        R.segment<3>(3 * dofs_[static_cast<std::size_t>(k)]) -=
+            cp.weight *
+            (Bk[0] * rG.segment<3>(0) + Bk[1] * rG.segment<3>(3) + Bk[2] * rG.segment<3>(6));
+      }
+      if (!K) continue;
+      // d r_G/dG = Xg^T df + c d^2(f.n)/dG^2; K_e -= w B^T M B, B = (R, R_,1, R_,2) x I3.
+      Matrix99 M;
+      M.noalias() = g.Xg.transpose() * df;
+      if (c != 0.0) M.bottomRightCorner<6, 6>() += c * normal_hessian(g, f);
+      M *= -cp.weight;
+      // Collected per element: Nall = [.. Nm_p ..] (nen x 3 n_active), Z_kl = [.. Nm_p M_p^kl ..],
+      // M_p^kl(I, J) = M(3 I + k, 3 J + l), the Z_kl stacked; then K_e^kl = Z_kl Nall^T, one
+      // product per element for all nine component pairs (k, l).
+      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> Nm(B, nen_,
+                                                                                           3);
+      Nall_.middleCols<3>(3 * n_active) = Nm;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l) {
+          Matrix3d Mkl;
+          for (int I = 0; I < 3; ++I)
+            for (int Jj = 0; Jj < 3; ++Jj) Mkl(I, Jj) = M(3 * I + k, 3 * Jj + l);
+          Z_.block(nen_ * (3 * k + l), 3 * n_active, nen_, 3).noalias() = Nm.lazyProduct(Mkl);
+        }
+      ++n_active;
+    }
+    if (!K || !any) continue;
+    Ke_.noalias() = Z_.leftCols(3 * n_active) * Nall_.leftCols(3 * n_active).transpose();
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        const int row0 = nen_ * (3 * k + l);
+        for (int bb = 0; bb < nen_; ++bb)
+          for (int aa = 0; aa < nen_; ++aa)
+            K->emplace_back(3 * dofs_[static_cast<std::size_t>(aa)] + k,
+                            3 * dofs_[static_cast<std::size_t>(bb)] + l, Ke_(row0 + aa, bb));
+      }
+  }
+}
+
+void SurfaceContact::commit() {
+  for (SurfaceContactPoint& cp : points_) {
+    ContactHistory h;
+    if (found(cp.foot.status)) {
+      h.active = cp.active;
+      h.patch = cp.foot.patch;
+      h.xi = cp.foot.uv;
+      h.foot = cp.foot.point;
+      h.T = cp.active ? cp.T : Vector2d::Zero();
+      // master: the committed tangential force as a 3-D vector (contact_law.hpp)
+      h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
+    }
+    cp.history = h;
+    cp.lambda_n_before = cp.lambda_n_committed;
+    cp.lambda_n_committed = cp.lambda_n;
+  }
+  augmentation_.commit();
+}
+
+AugmentResult SurfaceContact::augment() {
+  const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
+  return augmentation_.update(
+      points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },
+      [](const SurfaceContactPoint& cp) { return cp.gap; },
+      [](const SurfaceContactPoint& cp) { return cp.N; },
+      [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
+      [this](const SurfaceContactPoint& cp) { return sticks(cp); },
+      [](const SurfaceContactPoint& cp) { return cp.slip_distance; },
+      [master](const SurfaceContactPoint& cp) -> Vector3d {
+        return master ? cp.T_vector : Vector3d(cp.T[0], cp.T[1], 0.0);
+      },
+      [](SurfaceContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
+}
+
+void SurfaceContact::predict(double t) {
+  augmentation_.predict(
+      points_, enforcement_, t, [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
+      [](const SurfaceContactPoint& cp) { return cp.lambda_n_committed; },
+      [](const SurfaceContactPoint& cp) { return cp.lambda_n_before; });
+}
+
+void SurfaceContact::restore() {
+  for (SurfaceContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
+  augmentation_.restore();
+}
+
+bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {
+  return cp.active && !cp.slip && !cp.first_contact && params_.mu > 0.0 && params_.eps_t > 0.0;
+}
+
+double SurfaceContact::roundoff() const {
+  const double eps =
+      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+  double sum = 0.0;
+  for (const SurfaceContactPoint& cp : points_)
+    if (cp.active) sum += cp.weight * eps * cp.x.norm();
+  // 8 ulps a point: the surface point, its normal and the projection carry a few each.
+  return 8.0 * std::numeric_limits<double>::epsilon() * sum;
+}
+
+SurfaceContactCounts SurfaceContact::counts() const {
+  SurfaceContactCounts c;
+  for (const SurfaceContactPoint& cp : points_) {
+    if (!found(cp.foot.status)) ++c.failed;
+    if (!cp.active) continue;
+    ++c.active;
+    (sticks(cp) ? c.stick : c.slip)++;
+  }
+  return c;
+}
+
+}  // namespace iga

@@ -1,0 +1,94 @@
+// The common part of rotation-free models as NonlinearProblems (RodProblem, ShellProblem): the
+// unknowns are control point displacements (DofMap: local bases, fixed / prescribed / tied
+// components), dead nodal loads along load curves, the Cartesian residual g = f_int - f_ext
+// (DOF 3 i + c) and its reduction to the free unknowns, reactions.
+#pragma once
+
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "iga/core/dof_map.hpp"
+#include "iga/core/nonlinear_problem.hpp"
+
+namespace iga {
+
+class ControlPointProblem : public NonlinearProblem {
+ public:
+  int num_control_points() const { return dofs_.num_points(); }
+
+  // ---- constraints (components along the point's local basis) -----------------------------
+  /// Sets the local basis of `point` (orthonormal columns); throws the model's error type if
+  /// the point already has constrained components or Q is not orthonormal.
+  void set_local_basis(int point, const Matrix3d& Q) { dofs_.set_local_basis(point, Q); }
+  const Matrix3d& local_basis(int point) const { return dofs_.local_basis(point); }
+  void fix(int point) { dofs_.fix(point); }
+  void fix(int point, int component) { dofs_.fix(point, component); }
+  /// Displacement component = value * curve(t).
+  void prescribe(int point, int component, double value, LoadCurve curve = ramp()) {
+    dofs_.prescribe(point, component, value, std::move(curve));
+  }
+  /// All three components of the displacement = d * curve(t) (d in the local basis).
+  void prescribe(int point, const Vector3d& d, LoadCurve curve = ramp()) {
+    for (int c = 0; c < 3; ++c) prescribe(point, c, d[c], curve);
+  }
+  /// Whether component c of point i is constrained; its free DOF index otherwise (-1 if not).
+  bool constrained(int point, int component) const { return dofs_.constrained(point, component); }
+  int dof(int point, int component) const { return dofs_.dof(point, component); }
+  const DofMap& dof_map() const { return dofs_; }
+
+  // ---- NonlinearProblem ----------------------------------------------------------------------
+  int num_dofs() const override { return dofs_.num_free(); }
+  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
+
+  // ---- state <-> geometry ----------------------------------------------------------------------
+  /// Current control points x_i = X_i + Q_i d_i(u, t).
+  std::vector<Vector3d> current_points(const VectorXd& u, double t) const;
+  void current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const;
+  /// f_int - f_ext (+ contributions) per control point, Cartesian: the reactions at the
+  /// constrained points of an equilibrium state, ~0 at free components.
+  std::vector<Vector3d> nodal_residual(const VectorXd& u, double t);
+  /// External work-conjugate force of the dead loads at t (3 n, Cartesian), for tests.
+  VectorXd dead_load(double t) const;
+
+ protected:
+  /// `owner` and `fail` as for DofMap; X the reference control points.
+  ControlPointProblem(std::vector<Vector3d> X, std::string owner, DofMap::FailFn fail);
+
+  /// The model's part of the Cartesian residual g (3 n; on entry g is empty): internal forces
+  /// (g = f_int, resized), configuration-dependent loads (g -= f_ext); tangent triplets d g / d x
+  /// appended to *K if K != nullptr. Dead nodal loads are subtracted afterwards by the base.
+  virtual void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+                              std::vector<Triplet>* K) = 0;
+  /// Hook for derived problems (e.g. contact): add to the global Cartesian residual g (3 n,
+  /// DOF 3 i + c, g = f_int - f_ext convention) and append tangent triplets d g / d x.
+  virtual void add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
+                                 std::vector<Triplet>* K) {
+    (void)x, (void)t, (void)g, (void)K;
+  }
+  /// A dead load: fixed nodal forces scaled by curve(t).
+  void add_nodal_load(std::vector<std::pair<int, Vector3d>> forces, LoadCurve curve);
+  /// Nodal forces f_i from a dense per-point array (zero entries dropped).
+  void add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve);
+  const std::vector<Vector3d>& reference_points() const { return X_; }
+
+  DofMap dofs_;
+
+ private:
+  struct NodalLoad {
+    std::vector<std::pair<int, Vector3d>> forces;
+    LoadCurve curve;
+  };
+  /// Cartesian residual g and (optionally) Cartesian triplets at x.
+  void assemble_cartesian(const VectorXd& u, double t, bool tangent);
+
+  std::vector<Vector3d> X_;
+  std::vector<NodalLoad> dead_loads_;
+  // Work storage reused between assemble() calls.
+  std::vector<Vector3d> x_;
+  VectorXd g_;
+  std::vector<Triplet> cart_triplets_, free_triplets_;
+};
+
+}  // namespace iga

@@ -1,0 +1,258 @@
+// Constraint bookkeeping of rotation-free models: local bases, fixed / prescribed / tied
+// components, reduction to the free unknowns. See dof_map.hpp.
+#include "iga/core/dof_map.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace iga {
+
+DofMap::DofMap(int num_points, std::string owner, FailFn fail)
+    : owner_(std::move(owner)), fail_(fail) {
+  points_.resize(static_cast<std::size_t>(std::max(0, num_points)));
+  renumber();
+}
+
+void DofMap::check_point(int point, const char* what) const {
+  if (point < 0 || point >= num_points()) {
+    const std::string msg = owner_ + "::" + what + ": control point " + std::to_string(point) +
+                            " out of range [0, " + std::to_string(num_points() - 1) + "]";
+    fail_(msg);
+    throw std::invalid_argument(msg);  // fail_ is expected to throw
+  }
+}
+
+void DofMap::check_component(int component) const {
+  if (component < 0 || component > 2) {
+    const std::string msg =
+        owner_ + ": component must be 0, 1 or 2, got " + std::to_string(component);
+    fail_(msg);
+    throw std::invalid_argument(msg);
+  }
+}
+
+void DofMap::renumber() const {
+  stale_ = false;
+  num_free_ = 0;
+  for (const PointDofs& P : points_)
+    for (const Component& c : P.c) {
+      c.free = -1;
+      c.resolved = c.prescribed;
+      c.sign = 1.0;
+      if (c.prescribed < 0 && c.tie_point < 0) c.free = num_free_++;
+    }
+  // Ties: follow the chain to a component with its own constraint or its own unknown (tie()
+  // rejects cycles, so the chain ends).
+  for (const PointDofs& P : points_)
+    for (const Component& c : P.c) {
+      if (c.prescribed >= 0 || c.tie_point < 0) continue;
+      double s = c.tie_sign;
+      const Component* m = &points_[static_cast<std::size_t>(c.tie_point)]
+                                .c[static_cast<std::size_t>(c.tie_component)];
+      while (m->prescribed < 0 && m->tie_point >= 0) {
+        s *= m->tie_sign;
+        m = &points_[static_cast<std::size_t>(m->tie_point)]
+                 .c[static_cast<std::size_t>(m->tie_component)];
+      }
+      c.sign = s;
+      c.free = m->free;
+      c.resolved = m->prescribed;
+    }
+}
+
+void DofMap::constrain(int point, int component, Prescribed p) {
+  check_point(point, "constrain");
+  check_component(component);
+  int& idx =
+      points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].prescribed;
+  if (idx >= 0) {
+    prescribed_[static_cast<std::size_t>(idx)] = std::move(p);
+  } else {
+    idx = static_cast<int>(prescribed_.size());
+    prescribed_.push_back(std::move(p));
+  }
+  stale_ = true;
+}
+
+void DofMap::set_local_basis(int point, const Matrix3d& Q) {
+  check_point(point, "set_local_basis");
+  PointDofs& P = points_[static_cast<std::size_t>(point)];
+  for (const Component& c : P.c)
+    if (c.prescribed >= 0 || c.tie_point >= 0 || c.master)
+      fail_(owner_ + "::set_local_basis: control point " + std::to_string(point) +
+            " already has constrained or tied components; set the basis first");
+  if (!((Q.transpose() * Q - Matrix3d::Identity()).norm() <= 1e-10))
+    fail_(owner_ + "::set_local_basis: the basis of control point " + std::to_string(point) +
+          " is not orthonormal");
+  P.Q = Q;
+  P.rotated = !Q.isIdentity(0.0);
+}
+
+const Matrix3d& DofMap::local_basis(int point) const {
+  check_point(point, "local_basis");
+  return points_[static_cast<std::size_t>(point)].Q;
+}
+
+void DofMap::fix(int point) {
+  for (int c = 0; c < 3; ++c) fix(point, c);
+}
+void DofMap::fix(int point, int component) {
+  constrain(point, component, Prescribed{});
+}
+void DofMap::prescribe(int point, int component, double value, LoadCurve curve) {
+  constrain(point, component, Prescribed{value, std::move(curve)});
+}
+
+int DofMap::axis_along(int point, const Vector3d& d, double* sign) const {
+  check_point(point, "axis_along");
+  const PointDofs& P = points_[static_cast<std::size_t>(point)];
+  const Vector3d e = d.normalized();
+  for (int c = 0; c < 3; ++c) {
+    const double cs = P.rotated ? P.Q.col(c).dot(e) : e[c];
+    if (std::abs(cs) > 1.0 - 1e-10) {
+      if (sign) *sign = cs > 0.0 ? 1.0 : -1.0;
+      return c;
+    }
+  }
+  return -1;
+}
+
+void DofMap::fix_along(int point, const Vector3d& d) {
+  if (!(d.norm() > 0.0)) fail_(owner_ + "::fix_along: the direction must be non-zero");
+  const int c = axis_along(point, d);
+  if (c >= 0) {
+    fix(point, c);
+    return;
+  }
+  const Vector3d e = d.normalized();
+  Matrix3d Q;
+  Q.col(2) = e;
+  Q.col(0) = e.unitOrthogonal();
+  Q.col(1) = e.cross(Q.col(0));
+  set_local_basis(point, Q);  // fails if the point has constraints in another basis
+  fix(point, 2);
+}
+
+void DofMap::tie(int slave, int component, int master, int master_component) {
+  check_point(slave, "tie");
+  check_point(master, "tie");
+  check_component(component);
+  check_component(master_component);
+  const PointDofs& S = points_[static_cast<std::size_t>(slave)];
+  const PointDofs& M = points_[static_cast<std::size_t>(master)];
+  const Vector3d es = S.rotated ? Vector3d(S.Q.col(component)) : Vector3d::Unit(component);
+  const Vector3d em =
+      M.rotated ? Vector3d(M.Q.col(master_component)) : Vector3d::Unit(master_component);
+  const double cs = es.dot(em);
+  if (!(std::abs(cs) > 1.0 - 1e-10))
+    fail_(owner_ + "::tie: component " + std::to_string(component) + " of control point " +
+          std::to_string(slave) + " is not parallel to component " +
+          std::to_string(master_component) + " of control point " + std::to_string(master));
+  // Reject cycles: the master's chain must not reach the slave.
+  int p = master, c = master_component;
+  for (std::size_t steps = 0; p >= 0; ++steps) {
+    if ((p == slave && c == component) || steps > 3 * points_.size())
+      fail_(owner_ + "::tie: tying control point " + std::to_string(slave) + " to " +
+            std::to_string(master) + " would close a cycle of ties");
+    const Component& m = points_[static_cast<std::size_t>(p)].c[static_cast<std::size_t>(c)];
+    p = m.tie_point;
+    c = m.tie_component;
+  }
+  Component& s = points_[static_cast<std::size_t>(slave)].c[static_cast<std::size_t>(component)];
+  s.tie_point = master;
+  s.tie_component = master_component;
+  s.tie_sign = cs > 0.0 ? 1.0 : -1.0;
+  points_[static_cast<std::size_t>(master)].c[static_cast<std::size_t>(master_component)].master =
+      true;
+  stale_ = true;
+}
+
+bool DofMap::constrained(int point, int component) const {
+  check_point(point, "constrained");
+  check_component(component);
+  // Without renumbering (a loop of constrained / fix calls stays O(n)): follow the ties to
+  // the component that decides, as renumber() does; constrained iff it has a constraint.
+  const Component* m =
+      &points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)];
+  while (m->prescribed < 0 && m->tie_point >= 0)
+    m = &points_[static_cast<std::size_t>(m->tie_point)]
+             .c[static_cast<std::size_t>(m->tie_component)];
+  return m->prescribed >= 0;
+}
+
+int DofMap::dof(int point, int component) const {
+  refresh();
+  check_point(point, "dof");
+  check_component(component);
+  return points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].free;
+}
+
+void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
+                            std::vector<Vector3d>& x) const {
+  refresh();
+  if (u.size() != num_free_)
+    throw std::invalid_argument(owner_ + ": state has " + std::to_string(u.size()) +
+                                " entries, expected " + std::to_string(num_free_));
+  const std::size_t n = points_.size();
+  x.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointDofs& P = points_[i];
+    Vector3d d;
+    for (int k = 0; k < 3; ++k) {
+      const Component& c = P.c[static_cast<std::size_t>(k)];
+      if (c.free >= 0) {
+        d[k] = c.sign * u[c.free];
+      } else {
+        const Prescribed& pr = prescribed_[static_cast<std::size_t>(c.resolved)];
+        d[k] = pr.curve ? c.sign * pr.value * pr.curve(t) : 0.0;
+      }
+    }
+    x[i] = X[i] + (P.rotated ? Vector3d(P.Q * d) : d);
+  }
+}
+
+void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
+  refresh();
+  R.setZero(num_free_);
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const PointDofs& P = points_[i];
+    const Vector3d gi = g.segment<3>(3 * static_cast<Eigen::Index>(i));
+    for (int k = 0; k < 3; ++k) {
+      const Component& c = P.c[static_cast<std::size_t>(k)];
+      if (c.free >= 0) R[c.free] += c.sign * (P.rotated ? P.Q.col(k).dot(gi) : gi[k]);
+    }
+  }
+}
+
+void DofMap::reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const {
+  refresh();
+  free.reserve(free.size() + cart.size());
+  for (const Triplet& tr : cart) {
+    const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
+    const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
+    const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
+    if (!Pi.rotated && !Pj.rotated) {
+      const Component& ci = Pi.c[static_cast<std::size_t>(a)];
+      const Component& cj = Pj.c[static_cast<std::size_t>(b)];
+      if (ci.free >= 0 && cj.free >= 0)
+        free.emplace_back(ci.free, cj.free, ci.sign * cj.sign * tr.value());
+      continue;
+    }
+    for (int ki = 0; ki < 3; ++ki) {
+      const Component& ci = Pi.c[static_cast<std::size_t>(ki)];
+      if (ci.free < 0) continue;
+      const double qi = ci.sign * axis(Pi, a, ki);
+      if (qi == 0.0) continue;
+      for (int kj = 0; kj < 3; ++kj) {
+        const Component& cj = Pj.c[static_cast<std::size_t>(kj)];
+        if (cj.free < 0) continue;
+        const double qj = cj.sign * axis(Pj, b, kj);
+        if (qj != 0.0) free.emplace_back(ci.free, cj.free, qi * tr.value() * qj);
+      }
+    }
+  }
+}
+
+}  // namespace iga

@@ -1,0 +1,340 @@
+// Sparse direct solvers behind one interface: CHOLMOD LL^T with UMFPACK LU as the general solver
+// and the fallback. [CHOLMOD] Chen, Davis, Hager, Rajamanickam, ACM TOMS 35(3), 2008;
+// [UMFPACK] Davis, ACM TOMS 30(2), 2004.
+#include "iga/solvers/linear_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+
+namespace iga {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// CHOLMOD, supernodal or simplicial as CHOLMOD's flop count decides, but always LL^T: the
+/// default simplicial LDL^T (no pivoting) would "succeed" on indefinite matrices, whereas LL^T
+/// stops at the first pivot that is not positive, which is what triggers the UMFPACK fallback.
+class Cholmod : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
+ public:
+  Cholmod() {
+    cholmod().supernodal = CHOLMOD_AUTO;
+    cholmod().final_asis = 1;
+    cholmod().final_ll = 1;  // simplicial factorizations are LL^T too
+    cholmod().print = 0;     // library code does not print (CHOLMOD warns on stdout otherwise)
+  }
+  /// The column at which the last factorization stopped (n on success).
+  long minor_column() const {
+    return m_cholmodFactor ? static_cast<long>(m_cholmodFactor->minor) : 0;
+  }
+  /// CHOLMOD's cheap reciprocal condition estimate, (min L_ii / max L_ii)^2.
+  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &cholmod()) : 0.0; }
+  /// CHOLMOD's status of the last call (negative: error, positive: warning).
+  int library_status() { return cholmod().status; }
+};
+
+/// UMFPACK with access to its status code and statistics.
+class UmfPack : public Eigen::UmfPackLU<SparseMatrix> {
+ public:
+  int code() const { return static_cast<int>(m_fact_errorCode); }
+  /// UMFPACK's reciprocal condition estimate, min |U_ii| / max |U_ii| (Info[UMFPACK_RCOND]).
+  double rcond() const { return m_umfpackInfo(UMFPACK_RCOND); }
+};
+
+/// Equal sparsity patterns (both compressed).
+bool same_pattern(const SparseMatrix& a, const SparseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols() || a.nonZeros() != b.nonZeros()) return false;
+  const Eigen::Index n = a.outerSize();
+  const Eigen::Index nnz = a.nonZeros();
+  return std::equal(a.outerIndexPtr(), a.outerIndexPtr() + n + 1, b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + nnz, b.innerIndexPtr());
+}
+
+/// "(i, j) = nan" for the first non-finite entry of a compressed matrix, or "" if none.
+std::string first_non_finite(const SparseMatrix& a) {
+  const double* v = a.valuePtr();
+  const Eigen::Index nnz = a.nonZeros();
+  for (Eigen::Index k = 0; k < nnz; ++k) {
+    if (std::isfinite(v[k])) continue;
+    const int* outer = a.outerIndexPtr();
+    const Eigen::Index col = std::upper_bound(outer, outer + a.outerSize() + 1, k) - outer - 1;
+    std::ostringstream s;
+    s << "matrix entry (" << a.innerIndexPtr()[k] << ", " << col << ") is " << v[k];
+    return s.str();
+  }
+  return {};
+}
+
+}  // namespace
+
+const char* to_string(LinearBackend b) {
+  switch (b) {
+    case LinearBackend::none:
+      return "none";
+    case LinearBackend::cholmod:
+      return "cholmod";
+    case LinearBackend::umfpack:
+      return "umfpack";
+  }
+  return "?";
+}
+
+const char* to_string(LinearSolveStatus s) {
+  switch (s) {
+    case LinearSolveStatus::success:
+      return "success";
+    case LinearSolveStatus::singular:
+      return "singular";
+    case LinearSolveStatus::invalid_input:
+      return "invalid_input";
+    case LinearSolveStatus::not_factorized:
+      return "not_factorized";
+  }
+  return "?";
+}
+
+struct LinearSolver::Impl {
+  bool symmetric = true;
+  SparseMatrix A;  // compressed copy of the last matrix; its pattern is the signature
+  bool has_pattern = false;
+  Cholmod llt;
+  bool llt_analyzed = false;  // llt holds the analysis of A's pattern
+  UmfPack lu;
+  bool lu_analyzed = false;
+  LinearBackend backend = LinearBackend::none;
+  LinearSolveStatus status = LinearSolveStatus::not_factorized;
+  std::string message;
+  bool fell_back = false;
+  bool reused = false;
+  LinearSolverStats stats;
+
+  LinearSolveStatus fail(LinearSolveStatus s, std::string why) {
+    backend = LinearBackend::none;
+    status = s;
+    message = std::move(why);
+    return s;
+  }
+
+  /// CHOLMOD LL^T of A; false (with the reason in `why`) if it is not positive definite.
+  bool factorize_cholmod(std::string& why) {
+    if (!llt_analyzed) {
+      const Clock::time_point t0 = Clock::now();
+      llt.analyzePattern(A);
+      stats.time_analyze += seconds_since(t0);
+      ++stats.analyses;
+      if (llt.library_status() < CHOLMOD_OK) {
+        why = "CHOLMOD analysis failed (status " + std::to_string(llt.library_status()) + ")";
+        return false;
+      }
+      llt_analyzed = true;
+    }
+    const Clock::time_point t0 = Clock::now();
+    llt.factorize(A);
+    stats.time_factorize += seconds_since(t0);
+    ++stats.factorizations;
+    if (llt.info() == Eigen::Success) return true;
+    ++stats.cholesky_failures;
+    if (llt.library_status() < CHOLMOD_OK) {
+      why = "CHOLMOD factorization failed (status " + std::to_string(llt.library_status()) + ")";
+      llt_analyzed = false;  // start afresh next time
+    } else {
+      why = "CHOLMOD: not positive definite (pivot " + std::to_string(llt.minor_column() + 1) +
+            " of " + std::to_string(A.rows()) + ")";
+    }
+    return false;
+  }
+
+  /// UMFPACK LU of A.
+  LinearSolveStatus factorize_umfpack(const std::string& prefix) {
+    if (!lu_analyzed) {
+      const Clock::time_point t0 = Clock::now();
+      lu.analyzePattern(A);
+      stats.time_analyze += seconds_since(t0);
+      ++stats.analyses;
+      if (lu.info() != Eigen::Success)
+        return fail(
+            LinearSolveStatus::invalid_input,
+            prefix + "UMFPACK symbolic analysis failed (status " + std::to_string(lu.code()) + ")");
+      lu_analyzed = true;
+    }
+    const Clock::time_point t0 = Clock::now();
+    lu.factorize(A);
+    stats.time_factorize += seconds_since(t0);
+    ++stats.factorizations;
+    if (lu.info() != Eigen::Success) {
+      if (lu.code() == UMFPACK_WARNING_singular_matrix)
+        return fail(LinearSolveStatus::singular, prefix + "UMFPACK: singular matrix (zero pivot)");
+      lu_analyzed = false;
+      return fail(
+          LinearSolveStatus::invalid_input,
+          prefix + "UMFPACK factorization failed (status " + std::to_string(lu.code()) + ")");
+    }
+    backend = LinearBackend::umfpack;
+    status = LinearSolveStatus::success;
+    return status;
+  }
+};
+
+LinearSolver::LinearSolver(bool symmetric) : impl_(std::make_unique<Impl>()) {
+  impl_->symmetric = symmetric;
+}
+LinearSolver::~LinearSolver() = default;
+LinearSolver::LinearSolver(LinearSolver&&) noexcept = default;
+LinearSolver& LinearSolver::operator=(LinearSolver&&) noexcept = default;
+
+void LinearSolver::set_symmetric(bool symmetric) {
+  impl_->symmetric = symmetric;
+}
+bool LinearSolver::symmetric() const {
+  return impl_->symmetric;
+}
+LinearSolveStatus LinearSolver::status() const {
+  return impl_->status;
+}
+const std::string& LinearSolver::message() const {
+  return impl_->message;
+}
+LinearBackend LinearSolver::backend() const {
+  return impl_->backend;
+}
+bool LinearSolver::fell_back() const {
+  return impl_->fell_back;
+}
+bool LinearSolver::reused_analysis() const {
+  return impl_->reused;
+}
+const LinearSolverStats& LinearSolver::stats() const {
+  return impl_->stats;
+}
+
+double LinearSolver::rcond() const {
+  Impl& m = *impl_;
+  if (m.backend == LinearBackend::none) return 0.0;
+  if (m.A.rows() == 0) return 1.0;
+  return m.backend == LinearBackend::cholmod ? m.llt.rcond() : m.lu.rcond();
+}
+
+void LinearSolver::reset() {
+  const bool symmetric = impl_->symmetric;
+  impl_ = std::make_unique<Impl>();
+  impl_->symmetric = symmetric;
+}
+
+LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
+  if (A.rows() != A.cols())
+    throw std::invalid_argument("LinearSolver::factorize: the matrix must be square, got " +
+                                std::to_string(A.rows()) + " x " + std::to_string(A.cols()));
+  if (!A.isCompressed()) {
+    SparseMatrix compressed = A;
+    compressed.makeCompressed();
+    return factorize(compressed);
+  }
+  Impl& m = *impl_;
+  m.backend = LinearBackend::none;
+  m.fell_back = false;
+  m.message.clear();
+  const int analyses_before = m.stats.analyses;
+
+  const std::string bad = first_non_finite(A);
+  if (!bad.empty()) {
+    m.reused = false;
+    return m.fail(LinearSolveStatus::invalid_input, bad);
+  }
+
+  // Pattern signature: reuse the analyses while it is unchanged, copying the values only.
+  if (m.has_pattern && same_pattern(m.A, A)) {
+    std::copy(A.valuePtr(), A.valuePtr() + A.nonZeros(), m.A.valuePtr());
+  } else {
+    m.A = A;
+    m.has_pattern = true;
+    m.llt_analyzed = false;
+    m.lu_analyzed = false;
+  }
+
+  if (m.A.rows() == 0) {  // nothing to factorize; solve() returns an empty vector
+    m.reused = true;
+    m.backend = m.symmetric ? LinearBackend::cholmod : LinearBackend::umfpack;
+    m.status = LinearSolveStatus::success;
+    return m.status;
+  }
+
+  std::string prefix;
+  if (m.symmetric) {
+    std::string why;
+    if (m.factorize_cholmod(why)) {
+      m.reused = m.stats.analyses == analyses_before;
+      m.backend = LinearBackend::cholmod;
+      m.status = LinearSolveStatus::success;
+      return m.status;
+    }
+    m.fell_back = true;
+    prefix = why + "; ";
+  }
+  const LinearSolveStatus s = m.factorize_umfpack(prefix);
+  m.reused = m.stats.analyses == analyses_before;
+  if (s == LinearSolveStatus::success && m.fell_back) m.message = prefix + "factorized by UMFPACK";
+  return s;
+}
+
+LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
+  if (&b == &x) {
+    const VectorXd copy = b;
+    return solve(copy, x);
+  }
+  Impl& m = *impl_;
+  if (m.backend == LinearBackend::none) {
+    m.status = LinearSolveStatus::not_factorized;
+    m.message = "solve() without a successful factorization";
+    return m.status;
+  }
+  if (b.size() != m.A.rows())
+    throw std::invalid_argument("LinearSolver::solve: right-hand side of size " +
+                                std::to_string(b.size()) + " for a matrix of size " +
+                                std::to_string(m.A.rows()));
+  if (b.size() == 0) {
+    x.resize(0);
+    m.status = LinearSolveStatus::success;
+    return m.status;
+  }
+  const Clock::time_point t0 = Clock::now();
+  bool ok = true;
+  if (m.backend == LinearBackend::cholmod) {
+    x = m.llt.solve(b);
+    ok = m.llt.info() == Eigen::Success;
+  } else {
+    x = m.lu.solve(b);
+  }
+  m.stats.time_solve += seconds_since(t0);
+  ++m.stats.solves;
+  if (!ok) {
+    m.status = LinearSolveStatus::singular;
+    m.message = "CHOLMOD solve failed";
+    return m.status;
+  }
+  if (!x.allFinite()) {
+    m.status = LinearSolveStatus::singular;
+    m.message = std::string(to_string(m.backend)) +
+                ": the solution is not finite (singular or badly scaled matrix)";
+    return m.status;
+  }
+  m.status = LinearSolveStatus::success;
+  return m.status;
+}
+
+LinearSolveStatus LinearSolver::solve(const SparseMatrix& A, const VectorXd& b, VectorXd& x) {
+  const LinearSolveStatus s = factorize(A);
+  if (s != LinearSolveStatus::success) return s;
+  return solve(b, x);
+}
+
+}  // namespace iga

@@ -1,0 +1,426 @@
+// Static load stepping with Newton-Raphson, step growth and cutback ([Wri08]; [KS15] via
+// ../shared/paper/EQUATIONS.md). Notation as in nonlinear_solver.hpp.
+#include "iga/solvers/nonlinear_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <stdexcept>
+#include <utility>
+
+namespace iga {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+[[noreturn]] void bad_setting(const char* field, const std::string& expected, double value) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%g", value);
+  throw std::invalid_argument(std::string("NonlinearSolverSettings.") + field + ": must be " +
+                              expected + ", got " + buf);
+}
+
+/// printf-style formatting into a std::string (GCC 12 has no std::format).
+template <class... Args>
+std::string format(const char* fmt, Args... args) {
+  const int size = std::snprintf(nullptr, 0, fmt, args...);
+  if (size <= 0) return {};
+  std::string s(static_cast<std::size_t>(size), '\0');
+  std::snprintf(s.data(), s.size() + 1, fmt, args...);
+  return s;
+}
+
+}  // namespace
+
+void NonlinearSolverSettings::validate() const {
+  if (!std::isfinite(t0)) bad_setting("t0", "finite", t0);
+  if (!std::isfinite(t1) || !(t1 > t0)) bad_setting("t1", "finite and > t0", t1);
+  if (!(min_step > 0.0)) bad_setting("min_step", "> 0", min_step);
+  if (!(max_step >= min_step)) bad_setting("max_step", ">= min_step", max_step);
+  if (!(initial_step > 0.0)) bad_setting("initial_step", "> 0", initial_step);
+  if (max_steps < 1) bad_setting("max_steps", ">= 1", max_steps);
+  if (max_iterations < 1) bad_setting("max_iterations", ">= 1", max_iterations);
+  if (!(tol_residual_rel >= 0.0)) bad_setting("tol_residual_rel", ">= 0", tol_residual_rel);
+  if (!(tol_residual_abs >= 0.0)) bad_setting("tol_residual_abs", ">= 0", tol_residual_abs);
+  if (!(tol_residual_scaled >= 0.0))
+    bad_setting("tol_residual_scaled", ">= 0", tol_residual_scaled);
+  if (!(tol_residual_rel > 0.0 || tol_residual_abs > 0.0))
+    bad_setting("tol_residual_rel", "> 0 (or tol_residual_abs > 0)", tol_residual_rel);
+  if (std::isnan(tol_energy_rel)) bad_setting("tol_energy_rel", "a number", tol_energy_rel);
+  if (std::isnan(tol_energy_abs)) bad_setting("tol_energy_abs", "a number", tol_energy_abs);
+  if (easy_iterations < 0) bad_setting("easy_iterations", ">= 0", easy_iterations);
+  if (!(growth_factor >= 1.0)) bad_setting("growth_factor", ">= 1", growth_factor);
+  if (!(cutback_factor > 0.0 && cutback_factor < 1.0))
+    bad_setting("cutback_factor", "in (0, 1)", cutback_factor);
+  if (!(divergence_ratio > 1.0)) bad_setting("divergence_ratio", "> 1", divergence_ratio);
+  if (max_residual_increases < 0)
+    bad_setting("max_residual_increases", ">= 0", max_residual_increases);
+  for (double h : hit_times)
+    if (!(h > t0 && h < t1)) bad_setting("hit_times", "inside (t0, t1)", h);
+}
+
+const char* to_string(NewtonOutcome o) {
+  switch (o) {
+    case NewtonOutcome::converged:
+      return "converged";
+    case NewtonOutcome::diverged:
+      return "diverged";
+    case NewtonOutcome::not_finite:
+      return "not_finite";
+    case NewtonOutcome::max_iterations:
+      return "max_iterations";
+    case NewtonOutcome::linear_solve_failed:
+      return "linear_solve_failed";
+    case NewtonOutcome::assembly_failed:
+      return "assembly_failed";
+    case NewtonOutcome::augmentation_failed:
+      return "augmentation_failed";
+  }
+  return "?";
+}
+
+const char* to_string(NonlinearSolverStatus s) {
+  switch (s) {
+    case NonlinearSolverStatus::converged:
+      return "converged";
+    case NonlinearSolverStatus::min_step_reached:
+      return "min_step_reached";
+    case NonlinearSolverStatus::max_steps_reached:
+      return "max_steps_reached";
+    case NonlinearSolverStatus::stopped:
+      return "stopped";
+    case NonlinearSolverStatus::failed:
+      return "failed";
+  }
+  return "?";
+}
+
+struct NonlinearSolver::Workspace {
+  int n = 0;
+  VectorXd R;    // residual at the current iterate
+  VectorXd rhs;  // -R
+  VectorXd du;   // Newton correction
+  SparseMatrix K;
+  double r0_max = 0.0;  // the largest |R_0| of the run's attempts so far (divergence scale)
+};
+
+NonlinearSolver::NonlinearSolver(const NonlinearSolverSettings& settings) : settings_(settings) {
+  settings_.validate();
+}
+
+void NonlinearSolver::set_settings(const NonlinearSolverSettings& settings) {
+  settings.validate();
+  settings_ = settings;
+}
+
+void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w,
+                             StepAttempt& a, NonlinearSolverResult& r, bool break_cycles,
+                             double r0_step) {
+  const NonlinearSolverSettings& s = settings_;
+  a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
+  a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
+  linear_.set_symmetric(problem.symmetric());
+
+  // Returns |R|, or -1 with `error` set when the problem threw.
+  std::string error;
+  const auto assemble = [&] {
+    const Clock::time_point t0 = Clock::now();
+    try {
+      problem.assemble(u, t, w.R, &w.K);
+    } catch (const std::exception& e) {
+      r.time_assembly += seconds_since(t0);
+      ++r.assemblies;
+      error = e.what();
+      return -1.0;
+    }
+    r.time_assembly += seconds_since(t0);
+    ++r.assemblies;
+    if (w.R.size() != w.n || w.K.rows() != w.n || w.K.cols() != w.n)
+      throw std::logic_error("NonlinearProblem::assemble: residual of size " +
+                             std::to_string(w.R.size()) + " and tangent of size " +
+                             std::to_string(w.K.rows()) + " x " + std::to_string(w.K.cols()) +
+                             " for " + std::to_string(w.n) + " unknowns");
+    return w.R.norm();
+  };
+  const auto finish = [&a](NewtonOutcome outcome, std::string message) {
+    a.outcome = outcome;
+    a.message = std::move(message);
+  };
+
+  const double r0 = assemble();
+  if (r0 < 0.0) return finish(NewtonOutcome::assembly_failed, "assembly of R_0: " + error);
+  // Divergence is judged against the run's force scale, not only this step's |R_0|: after a
+  // cutback |R_0| shrinks with dt, but a contact point that closes in the step adds a force of
+  // the size of the penalty times its gap at once, however small dt is.
+  w.r0_max = std::max(w.r0_max, r0);
+  const double r_div = s.divergence_ratio * w.r0_max;
+  a.residual_norms.push_back(r0);
+  if (!std::isfinite(r0)) return finish(NewtonOutcome::not_finite, "|R_0| is not finite");
+  // The absolute residual test, scaled to the run's forces (a floor for unloaded starts).
+  // The problem's round-off is a floor too (contact forces from large penalties: an augmented
+  // Lagrangian with a raised eps_N cannot get |R| below it).
+  const auto r_abs = [&] {
+    return std::max(
+        {s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
+  };
+  if (r0 <= r_abs()) return finish(NewtonOutcome::converged, {});
+
+  const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
+  double e1 = 0.0;
+  double r_prev = r0;
+  int increases = 0;
+  for (int k = 1; k <= s.max_iterations; ++k) {
+    // K du_k = -R_{k-1}
+    w.rhs = -w.R;
+    const Clock::time_point t0 = Clock::now();
+    LinearSolveStatus ls = linear_.factorize(w.K);
+    if (linear_.fell_back()) ++a.cholesky_fallbacks;
+    if (ls == LinearSolveStatus::success) {
+      if (linear_.backend() == LinearBackend::cholmod)
+        ++a.cholmod_factorizations;
+      else
+        ++a.umfpack_factorizations;
+      ls = linear_.solve(w.rhs, w.du);
+    }
+    r.time_linear_solve += seconds_since(t0);
+    if (ls != LinearSolveStatus::success)
+      return finish(
+          NewtonOutcome::linear_solve_failed,
+          format("iteration %d: linear solve %s: %s", k, to_string(ls), linear_.message().c_str()));
+    a.iterations = k;
+
+    const double e = std::abs(w.du.dot(w.R));  // E_k = |du_k . R_{k-1}|
+    a.energy_norms.push_back(e);
+    if (!std::isfinite(e))
+      return finish(NewtonOutcome::not_finite, format("iteration %d: E is not finite", k));
+    if (k == 1) e1 = e;
+
+    u += w.du;
+    double rk = assemble();
+    // Re-solves after a multiplier update: backtrack a correction that raises |R| (points
+    // flipping between stick and slip can make full Newton steps cycle), halving it up to
+    // four times while |R| stays above |R_{k-1}|.
+    for (int half = 0; break_cycles && rk > r_prev && half < 4; ++half) {
+      w.du *= 0.5;
+      u -= w.du;
+      rk = assemble();
+    }
+    if (rk < 0.0)
+      return finish(NewtonOutcome::assembly_failed,
+                    format("iteration %d: assembly: %s", k, error.c_str()));
+    a.residual_norms.push_back(rk);
+    if (!std::isfinite(rk))
+      return finish(NewtonOutcome::not_finite, format("iteration %d: |R| is not finite", k));
+
+    const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * std::max(r0, r0_step);
+    const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
+    if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
+    // At the round-off floor no iteration can do better: converged whatever the energy says.
+    if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
+      return finish(NewtonOutcome::converged, {});
+
+    if (rk > r_div)
+      return finish(NewtonOutcome::diverged,
+                    format("iteration %d: |R| = %.3e > %.3g max |R_0| (max |R_0| = %.3e)", k, rk,
+                           s.divergence_ratio, w.r0_max));
+    increases = rk > r_prev ? increases + 1 : 0;
+    if (s.max_residual_increases > 0 && increases >= s.max_residual_increases)
+      return finish(NewtonOutcome::diverged,
+                    format("iteration %d: |R| grew in %d consecutive iterations (|R| = %.3e)", k,
+                           increases, rk));
+    r_prev = rk;
+  }
+  const double e_last = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
+  finish(NewtonOutcome::max_iterations,
+         format("no convergence in %d iterations (|R| = %.3e, |R|/|R_0| = %.3e, E/E_1 = %.3e)",
+                s.max_iterations, a.residual_norms.back(), a.residual_norms.back() / r0,
+                e1 > 0.0 ? e_last / e1 : 0.0));
+}
+
+NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd& u,
+                                             const StepCallback& on_step) {
+  const Clock::time_point start = Clock::now();
+  const NonlinearSolverSettings& s = settings_;
+  const int n = problem.num_dofs();
+  if (u.size() != n)
+    throw std::invalid_argument("NonlinearSolver::solve: u has size " + std::to_string(u.size()) +
+                                ", the problem has " + std::to_string(n) + " unknowns");
+
+  NonlinearSolverResult r;
+  r.t = s.t0;
+  Workspace w;
+  w.n = n;
+  w.R.resize(n);
+  w.rhs.resize(n);
+  w.du.resize(n);
+  VectorXd u_last = u;  // the last converged state
+
+  const double span = s.t1 - s.t0;
+  const double t_eps = 1e-12 * span;  // times closer than this to t1 are t1
+  double t = s.t0;
+  double dt = std::clamp(s.initial_step, s.min_step, s.max_step);
+  int attempted = 0;
+  bool ended = false;
+
+  while (!ended && s.t1 - t > t_eps) {
+    if (attempted >= s.max_steps) {
+      r.status = NonlinearSolverStatus::max_steps_reached;
+      r.message = format("%d steps attempted (max_steps); last converged t = %.9g", attempted, t);
+      break;
+    }
+    ++attempted;
+    // The step ends at t1 if it would leave less than min_step to go.
+    double t_new = t + dt;
+    if (t_new > s.t1 - t_eps || s.t1 - t_new < s.min_step) t_new = s.t1;
+    for (double h : s.hit_times)  // land on requested times
+      if (h > t + t_eps && h < t_new - t_eps) t_new = h;
+
+    StepAttempt a;
+    a.step = r.steps + 1;
+    a.t_start = t;
+    a.t = t_new;
+    a.dt = t_new - t;
+    int hardest_solve = 0;  // the most iterations of one Newton solve of the step
+    try {
+      newton(problem, u, t_new, w, a, r);
+      hardest_solve = a.iterations;
+      // Exact enforcement: update multipliers and solve again until the constraints hold.
+      while (a.outcome == NewtonOutcome::converged) {
+        const AugmentResult ar = problem.augment(u, t_new);
+        if (ar.status == AugmentStatus::satisfied) break;
+        if (ar.status == AugmentStatus::failed) {
+          a.outcome = NewtonOutcome::augmentation_failed;
+          a.message = ar.message;
+          break;
+        }
+        ++a.augmentations;
+        StepAttempt b;
+        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true, a.residual_norms.front());
+        hardest_solve = std::max(hardest_solve, b.iterations);
+        a.iterations += b.iterations;
+        a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(),
+                                b.residual_norms.end());
+        a.energy_norms.insert(a.energy_norms.end(), b.energy_norms.begin(), b.energy_norms.end());
+        a.cholmod_factorizations += b.cholmod_factorizations;
+        a.umfpack_factorizations += b.umfpack_factorizations;
+        a.cholesky_fallbacks += b.cholesky_fallbacks;
+        if (b.outcome != NewtonOutcome::converged) {
+          a.outcome = b.outcome;
+          a.message = format("after augmentation %d (%s): %s", a.augmentations, ar.message.c_str(),
+                             b.message.c_str());
+        }
+      }
+    } catch (...) {
+      u = u_last;
+      problem.restore();
+      throw;
+    }
+    r.total_iterations += a.iterations;
+    r.augmentations += a.augmentations;
+    r.cholmod_factorizations += a.cholmod_factorizations;
+    r.umfpack_factorizations += a.umfpack_factorizations;
+    r.cholesky_fallbacks += a.cholesky_fallbacks;
+
+    if (a.outcome == NewtonOutcome::converged) {
+      t = t_new;
+      u_last = u;
+      ++r.steps;
+      r.t = t;
+      r.step_iterations.push_back(a.iterations);
+      const Clock::time_point t0 = Clock::now();
+      problem.commit(u, t);
+      r.time_callback += seconds_since(t0);
+      if (log_) {
+        const double rn = a.residual_norms.back();
+        const double en = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
+        *log_ << format(
+            "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
+            "|R0| = %.3e  |R| = %.3e  E = %.3e",
+            r.steps, t, a.dt, (t - s.t0) / span, a.iterations, a.residual_norms.front(), rn, en);
+        if (a.augmentations > 0) *log_ << "  augmentations " << a.augmentations;
+        if (a.cholesky_fallbacks > 0) *log_ << "  lu-fallbacks " << a.cholesky_fallbacks;
+        const std::string status = problem.status();
+        if (!status.empty()) *log_ << "  " << status;
+        *log_ << '\n';
+      }
+      bool go_on = true;
+      if (on_step) {
+        const Clock::time_point tc = Clock::now();
+        go_on = on_step(u, t, a);
+        r.time_callback += seconds_since(tc);
+      }
+      if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
+      r.attempts.push_back(std::move(a));
+      if (!go_on) {
+        r.status = NonlinearSolverStatus::stopped;
+        r.message = format("stopped by the step callback at t = %.9g", t);
+        ended = true;
+      }
+    } else {
+      u = u_last;
+      problem.restore();
+      ++r.cutbacks;
+      // The size tried: the nominal dt, or less where the step was cut at t1. (A step stretched
+      // to t1 by less than min_step counts as its nominal size.)
+      const double dt_tried = std::min(dt, a.dt);
+      const bool at_min = dt_tried <= s.min_step * (1.0 + 1e-12);
+      const double dt_next = std::max(dt_tried * s.cutback_factor, s.min_step);
+      if (log_)
+        *log_ << format("  step %d failed at t = %.9g (dt = %.3e): %s (%d iterations): %s; ",
+                        a.step, a.t, a.dt, to_string(a.outcome), a.iterations, a.message.c_str())
+              << (at_min ? std::string("minimum step reached") : format("dt -> %.3e", dt_next))
+              << '\n';
+      if (at_min) {
+        r.status = NonlinearSolverStatus::min_step_reached;
+        r.message = format(
+            "minimum step reached: the step from t = %.9g to %.9g (dt = %.3e) failed (%s: %s); "
+            "the state is the last converged one, t = %.9g",
+            a.t_start, a.t, a.dt, to_string(a.outcome), a.message.c_str(), t);
+        ended = true;
+      }
+      dt = dt_next;
+      r.attempts.push_back(std::move(a));
+    }
+  }
+  if (!ended && r.status == NonlinearSolverStatus::converged) {
+    r.t = t;
+    r.message = format("reached t1 = %.9g in %d steps", s.t1, r.steps);
+  }
+  r.time_total = seconds_since(start);
+  if (log_) write_summary(*log_, r);
+  return r;
+}
+
+void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
+  const int max_it = r.step_iterations.empty()
+                         ? 0
+                         : *std::max_element(r.step_iterations.begin(), r.step_iterations.end());
+  int converged_iterations = 0;
+  for (int it : r.step_iterations) converged_iterations += it;
+  const double per_step = r.steps > 0 ? double(converged_iterations) / r.steps : 0.0;
+  const double total = r.time_total > 0.0 ? r.time_total : 1.0;
+  os << "load stepping: " << to_string(r.status) << ": " << r.message << '\n';
+  os << format(
+      "  steps %d, cutbacks %d, Newton iterations %d (%.2f per converged step, max %d), "
+      "assemblies %d\n",
+      r.steps, r.cutbacks, r.total_iterations, per_step, max_it, r.assemblies);
+  os << format(
+      "  wall time %.4f s: assembly %.4f s (%.1f %%), linear solves %.4f s (%.1f %%), "
+      "commit and output %.4f s (%.1f %%)\n",
+      r.time_total, r.time_assembly, 100.0 * r.time_assembly / total, r.time_linear_solve,
+      100.0 * r.time_linear_solve / total, r.time_callback, 100.0 * r.time_callback / total);
+  if (r.augmentations > 0)
+    os << format("  augmentations %d (multiplier updates, each followed by a Newton re-solve)\n",
+                 r.augmentations);
+  os << format("  factorizations: CHOLMOD %d, UMFPACK %d (Cholesky fallbacks %d)\n",
+               r.cholmod_factorizations, r.umfpack_factorizations, r.cholesky_fallbacks);
+}
+
+}  // namespace iga

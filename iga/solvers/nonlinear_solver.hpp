@@ -1,0 +1,193 @@
+// Static load stepping in pseudo-time t in [t0, t1] with Newton-Raphson on the consistent tangent
+// (a consistent tangent gives quadratic convergence, [KS15] as restated in EQUATIONS.md Sect. 3),
+// adaptive steps (growth on easy steps, cutback on divergence), residual and energy convergence
+// tests, a progress line per step, timings of assembly and linear solves. Non-convergence is a
+// status, never an exception.
+// References: [KS15] see ../shared/paper/EQUATIONS.md; [Wri08] P. Wriggers, Nonlinear Finite
+// Element Methods, Springer 2008 (Newton-Raphson, load stepping); the energy test as in FEAP
+// (R. L. Taylor): |du . R| relative to its value in the first iteration of the step.
+//
+// Notation (code -> meaning): R_k = R(u_k, t), the residual after k Newton corrections of the
+// step; du_k = -K(u_{k-1})^-1 R_{k-1}; E_k = |du_k . R_{k-1}| the energy norm of correction k;
+// lambda = (t - t0) / (t1 - t0), the fraction of the pseudo-time span done.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "iga/core/nonlinear_problem.hpp"
+#include "iga/solvers/linear_solver.hpp"
+
+namespace iga {
+
+/// Step control and convergence tests. validate() names the offending field.
+struct NonlinearSolverSettings {
+  double t0 = 0.0;            ///< start of the pseudo-time span (u is converged there)
+  double t1 = 1.0;            ///< end of the span
+  double initial_step = 0.1;  ///< first step size in t
+  double min_step = 1e-6;     ///< a failed step of this size ends the run (min_step_reached)
+  double max_step = 1.0;      ///< steps never grow beyond this
+  int max_steps = 100000;     ///< limit on attempted steps (converged and failed)
+  int max_iterations = 20;    ///< Newton iterations per step before a cutback
+  /// Residual test: |R_k| <= tol_residual_rel |R_0| or |R_k| <= max(tol_residual_abs,
+  /// tol_residual_scaled F), where F is the run's force scale: the largest |R_0| of its steps
+  /// so far (the load or reaction increments, in the problem's units). The scaled part makes
+  /// the test independent of units (round-off in R grows with the forces); tol_residual_abs is
+  /// the floor for unloaded starts (F = 0).
+  double tol_residual_rel = 1e-8;
+  double tol_residual_abs = 1e-12;
+  double tol_residual_scaled = 1e-10;
+  /// Energy test: E_k <= tol_energy_rel E_1 or E_k <= tol_energy_abs; both <= 0: the test is
+  /// off. E_k measures the correction already applied, one iteration behind |R_k|: with
+  /// quadratic convergence E_k / E_1 is of the order of |R_k| / |R_0| (often 10-100 times
+  /// larger), so a tight energy tolerance costs an extra iteration per step. The default guards
+  /// against a small residual after a large last correction (soft modes) without that cost.
+  /// A step has converged when the residual test and the energy test hold; a step whose |R_0|
+  /// already meets the absolute residual test is converged with 0 iterations.
+  double tol_energy_rel = 1e-6;
+  double tol_energy_abs = 0.0;
+  int easy_iterations = 4;      ///< a step converged in <= this many iterations grows the next
+  double growth_factor = 1.5;   ///< dt <- min(growth_factor dt, max_step) after an easy step
+  double cutback_factor = 0.5;  ///< dt <- max(cutback_factor dt, min_step) after a failure
+  /// Divergence: |R_k| > divergence_ratio max |R_0| (the largest |R_0| of the run's steps so
+  /// far: a step cut back to a small dt keeps the run's force scale), or the residual grew in
+  /// max_residual_increases consecutive iterations (0: that check is off).
+  double divergence_ratio = 1e4;
+  int max_residual_increases = 3;
+  /// Times inside (t0, t1) that steps land on exactly (output times of an application, e.g.
+  /// the snapshots of a load history): a step that would pass one ends there instead; the
+  /// step size itself is kept for the step after. Any order; must be finite.
+  std::vector<double> hit_times;
+
+  /// Throws std::invalid_argument naming the field, e.g. "NonlinearSolverSettings.min_step:
+  /// must be > 0, got 0".
+  void validate() const;
+};
+
+/// How one Newton iteration sequence (one attempted step) ended.
+enum class NewtonOutcome {
+  converged,
+  diverged,             ///< residual growth (ratio to |R_0| or consecutive increases)
+  not_finite,           ///< NaN or Inf in the residual or the correction
+  max_iterations,       ///< no convergence within max_iterations
+  linear_solve_failed,  ///< singular tangent or non-finite entries in it
+  assembly_failed,      ///< the problem threw while assembling (e.g. a non-finite state met by
+                        ///< the contact search); the step is cut back like any other failure
+  augmentation_failed,  ///< Newton converged but NonlinearProblem::augment found the constraints
+                        ///< still violated after its allowed multiplier updates; cut back
+};
+
+/// How the whole run ended.
+enum class NonlinearSolverStatus {
+  converged,          ///< t1 reached
+  min_step_reached,   ///< a step of size min_step failed; u is the state at result.t
+  max_steps_reached,  ///< settings.max_steps attempts; u is the state at result.t
+  stopped,            ///< the step callback asked to stop; u is the state at result.t
+  failed,             ///< an error ended the run (set by callers such as Analysis::run when
+                      ///< writing a converged step's output fails); u is the state at result.t
+};
+
+const char* to_string(NewtonOutcome o);
+const char* to_string(NonlinearSolverStatus s);
+
+/// One attempted step, converged or not, with the history of its Newton iterations.
+struct StepAttempt {
+  int step = 0;          ///< number of the step it tries to complete (1 + converged steps before)
+  double t_start = 0.0;  ///< last converged time
+  double t = 0.0;        ///< target time of the step
+  double dt = 0.0;       ///< t - t_start
+  NewtonOutcome outcome = NewtonOutcome::max_iterations;
+  int iterations = 0;                  ///< Newton corrections computed (linear solves), the
+                                       ///< re-solves after multiplier updates included
+  int augmentations = 0;               ///< multiplier updates (re-solves) of the step
+  std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms); after
+                                       ///< an augmentation the re-solve's |R_0|, |R_1|, ...
+  std::vector<double> energy_norms;    ///< E_1, ..., E_iterations
+  int cholmod_factorizations = 0;      ///< factorizations that succeeded with CHOLMOD
+  int umfpack_factorizations = 0;      ///< ... with UMFPACK (incl. fallbacks)
+  int cholesky_fallbacks = 0;          ///< Cholesky attempts that fell back to UMFPACK
+  std::string message;                 ///< why it failed (empty if converged)
+};
+
+/// The outcome of NonlinearSolver::solve.
+struct NonlinearSolverResult {
+  NonlinearSolverStatus status = NonlinearSolverStatus::converged;
+  std::string message;                ///< one line: what ended the run, where, why
+  double t = 0.0;                     ///< last converged time; u holds the state there
+  int steps = 0;                      ///< converged steps
+  int cutbacks = 0;                   ///< failed attempts
+  int total_iterations = 0;           ///< Newton iterations over all attempts, failed ones included
+  int augmentations = 0;              ///< multiplier updates over all attempts (augment)
+  std::vector<int> step_iterations;   ///< Newton iterations of each converged step
+  std::vector<StepAttempt> attempts;  ///< every attempt, in order
+  int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
+  int cholmod_factorizations = 0;
+  int umfpack_factorizations = 0;
+  int cholesky_fallbacks = 0;
+  double time_total = 0.0;         ///< wall time of solve() (seconds)
+  double time_assembly = 0.0;      ///< in NonlinearProblem::assemble
+  double time_linear_solve = 0.0;  ///< in factorizations and solves
+  double time_callback = 0.0;      ///< in commit() and the step callback (output)
+
+  bool converged() const { return status == NonlinearSolverStatus::converged; }
+};
+
+/// Called after each converged step (after NonlinearProblem::commit) with the converged state,
+/// its time and the attempt that reached it; return false to stop the run (status stopped).
+using StepCallback = std::function<bool(const VectorXd& u, double t, const StepAttempt& step)>;
+
+/// Load stepping with Newton-Raphson. One instance keeps its LinearSolver (and thus the
+/// symbolic analysis) across steps and runs.
+///
+/// Each step tries t = t_start + dt from the converged u (no extrapolation): R_0 = R(u, t);
+/// Newton corrections K du = -R until the residual and energy tests hold. Then
+/// NonlinearProblem::augment: while it updates multipliers, Newton runs again at the same t
+/// from the converged u (its iterations count for the step; a failure of such a re-solve, or
+/// augment's `failed`, fails the step, which is cut back with NonlinearProblem::restore). The
+/// step size grows after a step whose every solve took <= easy_iterations iterations. A step that
+/// diverges, produces NaN, fails the linear solve or needs more than max_iterations is undone (u
+/// restored) and retried with dt * cutback_factor; a failed step of size min_step ends the run with
+/// status min_step_reached and u at the last converged step. Prescribed values depend on t
+/// inside NonlinearProblem::assemble. An exception thrown by NonlinearProblem::assemble (a
+/// std::exception, e.g. the contact search meeting a non-finite state) fails the attempt
+/// (outcome assembly_failed, its message kept) and the step is cut back; exceptions of
+/// commit() and of the step callback propagate, with u restored to the last converged state.
+class NonlinearSolver {
+ public:
+  /// Throws std::invalid_argument for invalid settings.
+  explicit NonlinearSolver(const NonlinearSolverSettings& settings = {});
+
+  const NonlinearSolverSettings& settings() const { return settings_; }
+  /// Throws std::invalid_argument for invalid settings.
+  void set_settings(const NonlinearSolverSettings& settings);
+  /// Where progress lines and the summary go; nullptr (default): silent.
+  void set_log(std::ostream* log) { log_ = log; }
+  LinearSolver& linear_solver() { return linear_; }
+
+  /// Solves from t0 to t1. u: on entry the converged state at t0 (size problem.num_dofs(), else
+  /// std::invalid_argument), on return the state at result.t.
+  [[nodiscard]] NonlinearSolverResult solve(NonlinearProblem& problem, VectorXd& u,
+                                            const StepCallback& on_step = {});
+
+ private:
+  struct Workspace;
+  /// Newton iterations at time t from u (updated in place). `break_cycles` (the re-solves after
+  /// a multiplier update): a correction that brings |R| back to its value two iterations
+  /// before (a 2-cycle, e.g. points flipping between stick and slip) is followed by a half step.
+  /// `r0_step`: |R_0| of the step's first solve; a re-solve's relative residual test is taken
+  /// against the larger of it and its own |R_0| (which is only the multipliers' jump).
+  void newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
+              NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0);
+
+  NonlinearSolverSettings settings_;
+  std::ostream* log_ = nullptr;
+  LinearSolver linear_;
+};
+
+/// The end-of-run summary: status and message, steps, cutbacks, iterations per step, wall time
+/// and the shares of assembly and linear solves, factorizations per backend.
+void write_summary(std::ostream& os, const NonlinearSolverResult& r);
+
+}  // namespace iga
