@@ -15,13 +15,20 @@ namespace iga {
 
 const char* to_string(ProjectionStatus s) {
   switch (s) {
-    case ProjectionStatus::interior: return "interior";
-    case ProjectionStatus::edge: return "edge";
-    case ProjectionStatus::vertex: return "vertex";
-    case ProjectionStatus::not_converged: return "not_converged";
-    case ProjectionStatus::miss: return "miss";
-    case ProjectionStatus::tangent: return "tangent";
-    case ProjectionStatus::far: return "far";
+    case ProjectionStatus::interior:
+      return "interior";
+    case ProjectionStatus::edge:
+      return "edge";
+    case ProjectionStatus::vertex:
+      return "vertex";
+    case ProjectionStatus::not_converged:
+      return "not_converged";
+    case ProjectionStatus::miss:
+      return "miss";
+    case ProjectionStatus::tangent:
+      return "tangent";
+    case ProjectionStatus::far:
+      return "far";
   }
   return "unknown";
 }
@@ -125,7 +132,7 @@ ProjectionStatus boundary_status(const Surface& s, const Vector2d& uv) {
   int at = 0;
   at += !s.closed_u() && (uv[0] <= dom.u.lo || uv[0] >= dom.u.hi);
   at += !s.closed_v() && (uv[1] <= dom.v.lo || uv[1] >= dom.v.hi);
-  return at == 0 ? ProjectionStatus::interior
+  return at == 0   ? ProjectionStatus::interior
          : at == 1 ? ProjectionStatus::edge
                    : ProjectionStatus::vertex;
 }
@@ -144,9 +151,6 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
     for (const Vector4d& q : b.pw) hull_.push_back(q.head<3>() / q.w());
     hull_offset_.push_back(hull_.size());
     boxes_.push_back(bounding_box(b));
-    const SurfaceDerivs dc =
-        s_.derivs(0.5 * (b.range.u.lo + b.range.u.hi), 0.5 * (b.range.v.lo + b.range.v.hi), 1);
-    bounds_.push_back(detail::patch_bounds(b, detail::tangent_frame(dc)));
     box_.extend(boxes_.back().lo);
     box_.extend(boxes_.back().hi);
     for (int j = 0; j < n; ++j)
@@ -173,6 +177,16 @@ int PatchProjector::element_of(const Vector2d& uv) const {
 namespace {
 
 // The control points of a node, projected, and their box.
+bool inside(const Domain2& r, const Vector2d& uv) {
+  return uv[0] >= r.u.lo && uv[0] <= r.u.hi && uv[1] >= r.v.lo && uv[1] <= r.v.hi;
+}
+
+// Whether the parameter rectangle `inner` lies in `outer`.
+bool within(const Domain2& inner, const Domain2& outer) {
+  return inner.u.lo >= outer.u.lo && inner.u.hi <= outer.u.hi && inner.v.lo >= outer.v.lo &&
+         inner.v.hi <= outer.v.hi;
+}
+
 template <class N>
 void finish_node(N& n) {
   n.box = Box3{};
@@ -285,9 +299,6 @@ void PatchProjector::build_tree() {
     const Vector3d g = (own.lo - in_a.hi).cwiseMax(in_a.lo - own.hi).cwiseMax(0.0);
     return g.squaredNorm();
   };
-  auto within = [](const Domain2& a, const Domain2& b) {
-    return a.u.lo >= b.u.lo && a.u.hi <= b.u.hi && a.v.lo >= b.v.lo && a.v.hi <= b.v.hi;
-  };
   auto apart = [](const Domain2& a, const Domain2& b) {
     return a.u.lo >= b.u.hi || a.u.hi <= b.u.lo || a.v.lo >= b.v.hi || a.v.hi <= b.v.lo;
   };
@@ -355,10 +366,6 @@ double frame_box_distance2(const detail::PatchBounds& b, const Vector3d& x) {
     d2 += g * g;
   }
   return d2;
-}
-
-bool inside(const Domain2& r, const Vector2d& uv) {
-  return uv[0] >= r.u.lo && uv[0] <= r.u.hi && uv[1] >= r.v.lo && uv[1] <= r.v.hi;
 }
 
 }  // namespace
@@ -432,34 +439,20 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   int n_proven = 0;
   auto is_proven = [&](const Domain2& r) {
     for (int k = 0; k < n_proven; ++k)
-      if (r.u.lo >= proven[k]->u.lo && r.u.hi <= proven[k]->u.hi && r.v.lo >= proven[k]->v.lo &&
-          r.v.hi <= proven[k]->v.hi)
-        return true;
+      if (within(r, *proven[k])) return true;
     return false;
   };
-  // When the best answer satisfies the optimality conditions of the patch: the chord test on
-  // the regions of the tree's nodes that hold it, coarsest first; the first that passes is
-  // proven.
+  // When the best answer satisfies the optimality conditions of the patch: the coarsest
+  // region holding it that passes the chord test is proven.
   bool everything_proven = false;
   auto prove_region = [&] {
-    if (!opt.certify || !best_patch_kkt || tree_.empty() || n_proven == kMaxProven) return;
-    const Vector3d r_star = x - best.point;
-    const Node* n = &tree_[static_cast<std::size_t>(element_of(best.uv))];
-    while (true) {
-      if (inside(n->region, best.uv) && !is_proven(n->region) &&
-          detail::chord_test(n->region_bounds, r_star)) {
-        proven[n_proven++] = &n->region;
-        // Every surface point outside the region is at least gap from the foot, so at least
-        // gap - best_d from x: the foot is the global minimum when best_d <= gap / 2.
-        if (best_d <= 0.5 * n->gap) everything_proven = true;
-        return;
-      }
-      if (n->child < 0) return;
-      const Domain2& r = n->net.range;
-      n = &tree_[static_cast<std::size_t>(n->child +
-                                          (best.uv[0] >= 0.5 * (r.u.lo + r.u.hi) ? 2 : 0) +
-                                          (best.uv[1] >= 0.5 * (r.v.lo + r.v.hi) ? 1 : 0))];
-    }
+    if (!opt.certify || !best_patch_kkt || n_proven == kMaxProven) return;
+    const Node* n = chord_region(best.uv, x - best.point);
+    if (n == nullptr) return;
+    if (!is_proven(n->region)) proven[n_proven++] = &n->region;
+    // Every surface point outside the region is at least gap from the foot, so at least
+    // gap - best_d from x: the foot is the global minimum when best_d <= gap / 2.
+    if (best_d <= 0.5 * n->gap) everything_proven = true;
   };
   auto consider = [&](const ProjectionResult& r, int e, const Domain2& node_range, bool patch_kkt) {
     iterations += r.iterations;
@@ -690,19 +683,23 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
 }
 
 bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r) const {
-  if (tree_.empty()) return false;
-  const Vector3d r_star = x - r.point;
-  const double d = r_star.norm();
-  const Node* n = &tree_[static_cast<std::size_t>(element_of(r.uv))];
+  const Node* n = chord_region(r.uv, x - r.point);
+  if (n == nullptr) return false;
+  const double d = (x - r.point).norm();
+  if (d <= 0.5 * n->gap) return true;
+  return ball_clear(x, d - 1e-11 * (box_.hi - box_.lo).norm(), n->region);
+}
+
+const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
+                                                         const Vector3d& r_star) const {
+  if (tree_.empty()) return nullptr;
+  const Node* n = &tree_[static_cast<std::size_t>(element_of(uv))];
   while (true) {
-    if (inside(n->region, r.uv) && detail::chord_test(n->region_bounds, r_star)) {
-      if (d <= 0.5 * n->gap) return true;
-      return ball_clear(x, d - 1e-11 * (box_.hi - box_.lo).norm(), n->region);
-    }
-    if (n->child < 0) return false;
+    if (inside(n->region, uv) && detail::chord_test(n->region_bounds, r_star)) return n;
+    if (n->child < 0) return nullptr;
     const Domain2& g = n->net.range;
-    n = &tree_[static_cast<std::size_t>(n->child + (r.uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
-                                        (r.uv[1] >= 0.5 * (g.v.lo + g.v.hi) ? 1 : 0))];
+    n = &tree_[static_cast<std::size_t>(n->child + (uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
+                                        (uv[1] >= 0.5 * (g.v.lo + g.v.hi) ? 1 : 0))];
   }
 }
 
@@ -710,10 +707,7 @@ bool PatchProjector::ball_clear(const Vector3d& x, double radius, const Domain2&
   if (!(radius > 0.0)) return false;
   const double r2 = radius * radius;
   auto clear = [&](auto&& self, const Node& m) -> bool {
-    const Domain2& g = m.net.range;
-    if (g.u.lo >= region.u.lo && g.u.hi <= region.u.hi && g.v.lo >= region.v.lo &&
-        g.v.hi <= region.v.hi)
-      return true;
+    if (within(m.net.range, region)) return true;
     if (box_distance2(m.box, x) >= r2 || frame_box_distance2(m.bounds, x) >= r2) return true;
     if (m.child < 0) return false;  // a piece outside the region may hold a closer point
     for (int k = 0; k < 4; ++k)
@@ -781,14 +775,13 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& gues
 
 namespace {
 
-detail::LocalModel<1> curve_model(const NurbsCurve& c, const Vector3d& x, double u,
-                                  double width) {
+detail::LocalModel<1> curve_model(const NurbsCurve& c, const Vector3d& x, double u, double width) {
   const CurveDerivs d = c.derivs(u, 2);
   const Vector3d r = x - d.d[0];
   detail::LocalModel<1> m;
   m.f = 0.5 * r.squaredNorm();
-  m.g[0] = -d.d[1].dot(r);                                 // (16), one parameter
-  m.H(0, 0) = d.d[1].squaredNorm() - d.d[2].dot(r);        // (17)
+  m.g[0] = -d.d[1].dot(r);                           // (16), one parameter
+  m.H(0, 0) = d.d[1].squaredNorm() - d.d[2].dot(r);  // (17)
   const double sp = d.d[1].norm();
   m.scale[0] = std::max(sp * std::max(r.norm(), sp * width), kTiny);  // as for surfaces
   return m;
@@ -804,7 +797,8 @@ ProjectionResult curve_local(const NurbsCurve& c, const Vector3d& x, double u0, 
   const detail::NewtonOutcome<1> o = detail::bounded_newton<1>(
       [&](const Eigen::Matrix<double, 1, 1>& t, int) {
         return curve_model(c, x, t[0], c.domain().hi - c.domain().lo);
-      }, t0, box, opt);
+      },
+      t0, box, opt);
   ProjectionResult r;
   r.uv = Vector2d(o.t[0], 0.0);
   r.point = c.point(o.t[0]);

@@ -76,7 +76,6 @@ class PatchProjector {
   std::vector<BezierPatch> elements_;
   int samples_per_dir_ = 8;
   std::vector<Box3> boxes_;
-  std::vector<detail::PatchBounds> bounds_;   // per element: boxes of S and its derivatives
   std::vector<std::vector<Sample>> samples_;  // per element
   std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
   std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])
@@ -107,6 +106,9 @@ class PatchProjector {
   // a search: the chord test on the coarsest region holding it that passes, and x no farther
   // from the foot than half the region's gap.
   bool proves_global(const Vector3d& x, const ProjectionResult& r) const;
+  // The coarsest node of the tree whose region holds uv and passes the chord test with r_star
+  // (the foot's r* = x - S*); nullptr when none does.
+  const Node* chord_region(const Vector2d& uv, const Vector3d& r_star) const;
   // Whether every piece of the tree outside `region` is at least `radius` from x (boxes,
   // axis-aligned and in the pieces' tangent frames).
   bool ball_clear(const Vector3d& x, double radius, const Domain2& region) const;
