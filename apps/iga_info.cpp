@@ -25,7 +25,8 @@ void describe(const std::string& name, const GeometryEntity& e) {
   } else if (const auto* s = std::get_if<NurbsSurface>(&e)) {
     std::cout << ", degree " << s->degree_u() << "x" << s->degree_v() << ", " << s->num_u() << "x"
               << s->num_v() << " control points, " << s->knots_u().num_elements() << "x"
-              << s->knots_v().num_elements() << " elements" << (s->is_rational() ? ", rational" : "");
+              << s->knots_v().num_elements() << " elements"
+              << (s->is_rational() ? ", rational" : "");
   } else if (const auto* g = std::get_if<PatchGroup>(&e)) {
     std::cout << " of " << g->patches.size() << ":";
     for (const std::string& p : g->patches) std::cout << " " << p;

@@ -127,21 +127,42 @@ Action add_make_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "Model file to write")->required();
   cmd->add_option("--name", o->name, "Model name (default: the kind)");
   cmd->add_option("--radius", o->radius, "Radius (cylinder, sphere, helix, circle)")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--height", o->height, "Cylinder height")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--major-radius", o->major_radius, "Torus centre-circle radius")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--minor-radius", o->minor_radius, "Torus tube radius")->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--angle-deg", o->angle_deg, "Cylinder sector / helix polar angle, degrees")->capture_default_str()->check(CLI::Range(1e-6, 3600.0));
-  cmd->add_option("--alpha-deg", o->alpha_deg, "Cone generator angle to the base plane, degrees")->capture_default_str()->check(CLI::Range(1e-6, 89.999));
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--height", o->height, "Cylinder height")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--major-radius", o->major_radius, "Torus centre-circle radius")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--minor-radius", o->minor_radius, "Torus tube radius")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--angle-deg", o->angle_deg, "Cylinder sector / helix polar angle, degrees")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 3600.0));
+  cmd->add_option("--alpha-deg", o->alpha_deg, "Cone generator angle to the base plane, degrees")
+      ->capture_default_str()
+      ->check(CLI::Range(1e-6, 89.999));
   cmd->add_option("--s1", o->s1, "Cone: inner radial distance")->capture_default_str();
   cmd->add_option("--s2", o->s2, "Cone: outer radial distance")->capture_default_str();
-  cmd->add_option("--size", o->size, "Edge length (plane, hyperboloid, freeform)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--size", o->size, "Edge length (plane, hyperboloid, freeform)")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   cmd->add_option("--a", o->a, "Hyperboloid coefficient in z = a x y")->capture_default_str();
   cmd->add_option("--pitch", o->pitch, "Helix pitch (rise per turn)")->capture_default_str();
-  cmd->add_option("--points", o->points, "Helix interpolation points")->capture_default_str()->check(CLI::Range(4, 100000));
-  cmd->add_option("--patches", o->patches, "Cylinder: split into this many patches (a patch group)")->capture_default_str()->check(CLI::Range(1, 360));
-  cmd->add_option("--elevate", o->elevate, "Raise the surface degree by this much")->capture_default_str()->check(CLI::Range(0, 5));
-  cmd->add_option("--subdivide", o->subdivide, "Split every surface element into N x N")->capture_default_str()->check(CLI::Range(1, 64));
+  cmd->add_option("--points", o->points, "Helix interpolation points")
+      ->capture_default_str()
+      ->check(CLI::Range(4, 100000));
+  cmd->add_option("--patches", o->patches, "Cylinder: split into this many patches (a patch group)")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 360));
+  cmd->add_option("--elevate", o->elevate, "Raise the surface degree by this much")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 5));
+  cmd->add_option("--subdivide", o->subdivide, "Split every surface element into N x N")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 64));
   cmd->add_flag("--inward", o->inward, "Flip the surface normal (inward)");
   return [o]() { return run_make(*o); };
 }

@@ -28,7 +28,8 @@ constexpr double kA = 2.5e-2, kHalf = 10.0, kH = 0.2, kDelta = 0.01;
 // The bicubic plate following z = a x y (bilinear, hence exact) with its lower face at
 // z = a x y - delta.
 NurbsSurface plate() {
-  std::vector<Vector3d> P = {{-kHalf, -kHalf, 0}, {kHalf, -kHalf, 0}, {-kHalf, kHalf, 0}, {kHalf, kHalf, 0}};
+  std::vector<Vector3d> P = {
+      {-kHalf, -kHalf, 0}, {kHalf, -kHalf, 0}, {-kHalf, kHalf, 0}, {kHalf, kHalf, 0}};
   NurbsSurface s(1, {0, 0, 1, 1}, 1, {0, 0, 1, 1}, P);
   s = subdivide(elevate_degree(s, 2, 2), 20, 20);
   std::vector<Vector3d> X = s.control_points();
@@ -50,7 +51,8 @@ SurfaceContactParameters parameters(const benchmark::State& state) {
   p.eps_n = 2.5e5;
   p.eps_t = 2.5e5;
   p.mu = 0.125;
-  p.strategy = state.range(0) == 0 ? SurfaceContactStrategy::kRigidMaster : SurfaceContactStrategy::kRigidSlave;
+  p.strategy = state.range(0) == 0 ? SurfaceContactStrategy::kRigidMaster
+                                   : SurfaceContactStrategy::kRigidSlave;
   p.face = ShellFace::kLower;
   p.thickness = kH;
   p.points_per_direction = 7;

@@ -69,7 +69,8 @@ TEST_CASE("PatchProjector: cold start finds the global minimum (brute-force refe
       const ProjectionResult ref = test::brute_force_closest(P.surface(), x);
       INFO("x = " << x.transpose() << " status " << to_string(r.status));
       REQUIRE(found(r.status));
-      INFO("ours " << (r.point - x).norm() << " ref " << (ref.point - x).norm() << " uv " << r.uv.transpose() << " ref uv " << ref.uv.transpose());
+      INFO("ours " << (r.point - x).norm() << " ref " << (ref.point - x).norm() << " uv "
+                   << r.uv.transpose() << " ref uv " << ref.uv.transpose());
       CHECK((r.point - x).norm() <= (ref.point - x).norm() + 1e-10);
       ++checked;
     }
@@ -110,8 +111,8 @@ TEST_CASE("PatchProjector: points beyond an edge or a corner land on it", "[cont
   CHECK(in.distance == Approx(-0.4).epsilon(1e-14));
 
   // A curved patch: a quarter cylinder, points beyond its straight edge and its arc edge.
-  const NurbsSurface q = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0,
-                                       1.0, 0.0, kPi / 2);
+  const NurbsSurface q =
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0, 1.0, 0.0, kPi / 2);
   const PatchProjector Q(q);
   const ProjectionResult top = Q.project(Vector3d(1.0, 1.0, 1.7));  // above the top arc
   CHECK(top.status == ProjectionStatus::edge);
@@ -132,10 +133,12 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
   std::mt19937 g(4);
   std::uniform_real_distribution<double> ang(0.0, 2 * kPi), unit(0.0, 1.0);
   const double R = 1.5, r = 0.6, H = 3.0, alpha = 0.5;
-  const PatchProjector cyl(make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), R, H));
+  const PatchProjector cyl(
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), R, H));
   const PatchProjector sph(make_sphere(Vector3d::Zero(), R));
   const PatchProjector tor(make_torus(Vector3d::Zero(), Vector3d::UnitZ(), 3.0, r));
-  const PatchProjector con(make_cone(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), alpha, 1.0, 3.0));
+  const PatchProjector con(
+      make_cone(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), alpha, 1.0, 3.0));
   int n = 0;
   for (int k = 0; k < 10000; ++k) {
     const double phi = ang(g), t = unit(g);
@@ -149,7 +152,8 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
     }
     {  // sphere: p = |x| - R (B.4)
       const double rho = R * (0.2 + 1.6 * t), th = std::acos(1.8 * unit(g) - 0.9);
-      const Vector3d x = rho * Vector3d(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi), std::cos(th));
+      const Vector3d x =
+          rho * Vector3d(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi), std::cos(th));
       const ProjectionResult c = sph.project(x);
       CHECK(found(c.status));
       CHECK(c.distance == Approx(rho - R).margin(1e-10));
@@ -157,7 +161,8 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
     }
     {  // torus: p = sqrt(x^2 + y^2 + z^2 + R^2 - 2 R s) - r (B.16)
       const double a = 0.1 * r + 1.8 * r * t, th = ang(g);
-      const Vector3d x((3.0 + a * std::cos(th)) * std::cos(phi), (3.0 + a * std::cos(th)) * std::sin(phi), a * std::sin(th));
+      const Vector3d x((3.0 + a * std::cos(th)) * std::cos(phi),
+                       (3.0 + a * std::cos(th)) * std::sin(phi), a * std::sin(th));
       const double s = x.head<2>().norm();
       const double p = std::sqrt(x.squaredNorm() + 9.0 - 6.0 * s) - r;
       const ProjectionResult c = tor.project(x);
@@ -167,7 +172,8 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
     {  // cone: p = s sin(alpha) - z cos(alpha) (B.23), within the frustum's normal band
       const double sg = 1.3 + 1.4 * t, pp = 0.8 * unit(g) - 0.4;  // foot radial distance, offset
       const Vector3d foot(sg * std::cos(phi), sg * std::sin(phi), sg * std::tan(alpha));
-      const Vector3d nrm(std::sin(alpha) * std::cos(phi), std::sin(alpha) * std::sin(phi), -std::cos(alpha));
+      const Vector3d nrm(std::sin(alpha) * std::cos(phi), std::sin(alpha) * std::sin(phi),
+                         -std::cos(alpha));
       const Vector3d x = foot + pp * nrm;
       const double p = x.head<2>().norm() * std::sin(alpha) - x.z() * std::cos(alpha);
       const ProjectionResult c = con.project(x);
@@ -182,7 +188,8 @@ TEST_CASE("PatchProjector: exact NURBS quadrics agree with the closed forms",
 
 TEST_CASE("PatchProjector: a full cylinder is seamless, warm starts continue across the seam",
           "[contact][closest][seam]") {
-  const NurbsSurface s = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0);
+  const NurbsSurface s =
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0);
   REQUIRE(s.closed_u());
   const PatchProjector P(s);
   for (double phi : {-1e-3, -1e-9, 0.0, 1e-9, 1e-3}) {
@@ -212,7 +219,8 @@ TEST_CASE("ray_project: agrees with the closest point where the normals are para
     const ProjectionResult cp = P.project(x);
     const ProjectionResult ray = ray_project(P, x, cp.normal);
     REQUIRE(found(ray.status));
-    INFO("ray res " << ray.residual << " it " << ray.iterations << " cp res " << cp.residual << " p " << p);
+    INFO("ray res " << ray.residual << " it " << ray.iterations << " cp res " << cp.residual
+                    << " p " << p);
     CHECK((ray.point - cp.point).norm() <= 1e-10);
     CHECK(ray.distance == Approx(-cp.distance).margin(1e-10));
   }
