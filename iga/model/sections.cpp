@@ -1,0 +1,714 @@
+// JSON parsing of the analysis sections (docs/model_format.md, "Analysis sections"): load
+// curves, materials, the rod and shell bodies with their boundary conditions, loads and contact
+// pair, the solver and output sections. Every error names the file, the JSON path and the value.
+#include "iga/model/sections.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <optional>
+#include <ostream>
+#include <sstream>
+#include <tuple>
+
+#include "geometry/constructions.hpp"
+#include "iga/model/model.hpp"
+#include "iga/output/output_format.hpp"
+#include "iga/output/vtk_writer.hpp"
+
+namespace iga::model_detail {
+
+namespace fs = std::filesystem;
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+
+/// Largest accepted "t_end" (pseudo-time).
+constexpr double kMaxEndTime = 1e6;
+
+double positive(const JsonCursor& c, bool allow_zero) {
+  const double x = c.as_number();
+  if (allow_zero ? !(x >= 0.0) : !(x > 0.0)) c.fail(allow_zero ? "must be >= 0" : "must be > 0");
+  return x;
+}
+double number_or(const JsonCursor& o, const char* key, double fallback) {
+  return o.has(key) ? o[key].as_number() : fallback;
+}
+/// An integer key of `o` in [lo, hi] (message `range`), or `fallback` if absent.
+int int_or(const JsonCursor& o, const char* key, int fallback, int lo, int hi, const char* range) {
+  if (!o.has(key)) return fallback;
+  const JsonCursor c = o[key];
+  const int n = c.as_int();
+  if (n < lo || n > hi) c.fail(std::string("must be in ") + range);
+  return n;
+}
+/// The penalty and friction keys of a contact pair: eps_N > 0, eps_T >= 0 (0), mu >= 0 (0).
+template <class Params>
+void penalty_and_friction(const JsonCursor& c, Params& p) {
+  p.eps_n = positive(c["eps_N"]);
+  p.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
+  p.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
+}
+Vector3d vec3(const JsonCursor& c) {
+  if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 components [x, y, z]");
+  return Vector3d(c[0].as_number(), c[1].as_number(), c[2].as_number());
+}
+/// The value of `key` in `o`, which must be one of `names`.
+std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names) {
+  const std::string s = c.as_string();
+  std::string list;
+  for (const char* n : names) {
+    if (s == n) return s;
+    list += std::string(list.empty() ? "" : ", ") + "\"" + n + "\"";
+  }
+  c.fail("expected one of " + list);
+}
+/// The enforcement keys of a contact pair: "enforcement" "penalty" (default) or
+/// "augmented_lagrange" with "penetration_tol" (a length > 0, required) and
+/// "max_augmentations" (1..1000, default 10) and "slip_tol" (a length > 0, optional: exact
+/// stick); these only with the augmented Lagrangian.
+ContactEnforcement parse_enforcement(const JsonCursor& c) {
+  ContactEnforcement e;
+  if (c.has("enforcement"))
+    e.augmented =
+        one_of(c["enforcement"], {"penalty", "augmented_lagrange"}) == "augmented_lagrange";
+  if (!e.augmented) {
+    for (const char* k : {"penetration_tol", "max_augmentations", "slip_tol"})
+      if (c.has(k)) c[k].fail("applies only with \"enforcement\": \"augmented_lagrange\"");
+    return e;
+  }
+  e.penetration_tol = positive(c["penetration_tol"]);
+  e.max_augmentations = int_or(c, "max_augmentations", e.max_augmentations, 1, 1000, "1..1000");
+  if (c.has("slip_tol")) e.slip_tol = positive(c["slip_tol"]);
+  return e;
+}
+
+// ---- load curves ---------------------------------------------------------------------------
+
+LoadCurve parse_load_curve(const JsonCursor& c) {
+  c.expect_object({"type", "points", "scale", "rate", "value", "description"});
+  const std::string type =
+      one_of(c["type"], {"ramp", "constant", "piecewise_linear", "exponential"});
+  if (type == "ramp") {
+    c.expect_object({"type", "scale", "description"});
+    const double a = number_or(c, "scale", 1.0);
+    return [a](double t) { return a * t; };
+  }
+  if (type == "constant") {
+    c.expect_object({"type", "value", "description"});
+    return constant_curve(c["value"].as_number());
+  }
+  if (type == "exponential") {  // scale * exp(rate t), e.g. springs weakening over t
+    c.expect_object({"type", "scale", "rate", "description"});
+    const double a = number_or(c, "scale", 1.0), k = c["rate"].as_number();
+    return [a, k](double t) { return a * std::exp(k * t); };
+  }
+  c.expect_object({"type", "points", "description"});
+  const JsonCursor pc = c["points"];
+  pc.expect_array(1);
+  std::vector<double> ts, vs;
+  for (std::size_t i = 0; i < pc.size(); ++i) {
+    const std::vector<double> p = pc[i].as_numbers();
+    if (p.size() != 2) pc[i].fail("expected a pair [t, value]");
+    if (i > 0 && !(p[0] > ts.back())) pc[i][0].fail("times must increase");
+    ts.push_back(p[0]);
+    vs.push_back(p[1]);
+  }
+  // Linear between the points, constant beyond the ends.
+  return [ts, vs](double t) {
+    if (t <= ts.front()) return vs.front();
+    if (t >= ts.back()) return vs.back();
+    std::size_t k = 1;
+    while (ts[k] < t) ++k;
+    const double s = (t - ts[k - 1]) / (ts[k] - ts[k - 1]);
+    return (1.0 - s) * vs[k - 1] + s * vs[k];
+  };
+}
+
+/// A load curve whose value is not finite somewhere in [t0, t1] (an exponential or a scaled
+/// ramp that overflows) is refused: no output may hold a non-finite number. Ramps and
+/// exponentials are monotone and piecewise linear curves are bounded by their points, so the
+/// ends decide; the samples in between are a guard.
+void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const NonlinearSolverSettings& s) {
+  constexpr int n = 64;
+  std::vector<double> ts = s.hit_times;
+  for (int k = 0; k <= n; ++k) ts.push_back(s.t0 + (s.t1 - s.t0) * k / n);
+  for (double t : ts) {
+    const double v = f(t);
+    if (!std::isfinite(v))
+      c.fail_plain("the load curve must be finite over the run's pseudo-time [" + fmt(s.t0) + ", " +
+                   fmt(s.t1) + "], got " + fmt(v) + " at t = " + fmt(t));
+  }
+}
+
+LoadCurve curve_of(const JsonCursor& o, const Context& ctx) {
+  if (!o.has("curve")) return ramp();
+  const JsonCursor c = o["curve"];
+  const auto it = ctx.curves.find(c.as_string());
+  if (it == ctx.curves.end()) c.fail("names no entry of \"load_curves\"");
+  return it->second;
+}
+
+void check_body(const JsonCursor& o, const Context& ctx) {
+  const JsonCursor b = o["body"];
+  if (b.as_string() != ctx.body) b.fail("names no body (the model's body is \"" + ctx.body + "\")");
+}
+
+/// A control point: rod "start", "end" or an index; shell [i, j] (i along u) or an index
+/// i + n_u j.
+int point_index(const JsonCursor& c, const Context& ctx) {
+  if (ctx.kind == BodyKind::kRod && c.json().is_string()) {
+    const std::string s = one_of(c, {"start", "end"});
+    return s == "start" ? 0 : ctx.n_points - 1;
+  }
+  if (ctx.kind == BodyKind::kShell && c.json().is_array()) {
+    if (c.size() != 2) c.fail_type("a control point [i, j] or an index");
+    const int i = c[0].as_int(), j = c[1].as_int();
+    if (i < 0 || i >= ctx.nu) c[0].fail("i must be in 0.." + std::to_string(ctx.nu - 1));
+    if (j < 0 || j >= ctx.nv) c[1].fail("j must be in 0.." + std::to_string(ctx.nv - 1));
+    return i + ctx.nu * j;
+  }
+  const int i = c.as_int();
+  if (i < 0 || i >= ctx.n_points)
+    c.fail("control point index must be in 0.." + std::to_string(ctx.n_points - 1));
+  return i;
+}
+
+/// "all", "corners" (shell: the four corner points; rod: both ends), one point or a list.
+std::vector<int> point_list(const JsonCursor& pc, const Context& ctx) {
+  std::vector<int> points;
+  if (pc.json().is_string() && (pc.as_string() == "all" || pc.as_string() == "corners")) {
+    if (pc.as_string() == "all") {
+      for (int i = 0; i < ctx.n_points; ++i) points.push_back(i);
+    } else if (ctx.kind == BodyKind::kShell) {
+      points = {0, ctx.nu - 1, ctx.nu * (ctx.nv - 1), ctx.nu * ctx.nv - 1};
+    } else {
+      points = {0, ctx.n_points - 1};
+    }
+  } else if (pc.json().is_array() &&
+             !(ctx.kind == BodyKind::kShell && pc.size() == 2 && pc[0].json().is_number())) {
+    pc.expect_array(1);
+    for (std::size_t k = 0; k < pc.size(); ++k) points.push_back(point_index(pc[k], ctx));
+  } else {
+    points.push_back(point_index(pc, ctx));
+  }
+  return points;
+}
+
+std::vector<int> components(const JsonCursor& o) {
+  std::vector<int> comps = {0, 1, 2};
+  if (o.has("components")) {
+    const JsonCursor cc = o["components"];
+    cc.expect_array(1);
+    comps.clear();
+    for (std::size_t k = 0; k < cc.size(); ++k) {
+      const int c = cc[k].as_int();
+      if (c < 0 || c > 2) cc[k].fail("component must be 0, 1 or 2");
+      comps.push_back(c);
+    }
+  }
+  return comps;
+}
+
+/// Unit tangent pointing out of the curve at one of its ends.
+Vector3d outward_tangent(const NurbsCurve& C, bool at_end) {
+  const Interval D = C.domain();
+  const Vector3d d = C.derivs(at_end ? D.hi : D.lo, 1).d[1].normalized();
+  return at_end ? d : Vector3d(-d);
+}
+
+/// A vector given as [x, y, z] (key `vec_key`), or as "magnitude" along "direction", where the
+/// direction is [x, y, z] or "outward_tangent" (at the curve's start or end, `where`).
+Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& ctx, int where) {
+  if (o.has(vec_key)) {
+    if (o.has("magnitude") || o.has("direction"))
+      o.fail_plain(std::string("give either \"") + vec_key +
+                   "\" or \"magnitude\" and \"direction\"");
+    return vec3(o[vec_key]);
+  }
+  const double m = o["magnitude"].as_number();
+  const JsonCursor d = o["direction"];
+  if (d.json().is_string() && ctx.kind == BodyKind::kRod) {
+    one_of(d, {"outward_tangent"});
+    if (where != 0 && where != 1)
+      d.fail("\"outward_tangent\" needs the point \"start\" or \"end\"");
+    return m * outward_tangent(*ctx.curve, where == 1);
+  }
+  const Vector3d v = vec3(d);
+  if (!(v.norm() > 0.0)) d.fail("must be a non-zero vector");
+  return m * v.normalized();
+}
+/// "start", "end" or a parameter in the curve's domain.
+double curve_parameter(const JsonCursor& c, const NurbsCurve& C) {
+  const Interval D = C.domain();
+  if (c.json().is_string()) return one_of(c, {"start", "end"}) == "start" ? D.lo : D.hi;
+  const double xi = c.as_number();
+  if (xi < D.lo || xi > D.hi)
+    c.fail("parameter must lie in the curve's domain [" + std::to_string(D.lo) + ", " +
+           std::to_string(D.hi) + "]");
+  return xi;
+}
+
+/// 0 for "start", 1 for "end", -1 otherwise.
+int end_of(const JsonCursor& c) {
+  if (!c.json().is_string()) return -1;
+  return c.as_string() == "start" ? 0 : c.as_string() == "end" ? 1 : -1;
+}
+
+/// {"type": "fix", "points": ..., "components": [...]} (rods and shells).
+void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p) {
+  o.expect_object({"type", "body", "points", "components", "description"});
+  const std::vector<int> comps = components(o);
+  for (int i : point_list(o["points"], ctx))
+    for (int c : comps)
+      if (!p.constrained(i, c)) p.fix(i, c);
+}
+
+void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type = one_of(o["type"], {"fix", "clamp", "displacement"});
+  check_body(o, ctx);
+  try {
+    if (type == "fix") {
+      fix_points(o, ctx, p);
+    } else if (type == "clamp") {
+      o.expect_object({"type", "body", "end", "description"});
+      const std::string e = one_of(o["end"], {"start", "end"});
+      p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
+    } else {
+      o.expect_object(
+          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
+      const int i = point_index(o["point"], ctx);
+      const Vector3d d = vector_value(o, "value", ctx, end_of(o["point"]));
+      p.prescribe(i, d, curve_of(o, ctx));
+    }
+  } catch (const RodError& e) {
+    o.fail_plain(e.what());
+  }
+}
+
+void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type = one_of(o["type"], {"point_force", "line_load", "moment"});
+  check_body(o, ctx);
+  auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
+  if (type == "point_force") {
+    o.expect_object(
+        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
+    p.add_point_load(at(o["at"]), vector_value(o, "force", ctx, end_of(o["at"])), curve_of(o, ctx));
+  } else if (type == "line_load") {
+    o.expect_object({"type", "name", "body", "q", "curve", "description"});
+    p.add_line_load(vec3(o["q"]), curve_of(o, ctx));
+  } else {
+    o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
+    p.add_moment(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
+  }
+}
+
+std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const GeometryModel& g) {
+  try {
+    return std::make_shared<RigidSurface>(RigidSurface::from_geometry(g, rc.as_string()));
+  } catch (const std::invalid_argument& e) {
+    rc.fail(std::string("not a rigid surface: ") + e.what());
+  }
+}
+
+// ---- shell bodies -----------------------------------------------------------------------------
+
+SurfaceEdge parse_edge(const JsonCursor& c) {
+  const std::string e = one_of(c, {"u_min", "u_max", "v_min", "v_max"});
+  return e == "u_min"   ? SurfaceEdge::kUMin
+         : e == "u_max" ? SurfaceEdge::kUMax
+         : e == "v_min" ? SurfaceEdge::kVMin
+                        : SurfaceEdge::kVMax;
+}
+
+/// A parameter pair (u, v) inside the surface's domain.
+Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S) {
+  const std::vector<double> uv = c.as_numbers();
+  if (uv.size() != 2) c.fail_type("surface parameters [u, v]");
+  const Domain2 D = S.domain();
+  const Interval I[2] = {D.u, D.v};
+  for (int k = 0; k < 2; ++k)
+    if (uv[k] < I[k].lo || uv[k] > I[k].hi)
+      c[static_cast<std::size_t>(k)].fail("parameter must lie in the surface's domain [" +
+                                          std::to_string(I[k].lo) + ", " + std::to_string(I[k].hi) +
+                                          "]");
+  return {uv[0], uv[1]};
+}
+
+void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type =
+      one_of(o["type"], {"fix", "displacement", "simply_supported", "clamp", "symmetry", "spring"});
+  check_body(o, ctx);
+  try {
+    if (type == "fix") {
+      fix_points(o, ctx, p);
+    } else if (type == "displacement") {
+      o.expect_object(
+          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
+      p.prescribe(point_index(o["point"], ctx), vector_value(o, "value", ctx, -1),
+                  curve_of(o, ctx));
+    } else if (type == "simply_supported") {
+      o.expect_object({"type", "body", "edge", "components", "description"});
+      const std::vector<int> c = components(o);
+      const SurfaceEdge e = parse_edge(o["edge"]);
+      for (int k : c) p.simply_support(e, {k});
+    } else if (type == "clamp") {
+      o.expect_object({"type", "body", "edge", "description"});
+      p.clamp(parse_edge(o["edge"]));
+    } else if (type == "symmetry") {
+      o.expect_object({"type", "body", "edge", "normal", "description"});
+      const Vector3d n = vec3(o["normal"]);
+      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
+      p.symmetry(parse_edge(o["edge"]), n.normalized());
+    } else {
+      o.expect_object({"type", "body", "points", "stiffness", "curve", "direction", "description"});
+      const double k = positive(o["stiffness"]);
+      std::optional<Vector3d> d;
+      if (o.has("direction")) {
+        const Vector3d v = vec3(o["direction"]);
+        if (!(v.norm() > 0.0)) o["direction"].fail("must be a non-zero vector");
+        d = v.normalized();
+      }
+      // A spring's stiffness k curve(t); without a curve it is constant.
+      const LoadCurve curve = o.has("curve") ? curve_of(o, ctx) : constant_curve();
+      for (int i : point_list(o["points"], ctx)) p.add_spring(i, k, curve, d);
+    }
+  } catch (const ShellError& e) {
+    o.fail_plain(e.what());
+  }
+}
+
+void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
+  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+  const std::string type =
+      one_of(o["type"], {"surface_load", "pressure", "edge_load", "point_force"});
+  check_body(o, ctx);
+  if (type == "surface_load") {  // dead force per reference area
+    o.expect_object({"type", "name", "body", "q", "curve", "description"});
+    p.add_surface_load(vec3(o["q"]), curve_of(o, ctx));
+  } else if (type == "pressure") {  // follower, per current area, along +a_3
+    o.expect_object({"type", "name", "body", "p", "curve", "description"});
+    p.add_pressure(o["p"].as_number(), curve_of(o, ctx));
+  } else if (type == "edge_load") {  // dead force per reference length
+    o.expect_object({"type", "name", "body", "edge", "q", "curve", "description"});
+    p.add_edge_load(parse_edge(o["edge"]), vec3(o["q"]), curve_of(o, ctx));
+  } else {
+    o.expect_object(
+        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
+    const Vector2d uv = surface_parameters(o["at"], *ctx.surface);
+    p.add_point_load(uv[0], uv[1], vector_value(o, "force", ctx, -1), curve_of(o, ctx));
+  }
+}
+
+ShellMaterial parse_shell_material(const JsonCursor& m) {
+  m.expect_object({"type", "E", "nu", "thickness", "description"});
+  ShellMaterial s;
+  s.E = positive(m["E"]);
+  const JsonCursor n = m["nu"];
+  s.nu = n.as_number();
+  if (!(s.nu > -1.0 && s.nu < 0.5)) n.fail("must be in (-1, 0.5)");
+  s.thickness = positive(m["thickness"]);
+  return s;
+}
+
+RodSection parse_rod_material(const JsonCursor& m) {
+  const std::string type = one_of(m["type"], {"rod", "rod_circular"});
+  RodSection s;
+  if (type == "rod_circular") {
+    m.expect_object({"type", "E", "radius", "description"});
+    return RodSection::circular(positive(m["E"]), positive(m["radius"]));
+  }
+  m.expect_object({"type", "EA", "EI", "EI1", "EI2", "ref_direction", "description"});
+  s.EA = positive(m["EA"]);
+  if (m.has("EI")) {
+    if (m.has("EI1") || m.has("EI2")) m.fail_plain("give either \"EI\" or \"EI1\" and \"EI2\"");
+    s.EI1 = s.EI2 = positive(m["EI"], true);
+  } else {
+    s.EI1 = positive(m["EI1"], true);
+    s.EI2 = positive(m["EI2"], true);
+  }
+  if (m.has("ref_direction")) s.ref_direction = vec3(m["ref_direction"]);
+  return s;
+}
+
+NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
+  s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
+                   "tol_residual_rel", "tol_residual_abs", "tol_residual_scaled", "tol_energy_rel",
+                   "divergence_ratio", "max_residual_increases", "stop_at_full_slip_after",
+                   "full_slip_steps", "hit_times", "easy_iterations", "growth_factor",
+                   "cutback_factor", "description"});
+  NonlinearSolverSettings n;
+  n.t0 = 0.0;
+  if (s.has("t_end")) {
+    n.t1 = positive(s["t_end"]);
+    // Pseudo-time is a load parameter, not a physical time: scale the load curves instead.
+    if (n.t1 > kMaxEndTime)
+      s["t_end"].fail("must be at most " + fmt(kMaxEndTime) +
+                      " (pseudo-time; scale the load curves instead)");
+  }
+  n.initial_step = s.has("initial_step") ? positive(s["initial_step"]) : 0.1 * n.t1;
+  n.max_step = s.has("max_step") ? positive(s["max_step"]) : n.t1;
+  n.min_step = s.has("min_step") ? positive(s["min_step"]) : 1e-6 * n.t1;
+  if (s.has("max_steps")) {
+    const JsonCursor c = s["max_steps"];
+    n.max_steps = c.as_int();
+    if (n.max_steps < 1) c.fail("must be >= 1");
+  }
+  if (s.has("max_iterations")) {
+    const JsonCursor c = s["max_iterations"];
+    n.max_iterations = c.as_int();
+    if (n.max_iterations < 1) c.fail("must be >= 1");
+  }
+  if (s.has("tol_residual_rel")) n.tol_residual_rel = positive(s["tol_residual_rel"]);
+  if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
+  if (s.has("tol_residual_scaled"))
+    n.tol_residual_scaled = positive(s["tol_residual_scaled"], true);
+  if (s.has("tol_energy_rel")) n.tol_energy_rel = positive(s["tol_energy_rel"], true);
+  if (s.has("divergence_ratio")) {  // a step fails when |R_k| > divergence_ratio |R_0|
+    const JsonCursor c = s["divergence_ratio"];
+    n.divergence_ratio = c.as_number();
+    if (!(n.divergence_ratio > 1.0)) c.fail("must be > 1");
+  }
+  if (s.has("max_residual_increases")) {  // ... or |R| grew this many times in a row (0: off)
+    const JsonCursor c = s["max_residual_increases"];
+    n.max_residual_increases = c.as_int();
+    if (n.max_residual_increases < 0) c.fail("must be >= 0");
+  }
+  if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
+  if (s.has("full_slip_steps")) {  // consecutive steps of steady sliding before stopping
+    const JsonCursor c = s["full_slip_steps"];
+    slip_steps = c.as_int();
+    if (slip_steps < 1) c.fail("must be >= 1");
+  }
+  if (s.has("easy_iterations")) {  // a step converged in <= this many iterations grows the next
+    const JsonCursor c = s["easy_iterations"];
+    n.easy_iterations = c.as_int();
+    if (n.easy_iterations < 0) c.fail("must be >= 0");
+  }
+  if (s.has("growth_factor")) n.growth_factor = positive(s["growth_factor"]);
+  if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);
+  if (s.has("hit_times")) {  // times the steps land on (snapshots)
+    const JsonCursor h = s["hit_times"];
+    h.expect_array();
+    n.hit_times = h.as_numbers();
+    for (std::size_t k = 0; k < n.hit_times.size(); ++k)
+      if (!(n.hit_times[k] > n.t0 && n.hit_times[k] < n.t1))
+        h[k].fail("must lie inside (0, t_end) = (0, " + fmt(n.t1) + ")");
+  }
+  try {
+    n.validate();
+  } catch (const std::invalid_argument& e) {
+    s.fail_plain(e.what());
+  }
+  return n;
+}
+
+AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
+  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "description"});
+  AnalysisOutput out;
+  if (o.has("vtk")) {
+    const std::string v = one_of(o["vtk"], {"none", "last", "all"});
+    out.vtk = v == "none"  ? AnalysisOutput::Vtk::kNone
+              : v == "all" ? AnalysisOutput::Vtk::kAll
+                           : AnalysisOutput::Vtk::kLast;
+  }
+  if (o.has("reactions")) {
+    const JsonCursor r = o["reactions"];
+    r.expect_array();
+    for (std::size_t k = 0; k < r.size(); ++k) out.reactions.push_back(point_index(r[k], ctx));
+  }
+  if (o.has("monitors")) {  // [{"name": "centre", "at": xi or [u, v]}]
+    const JsonCursor ml = o["monitors"];
+    ml.expect_array();
+    for (std::size_t k = 0; k < ml.size(); ++k) {
+      const JsonCursor m = ml[k];
+      m.expect_object({"name", "at", "description"});
+      AnalysisMonitor mon;
+      mon.name = m["name"].as_string();
+      if (mon.name.empty() || mon.name.find_first_of(",\"\n") != std::string::npos)
+        m["name"].fail("must be a non-empty name without commas, quotes or line breaks");
+      if (ctx.kind == BodyKind::kShell) {
+        const Vector2d uv = surface_parameters(m["at"], *ctx.surface);
+        mon.u = uv[0];
+        mon.v = uv[1];
+      } else {
+        mon.u = curve_parameter(m["at"], *ctx.curve);
+      }
+      out.monitors.push_back(mon);
+    }
+  }
+  if (o.has("samples_per_element")) {
+    const JsonCursor c = o["samples_per_element"];
+    out.samples_per_element = c.as_int();
+    if (out.samples_per_element < 1 || out.samples_per_element > 1000) c.fail("must be in 1..1000");
+  }
+  return out;
+}
+
+/// Calls f on every entry of the array root[key] (if present).
+template <class F>
+void for_each_entry(const JsonCursor& root, const char* key, F f) {
+  if (!root.has(key)) return;
+  const JsonCursor list = root[key];
+  list.expect_array();
+  for (std::size_t k = 0; k < list.size(); ++k) f(list[k]);
+}
+
+/// The rod body, its contact pair, boundary conditions and loads.
+std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                      const GeometryModel& geometry, const JsonCursor& materials,
+                                      std::shared_ptr<const RigidSurface>& rigid_out,
+                                      RodContactProblem*& contact_out) {
+  b.expect_object(
+      {"type", "curve", "material", "quadrature_points", "bending", "stress_free", "description"});
+  const JsonCursor cc = b["curve"];
+  ctx.curve = geometry.curve(cc.as_string());
+  if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
+  // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
+  if (const long n = static_cast<long>(ctx.curve->knots().breaks().size()) - 1;
+      n > kMaxCurveElements)
+    cc.fail("the curve has " + std::to_string(n) + " elements, above the limit of " +
+            std::to_string(kMaxCurveElements) + " of a rod body");
+  const JsonCursor mc = b["material"];
+  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
+  const JsonCursor mat = materials[mc.as_string()];
+  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) == "shell")
+    mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
+  const RodSection section = parse_rod_material(mat);
+  RodOptions opt;
+  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
+  if (b.has("bending"))
+    opt.bending =
+        one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
+            ? BendingMeasure::kTransportedFrame
+            : BendingMeasure::kCurvatureMagnitude;
+  if (b.has("stress_free"))
+    opt.straight_stress_free = one_of(b["stress_free"], {"reference", "straight"}) == "straight";
+  std::optional<KirchhoffRod> rod;
+  try {
+    rod.emplace(*ctx.curve, section, opt);
+  } catch (const std::invalid_argument& e) {
+    b.fail_plain(e.what());
+  }
+  ctx.n_points = rod->num_control_points();
+
+  std::unique_ptr<RodProblem> problem;
+  if (root.has("contact") && root["contact"].size() == 1) {
+    const JsonCursor c = root["contact"][0];
+    // The type first: a shell's contact keys would otherwise be reported as unknown keys.
+    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
+      c["type"].fail("a rod's contact is \"curve_to_rigid\"");
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
+                     "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
+                     "slip_tol", "description"});
+    check_body(c, ctx);
+    rigid_out = rigid_surface(c["rigid"], geometry);
+    ContactParameters cp;
+    penalty_and_friction(c, cp);
+    cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
+    const ContactEnforcement enforcement = parse_enforcement(c);
+    const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
+    auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid_out, cp, ppe);
+    p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+    contact_out = p.get();
+    problem = std::move(p);
+  } else {
+    problem = std::make_unique<RodProblem>(std::move(*rod));
+  }
+  for_each_entry(root, "boundary_conditions",
+                 [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
+  return problem;
+}
+
+/// The shell body, its contact pair, boundary conditions, springs and loads.
+std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                          const GeometryModel& geometry,
+                                          const JsonCursor& materials,
+                                          std::shared_ptr<const RigidSurface>& rigid_out,
+                                          ShellContactProblem*& contact_out) {
+  b.expect_object({"type", "surface", "material", "quadrature_points", "description"});
+  const JsonCursor sc = b["surface"];
+  ctx.surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
+  if (ctx.surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
+  // A shell costs about 50 KB per control point to set up (its element matrices): the bound
+  // of constructed surfaces holds for explicit ones too (docs/model_format.md).
+  if (const long n = static_cast<long>(ctx.surface->num_u()) * ctx.surface->num_v();
+      n > kMaxSurfaceControlPoints)
+    sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
+            std::to_string(kMaxSurfaceControlPoints) + " of a shell body");
+  const JsonCursor mc = b["material"];
+  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
+  const JsonCursor mat = materials[mc.as_string()];
+  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) != "shell")
+    mc.fail("names a rod material; a shell needs type \"shell\"");
+  ShellOptions opt;
+  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
+  std::optional<KirchhoffLoveShell> shell;
+  try {
+    shell.emplace(*ctx.surface, parse_shell_material(mat), opt);
+  } catch (const std::invalid_argument& e) {
+    sc.fail(e.what());
+  }
+  ctx.nu = ctx.surface->num_u();
+  ctx.nv = ctx.surface->num_v();
+  ctx.n_points = ctx.nu * ctx.nv;
+
+  std::unique_ptr<ShellProblem> problem;
+  if (root.has("contact") && root["contact"].size() == 1) {
+    const JsonCursor c = root["contact"][0];
+    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
+      c["type"].fail("a shell's contact is \"surface_to_rigid\"");
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
+                     "points_per_direction", "search_distance", "enforcement", "penetration_tol",
+                     "slip_tol", "max_augmentations", "description"});
+    check_body(c, ctx);
+    rigid_out = rigid_surface(c["rigid"], geometry);
+    for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
+      if (piece == ctx.surface)
+        c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
+                        "\"; the rigid surface must be another surface");
+    SurfaceContactParameters cp;
+    penalty_and_friction(c, cp);
+    if (c.has("strategy"))
+      cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
+                        ? SurfaceContactStrategy::kRigidMaster
+                        : SurfaceContactStrategy::kRigidSlave;
+    if (c.has("face")) {
+      const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
+      cp.face = f == "lower"   ? ShellFace::kLower
+                : f == "upper" ? ShellFace::kUpper
+                               : ShellFace::kMid;
+    }
+    cp.points_per_direction =
+        int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
+    if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
+    const ContactEnforcement enforcement = parse_enforcement(c);
+    try {
+      auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
+      p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+      contact_out = p.get();
+      problem = std::move(p);
+    } catch (const std::invalid_argument& e) {
+      c.fail_plain(e.what());
+    }
+  } else {
+    problem = std::make_unique<ShellProblem>(std::move(*shell));
+  }
+  for_each_entry(root, "boundary_conditions",
+                 [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
+  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
+  return problem;
+}
+
+}  // namespace iga::model_detail

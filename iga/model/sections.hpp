@@ -1,0 +1,55 @@
+// Internal to iga/model: the parsers of the analysis sections (sections.cpp) as used by the
+// loader (analysis.cpp) and the ParaView output (analysis_vtk.cpp). Not a public interface.
+//
+// Notation: a JsonCursor is a position in the model document (file + JSON path) that every
+// error names; Context carries what later sections need of earlier ones.
+#pragma once
+
+#include <initializer_list>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "iga/model/analysis.hpp"
+
+namespace iga::model_detail {
+
+/// What later sections need of earlier ones while a model is read.
+struct Context {
+  std::map<std::string, LoadCurve> curves;
+  std::string body;  // the one body's name
+  BodyKind kind = BodyKind::kRod;
+  const NurbsCurve* curve = nullptr;      // rod
+  const NurbsSurface* surface = nullptr;  // shell
+  int n_points = 0;
+  int nu = 0, nv = 0;  // shell: control points in u and v
+};
+
+/// A number with 10 significant digits (messages, titles).
+std::string fmt(double v);
+/// The number at c, > 0 (>= 0 with allow_zero); ModelError otherwise.
+double positive(const JsonCursor& c, bool allow_zero = false);
+/// The string at c, which must be one of `names`.
+std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names);
+/// A load curve ("load_curves" entry).
+LoadCurve parse_load_curve(const JsonCursor& c);
+/// The load curve must stay finite over the solver's pseudo-time.
+void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const NonlinearSolverSettings& s);
+/// Materials ("materials" entries).
+ShellMaterial parse_shell_material(const JsonCursor& m);
+RodSection parse_rod_material(const JsonCursor& m);
+/// The rod (shell) body b of the model root, its contact pair, boundary conditions and loads.
+std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                      const GeometryModel& geometry, const JsonCursor& materials,
+                                      std::shared_ptr<const RigidSurface>& rigid_out,
+                                      RodContactProblem*& contact_out);
+std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                          const GeometryModel& geometry,
+                                          const JsonCursor& materials,
+                                          std::shared_ptr<const RigidSurface>& rigid_out,
+                                          ShellContactProblem*& contact_out);
+/// The "solver" and "output" sections.
+NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps);
+AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx);
+
+}  // namespace iga::model_detail
