@@ -257,7 +257,7 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
       recent_pressure.clear();
       const Json& rope = d.at(ptr.phi_deg.parent_pointer());
       auto keep_pressure = [&](const VectorXd&, double t, const AnalysisStep&) {
-        const RodContactProblem* rc = a->contact_problem();
+        const CurveContactPair* rc = a->rod_contact();
         if (!rc || t <= a->stop_at_full_slip_after()) return true;
         std::ostringstream rows;
         write_pressure_rows(rows, c.name, c.mu, phi, T0, rho, rope, rc->contact(),

@@ -267,7 +267,7 @@ BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t,
                  {"knots", {{"u", {0, 0, 0, 1, 1, 1}}, {"v", {0, 0, 0, 1, 1, 1}}}},
                  {"control_points", pts}};
   Analysis an = Analysis::from_json(d, bm.file);
-  const ShellContactProblem* contact = an.shell_contact_problem();
+  const SurfaceContactPair* contact = an.shell_contact();
   if (contact == nullptr)
     throw std::invalid_argument(
         bm.file + ": the block check needs a shell body with a surface_to_rigid contact pair");
@@ -418,7 +418,7 @@ int main(int argc, char** argv) try {
     d[app.mu] = run.mu;
     d[app.eps_t] = run.eps_t;
     Analysis an = Analysis::from_json(d, model_file);
-    ShellContactProblem* contact = an.shell_contact_problem();
+    SurfaceContactPair* contact = an.shell_contact();
     if (contact == nullptr)
       throw std::invalid_argument(
           model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");

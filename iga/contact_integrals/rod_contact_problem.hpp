@@ -1,7 +1,7 @@
-// A Kirchhoff rod in contact with a rigid surface: RodProblem plus the CTRS contact integral of
-// [KS15] Sects. 4-5 (see ../shared/paper/EQUATIONS.md §3-4 and
-// iga/contact_integrals/curve_contact.hpp), with the friction history committed only at converged
-// load steps (35)-(36), (66).
+// A Kirchhoff rod in contact with a rigid surface: RodProblem with a CurveContactPair attached,
+// the CTRS contact integral of [KS15] Sects. 4-5 (see ../shared/paper/EQUATIONS.md §3-4 and
+// iga/contact_integrals/curve_contact.hpp), with the friction history committed only at
+// converged load steps (35)-(36), (66).
 //
 // Residual and tangent, in the Cartesian DOFs of RodProblem (DOF 3 a + k, g = f_int - f_ext):
 //   g_a -= int R_a f ds,   dg_a/dx_b -= int R_a R_b (df/dr) ds      (77), (78a-b)
@@ -12,28 +12,23 @@
 #pragma once
 
 #include <memory>
-#include <string>
-#include <vector>
 
 #include "contact/rigid_surface.hpp"
-#include "iga/contact_integrals/curve_contact.hpp"
+#include "iga/contact_integrals/curve_contact_pair.hpp"
 #include "iga/contact_integrals/rigid_contact_problem.hpp"
 #include "iga/rod/kirchhoff_rod.hpp"
 
 namespace iga {
 
 /// RodProblem whose residual includes the contact of the rod's centre line with one rigid
-/// surface (commit, status, reactions, contact time: RigidContactProblem). The problem shares
-/// ownership of the rigid surface, so it may be moved and outlive the caller's handle.
-class RodContactProblem : public RigidContactProblem<RodProblem, CurveContact> {
+/// surface. The pair shares ownership of the rigid surface, so the problem may be moved and
+/// outlive the caller's handle.
+class RodContactProblem : public RigidContactProblem<RodProblem, CurveContactPair> {
  public:
   /// `points_per_element` contact (Gauss) points per rod element, in 1..16 (else
   /// std::invalid_argument from CurveContact); `rigid` must not be null (RodError).
   RodContactProblem(KirchhoffRod rod, std::shared_ptr<const RigidSurface> rigid,
                     const ContactParameters& params, int points_per_element);
-
-  /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)).
-  bool symmetric() const override;
 };
 
 }  // namespace iga

@@ -9,19 +9,10 @@ namespace iga {
 ShellContactProblem::ShellContactProblem(KirchhoffLoveShell shell,
                                          std::shared_ptr<const RigidSurface> rigid,
                                          SurfaceContactParameters params)
-    : RigidContactProblem(std::move(shell), std::move(rigid),
-                          [&](const ShellProblem& p, const RigidSurface* r) {
-                            if (r == nullptr)
-                              throw ShellError("ShellContactProblem: the rigid surface is null");
-                            params.thickness = p.shell().material().thickness;
-                            return SurfaceContact(p.shell().reference(), *r, params);
-                          }) {}
-
-bool ShellContactProblem::symmetric() const {
-  const SurfaceContactParameters& p = contact().parameters();
-  const bool friction = p.mu > 0.0 && p.eps_t > 0.0;
-  const bool slave = p.strategy == SurfaceContactStrategy::kRigidSlave;
-  return !friction && !slave && ShellProblem::symmetric();
-}
+    : RigidContactProblem(std::move(shell), [&](const ShellProblem& p) {
+        if (rigid == nullptr) throw ShellError("ShellContactProblem: the rigid surface is null");
+        params.thickness = p.shell().material().thickness;
+        return std::make_unique<SurfaceContactPair>(p.shell().reference(), rigid, params);
+      }) {}
 
 }  // namespace iga

@@ -18,7 +18,7 @@
 
 #include "contact/rigid_surface.hpp"
 #include "iga/contact_integrals/rigid_contact_problem.hpp"
-#include "iga/contact_integrals/surface_contact.hpp"
+#include "iga/contact_integrals/surface_contact_pair.hpp"
 #include "iga/shell/shell_problem.hpp"
 
 namespace iga {
@@ -26,16 +26,12 @@ namespace iga {
 /// ShellProblem whose residual includes the contact of one face of the shell with one rigid
 /// surface (commit, status, reactions, contact time: RigidContactProblem). The problem shares
 /// ownership of the rigid surface, so it may be moved and outlive the caller's handle.
-class ShellContactProblem : public RigidContactProblem<ShellProblem, SurfaceContact> {
+class ShellContactProblem : public RigidContactProblem<ShellProblem, SurfaceContactPair> {
  public:
   /// `params.thickness` is replaced by the shell's thickness. Throws ShellError if `rigid` is
   /// null, std::invalid_argument (from SurfaceContact) for invalid parameters.
   ShellContactProblem(KirchhoffLoveShell shell, std::shared_ptr<const RigidSurface> rigid,
                       SurfaceContactParameters params);
-
-  /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)); so does the
-  /// slave strategy (the ray direction depends on the shell's control points, (5)).
-  bool symmetric() const override;
 };
 
 }  // namespace iga

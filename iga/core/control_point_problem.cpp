@@ -1,11 +1,91 @@
 // Common NonlinearProblem part of rotation-free models; see control_point_problem.hpp.
 #include "iga/core/control_point_problem.hpp"
 
+#include <algorithm>
+
 namespace iga {
 
 ControlPointProblem::ControlPointProblem(std::vector<Vector3d> X, std::string owner,
                                          DofMap::FailFn fail)
     : dofs_(static_cast<int>(X.size()), std::move(owner), fail), X_(std::move(X)) {}
+
+ControlPointProblem::ControlPointProblem(const ControlPointProblem& o)
+    : Body(o), dofs_(o.dofs_), X_(o.X_), dead_loads_(o.dead_loads_) {
+  for (const auto& p : o.pairs_) pairs_.push_back(p->clone());
+}
+
+ControlPointProblem& ControlPointProblem::operator=(const ControlPointProblem& o) {
+  if (this == &o) return *this;
+  Body::operator=(o);
+  dofs_ = o.dofs_;
+  X_ = o.X_;
+  dead_loads_ = o.dead_loads_;
+  pairs_.clear();
+  for (const auto& p : o.pairs_) pairs_.push_back(p->clone());
+  return *this;
+}
+
+int ControlPointProblem::attach(std::unique_ptr<ContactPair> pair) {
+  pairs_.push_back(std::move(pair));
+  return static_cast<int>(pairs_.size()) - 1;
+}
+
+bool ControlPointProblem::symmetric() const {
+  if (!model_symmetric()) return false;
+  for (const auto& p : pairs_)
+    if (!p->symmetric()) return false;
+  return true;
+}
+
+void ControlPointProblem::commit(const VectorXd& u, double t) {
+  (void)u, (void)t;
+  for (const auto& p : pairs_) p->commit();
+}
+
+AugmentResult ControlPointProblem::augment(const VectorXd& u, double t) {
+  (void)u, (void)t;
+  AugmentResult r;
+  for (const auto& p : pairs_) merge_augment(r, p->augment());
+  return r;
+}
+
+void ControlPointProblem::restore() {
+  for (const auto& p : pairs_) p->restore();
+}
+
+double ControlPointProblem::residual_roundoff() const {
+  double r = 0.0;
+  for (const auto& p : pairs_) r = std::max(r, p->roundoff());
+  return r;
+}
+
+std::string ControlPointProblem::status() const {
+  std::string s;
+  for (const auto& p : pairs_) s += (s.empty() ? "" : "; ") + p->status();
+  return s;
+}
+
+SampledMesh ControlPointProblem::sample(const VectorXd& u, double t, int samples) const {
+  SampledMesh m = sample_model(u, t, samples);
+  for (const auto& p : pairs_) p->add_fields(m);
+  return m;
+}
+
+std::vector<Vector3d> ControlPointProblem::reactions(const VectorXd& u, double t) {
+  // The residual is evaluated with copies of the pairs; the pairs themselves stay untouched.
+  std::vector<std::unique_ptr<ContactPair>> copies;
+  for (const auto& p : pairs_) copies.push_back(p->clone());
+  std::swap(pairs_, copies);
+  std::vector<Vector3d> r;
+  try {
+    r = nodal_residual(u, t);
+  } catch (...) {
+    std::swap(pairs_, copies);
+    throw;
+  }
+  std::swap(pairs_, copies);
+  return r;
+}
 
 void ControlPointProblem::add_nodal_load(std::vector<std::pair<int, Vector3d>> forces,
                                          LoadCurve curve) {
@@ -48,7 +128,7 @@ void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool t
     const double lam = L.curve(t);
     for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
   }
-  add_contributions(x_, t, g_, K);
+  for (const auto& p : pairs_) p->add(x_, t, g_, K);
 }
 
 void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {

@@ -1,22 +1,30 @@
-// The common part of rotation-free models as NonlinearProblems (RodProblem, ShellProblem): the
+// The common part of rotation-free bodies (RodProblem, ShellProblem; the Body interface): the
 // unknowns are control point displacements (DofMap: local bases, fixed / prescribed / tied
 // components), dead nodal loads along load curves, the Cartesian residual g = f_int - f_ext
-// (DOF 3 i + c) and its reduction to the free unknowns, reactions.
+// (DOF 3 i + c) with the contact pairs' part and its reduction to the free unknowns, the pairs'
+// history, status and symmetry, reactions.
 #pragma once
 
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "iga/core/body.hpp"
 #include "iga/core/dof_map.hpp"
-#include "iga/core/nonlinear_problem.hpp"
 
 namespace iga {
 
-class ControlPointProblem : public NonlinearProblem {
+class ControlPointProblem : public Body {
  public:
-  int num_control_points() const { return dofs_.num_points(); }
+  ControlPointProblem(const ControlPointProblem& o);
+  ControlPointProblem& operator=(const ControlPointProblem& o);
+  ControlPointProblem(ControlPointProblem&&) noexcept = default;
+  ControlPointProblem& operator=(ControlPointProblem&&) noexcept = default;
+  ~ControlPointProblem() override = default;
+
+  int num_control_points() const override { return dofs_.num_points(); }
 
   // ---- constraints (components along the point's local basis) -----------------------------
   /// Sets the local basis of `point` (orthonormal columns); throws the model's error type if
@@ -41,6 +49,30 @@ class ControlPointProblem : public NonlinearProblem {
   // ---- NonlinearProblem ----------------------------------------------------------------------
   int num_dofs() const override { return dofs_.num_free(); }
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
+  /// The model's symmetry (model_symmetric) and every pair's.
+  bool symmetric() const final;
+  /// Commits the pairs' history (the state of the last assembly: the converged u, t).
+  void commit(const VectorXd& u, double t) override;
+  /// Every pair checks its constraints at the last assembly: `failed` if one failed, else
+  /// `updated` if one updated its multipliers (messages joined), else `satisfied`.
+  AugmentResult augment(const VectorXd& u, double t) override;
+  void restore() override;
+  /// The largest of the pairs' round-off.
+  double residual_roundoff() const override;
+  /// The pairs' status lines, joined by "; ".
+  std::string status() const override;
+
+  // ---- Body: contact pairs, reactions ----------------------------------------------------------
+  int attach(std::unique_ptr<ContactPair> pair) override;
+  int num_pairs() const override { return static_cast<int>(pairs_.size()); }
+  const ContactPair& pair(int i) const override { return *pairs_.at(static_cast<std::size_t>(i)); }
+  ContactPair& pair(int i) override { return *pairs_.at(static_cast<std::size_t>(i)); }
+  /// nodal_residual with the pairs' state kept: nodal_residual re-evaluates the contact, and
+  /// right after commit() the increments are zero, so points that slipped sit on the slip
+  /// surface (Phi = 0 up to round-off) and their stick/slip flags become arbitrary.
+  std::vector<Vector3d> reactions(const VectorXd& u, double t) override;
+  /// The model's samples (sample_model) with the fields of every pair added.
+  SampledMesh sample(const VectorXd& u, double t, int samples) const final;
 
   // ---- state <-> geometry ----------------------------------------------------------------------
   /// Current control points x_i = X_i + Q_i d_i(u, t).
@@ -61,12 +93,10 @@ class ControlPointProblem : public NonlinearProblem {
   /// appended to *K if K != nullptr. Dead nodal loads are subtracted afterwards by the base.
   virtual void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
                               std::vector<Triplet>* K) = 0;
-  /// Hook for derived problems (e.g. contact): add to the global Cartesian residual g (3 n,
-  /// DOF 3 i + c, g = f_int - f_ext convention) and append tangent triplets d g / d x.
-  virtual void add_contributions(std::span<const Vector3d> x, double t, VectorXd& g,
-                                 std::vector<Triplet>* K) {
-    (void)x, (void)t, (void)g, (void)K;
-  }
+  /// Whether the model's own tangent (without the pairs) is symmetric.
+  virtual bool model_symmetric() const { return true; }
+  /// The body sampled with its own fields, params and elements set (Body::sample).
+  virtual SampledMesh sample_model(const VectorXd& u, double t, int samples) const = 0;
   /// A dead load: fixed nodal forces scaled by curve(t).
   void add_nodal_load(std::vector<std::pair<int, Vector3d>> forces, LoadCurve curve);
   /// Nodal forces f_i from a dense per-point array (zero entries dropped).
@@ -85,6 +115,7 @@ class ControlPointProblem : public NonlinearProblem {
 
   std::vector<Vector3d> X_;
   std::vector<NodalLoad> dead_loads_;
+  std::vector<std::unique_ptr<ContactPair>> pairs_;
   // Work storage reused between assemble() calls.
   std::vector<Vector3d> x_;
   VectorXd g_;

@@ -26,6 +26,18 @@ struct AugmentResult {
   AugmentStatus status = AugmentStatus::satisfied;
   std::string message;  ///< what was found (e.g. the largest penetration against the tolerance)
 };
+/// Joins the result of one part (a contact pair, a body) into that of the whole: the worst
+/// status (failed > updated > satisfied) with the messages of the parts that have it.
+inline void merge_augment(AugmentResult& whole, const AugmentResult& part) {
+  const auto rank = [](AugmentStatus s) {
+    return s == AugmentStatus::failed ? 2 : s == AugmentStatus::updated ? 1 : 0;
+  };
+  if (rank(part.status) > rank(whole.status)) {
+    whole = part;
+  } else if (rank(part.status) == rank(whole.status) && !part.message.empty()) {
+    whole.message += (whole.message.empty() ? "" : "; ") + part.message;
+  }
+}
 
 class NonlinearProblem {
  public:

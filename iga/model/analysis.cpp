@@ -54,30 +54,33 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
       parse_rod_material(m);
   }
 
-  // The body: one rod or one shell in this version.
+  // The bodies: one rod or one shell in this version.
   const JsonCursor bodies = root["bodies"];
   if (!bodies.json().is_object() || bodies.size() != 1)
     bodies.fail_type("an object with exactly one named body (one deformable body per model)");
-  ctx.body = bodies.keys().front();
-  a.body_ = ctx.body;
-  const JsonCursor b = bodies[ctx.body];
-  if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
-  ctx.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
-  a.kind_ = ctx.kind;
   if (root.has("contact")) {  // at most one pair, the body against a rigid surface
     const JsonCursor cl = root["contact"];
     cl.expect_array();
     if (cl.size() > 1)
       cl.fail_plain("one contact pair per model in this version, got " + std::to_string(cl.size()));
   }
-  if (ctx.kind == BodyKind::kRod) {
-    auto p = build_rod(root, b, ctx, a.geometry_, materials, a.rigid_, a.rod_contact_);
-    a.rod_ = p.get();
-    a.problem_ = std::move(p);
-  } else {
-    auto p = build_shell(root, b, ctx, a.geometry_, materials, a.rigid_, a.shell_contact_);
-    a.shell_ = p.get();
-    a.problem_ = std::move(p);
+  a.system_ = std::make_unique<BodySystem>();
+  for (const std::string& name : bodies.keys()) {
+    ctx.body = name;
+    ctx.body_index = static_cast<int>(a.bodies_.size());
+    const JsonCursor b = bodies[name];
+    if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
+    ctx.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
+    std::unique_ptr<Body> body;
+    if (ctx.kind == BodyKind::kRod)
+      body = build_rod(root, b, ctx, a.geometry_, materials);
+    else
+      body = build_shell(root, b, ctx, a.geometry_, materials);
+    for (int k = 0; k < body->num_pairs(); ++k)
+      a.pairs_.push_back({&body->pair(k), ctx.body_index});
+    a.body_names_.push_back(name);
+    a.bodies_.push_back(std::move(body));
+    a.system_->add(*a.bodies_.back());
   }
   if (root.has("solver"))
     a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_, a.full_slip_steps_);
@@ -86,9 +89,7 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   for (const auto& [name, curve] : a.curves_)
     check_finite_curve(root["load_curves"][name], curve, a.settings_);
   if (root.has("output")) a.output_ = parse_output(root["output"], ctx);
-  if (a.output_.samples_per_element == 0)
-    a.output_.samples_per_element = ctx.kind == BodyKind::kRod ? 16 : 4;
-  if (a.problem_->num_dofs() == 0)
+  if (a.system_->num_dofs() == 0)
     root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
 }
@@ -97,79 +98,82 @@ Analysis Analysis::load(const std::string& path) {
   return from_json(read_json_file(path), path);
 }
 
+BodyKind Analysis::body_kind() const {
+  return dynamic_cast<const RodProblem*>(&body(0)) ? BodyKind::kRod : BodyKind::kShell;
+}
+
 RodProblem& Analysis::rod_problem() {
-  if (rod_ == nullptr) throw std::logic_error("Analysis::rod_problem: the body is a shell");
-  return *rod_;
+  auto* p = dynamic_cast<RodProblem*>(&body(0));
+  if (p == nullptr) throw std::logic_error("Analysis::rod_problem: the body is a shell");
+  return *p;
 }
 
 ShellProblem& Analysis::shell_problem() {
-  if (shell_ == nullptr) throw std::logic_error("Analysis::shell_problem: the body is a rod");
-  return *shell_;
+  auto* p = dynamic_cast<ShellProblem*>(&body(0));
+  if (p == nullptr) throw std::logic_error("Analysis::shell_problem: the body is a rod");
+  return *p;
+}
+
+CurveContactPair* Analysis::rod_contact() {
+  return pairs_.empty() ? nullptr : dynamic_cast<CurveContactPair*>(pairs_.front().pair);
+}
+
+SurfaceContactPair* Analysis::shell_contact() {
+  return pairs_.empty() ? nullptr : dynamic_cast<SurfaceContactPair*>(pairs_.front().pair);
 }
 
 std::string Analysis::describe() const {
   std::ostringstream s;
-  if (rod_) {
-    s << "rod of " << rod_->rod().num_elements() << " elements (degree " << rod_->rod().degree()
-      << ", ";
-  } else {
-    const NurbsSurface& S = shell_->shell().reference();
-    s << "shell of " << shell_->shell().num_elements() << " elements (degree " << S.degree_u()
-      << " x " << S.degree_v() << ", ";
+  for (int b = 0; b < num_bodies(); ++b) {
+    if (b > 0) s << "; ";
+    s << (num_bodies() > 1 ? body_name(b) + ": " : "") << body(b).describe();
   }
-  s << problem_->num_control_points() << " control points), " << problem_->num_dofs()
-    << " unknowns";
-  if (rod_contact_)
-    s << ", CTRS contact with a rigid surface of " << rigid_->num_patches() << " piece(s), "
-      << rod_contact_->contact().points().size() << " contact points";
-  if (shell_contact_) {
-    const SurfaceContactParameters& p = shell_contact_->contact().parameters();
-    s << ", STAS contact (rigid "
-      << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave")
-      << ", mu = " << p.mu << ") with a rigid surface of " << rigid_->num_patches() << " piece(s), "
-      << shell_contact_->contact().points().size() << " contact points";
-  }
+  s << ", " << system_->num_dofs() << " unknowns";
+  for (const PairRef& p : pairs_) s << ", " << p.pair->describe();
   s << ", t in [" << settings_.t0 << ", " << settings_.t1 << "]";
   return s.str();
 }
 
 ContactCounts Analysis::contact_counts() const {
-  if (rod_contact_) {
-    const CurveContactCounts c = rod_contact_->contact().counts();
-    return {c.active, c.stick, c.slip, c.drag_ratio(), std::min(c.slip_positive, c.slip_negative)};
+  ContactCounts sum;
+  for (const PairRef& p : pairs_) {
+    const ContactCounts c = p.pair->counts();
+    sum.active += c.active;
+    sum.stick += c.stick;
+    sum.slip += c.slip;
+    sum.drag_ratio = std::max(sum.drag_ratio, c.drag_ratio);
+    sum.slip_back += c.slip_back;
   }
-  if (shell_contact_) {
-    const SurfaceContactCounts c = shell_contact_->contact().counts();
-    return {c.active, c.stick, c.slip};
-  }
-  return {};
-}
-
-double Analysis::contact_mu() const {
-  if (rod_contact_) return rod_contact_->contact().parameters().mu;
-  if (shell_contact_) return shell_contact_->contact().parameters().mu;
-  return 0.0;
+  return sum;
 }
 
 double Analysis::contact_time() const {
-  if (rod_contact_) return rod_contact_->contact_time();
-  if (shell_contact_) return shell_contact_->contact_time();
-  return 0.0;
+  double t = 0.0;
+  for (const PairRef& p : pairs_) t += p.pair->time();
+  return t;
 }
 
 Vector3d Analysis::displacement(const AnalysisMonitor& m, const VectorXd& u, double t) const {
-  if (shell_) return shell_->displacement(m.u, m.v, u, t);
-  const std::vector<Vector3d> x = rod_->current_points(u, t);
-  return rod_->rod().point(m.u, x) - rod_->rod().reference().point(m.u);
+  return body(m.body).displacement(m.u, m.v, system_->block(u, m.body), t);
 }
 
 std::vector<Vector3d> Analysis::reactions(const VectorXd& u, double t) {
-  const std::vector<Vector3d> all = rod_contact_     ? rod_contact_->reactions(u, t)
-                                    : shell_contact_ ? shell_contact_->reactions(u, t)
-                                                     : problem_->nodal_residual(u, t);
+  std::vector<std::vector<Vector3d>> all(static_cast<std::size_t>(num_bodies()));
   std::vector<Vector3d> r;
-  for (int i : output_.reactions) r.push_back(all[static_cast<std::size_t>(i)]);
+  for (const AnalysisReaction& q : output_.reactions) {
+    std::vector<Vector3d>& a = all[static_cast<std::size_t>(q.body)];
+    if (a.empty()) a = body(q.body).reactions(system_->block(u, q.body), t);
+    r.push_back(a[static_cast<std::size_t>(q.point)]);
+  }
   return r;
+}
+
+bool Analysis::sliding_steadily() const {
+  for (const PairRef& p : pairs_) {
+    const ContactCounts c = p.pair->counts();
+    if (!steady_sliding(c.active, c.slip, c.slip_back, c.drag_ratio, p.pair->mu())) return false;
+  }
+  return !pairs_.empty();
 }
 
 AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
@@ -178,8 +182,6 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   NonlinearSolver solver(settings_);
   solver.set_log(log);
   std::ofstream csv;
-  std::unique_ptr<VtkCollection> pvd_body, pvd_contact;
-  const std::string body_file = rod_ ? "rod" : "shell";
   // An error after the start (output of a converged step, the problem's history update, the
   // user's callback, the last ParaView files) ends the run with status `failed` and this message;
   // summary.json and the rows written so far stay.
@@ -189,17 +191,14 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     csv.open(fs::path(out_dir) / "steps.csv");
     if (!csv) throw std::runtime_error(out_dir + "/steps.csv: cannot write file");
     csv << "step,t,iterations,active,stick,slip";
-    for (int i : output_.reactions)
-      for (const char* c : {"x", "y", "z", "norm"}) csv << ",R" << i << "_" << c;
+    for (const AnalysisReaction& q : output_.reactions)
+      for (const char* c : {"x", "y", "z", "norm"})
+        csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
     for (const AnalysisMonitor& m : output_.monitors)
       for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
     for (const auto& [name, curve] : curves_) csv << "," << name;
     csv << "\n";
     if (output_.vtk != AnalysisOutput::Vtk::kNone) {
-      pvd_body =
-          std::make_unique<VtkCollection>((fs::path(out_dir) / (body_file + ".pvd")).string());
-      if (has_contact())
-        pvd_contact = std::make_unique<VtkCollection>((fs::path(out_dir) / "contact.pvd").string());
       try {
         write_rigid_vtk(out_dir, "rigid");
       } catch (const std::exception& e) {
@@ -207,23 +206,20 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
       }
     }
   }
-  // The tool's contact fields: one series per bounded piece, tool.pvd or tool_<i>.pvd.
-  std::map<std::string, VtkCollection> pvd_tool;
+  // One ParaView series (<series>.pvd) per body, pair and piece of a tool (write_output).
+  std::map<std::string, VtkCollection> pvd;
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
-    const std::vector<std::string> f = write_vtk(out_dir, stem, u, t);
-    pvd_body->add(t, f[0]);
-    if (pvd_contact) pvd_contact->add(t, f[1]);
-    for (std::size_t k = 3; k < f.size(); ++k) {
-      const std::string series = f[k].substr(stem.size() + 1, f[k].size() - stem.size() - 5);
-      auto it = pvd_tool.find(series);
-      if (it == pvd_tool.end())
-        it = pvd_tool
-                 .emplace(series, VtkCollection((fs::path(out_dir) / (series + ".pvd")).string()))
-                 .first;
-      it->second.add(t, f[k]);
+    for (const OutputFile& f : write_output(out_dir, stem, u, t)) {
+      if (f.series.empty()) continue;
+      auto it = pvd.find(f.series);
+      if (it == pvd.end())
+        it =
+            pvd.emplace(f.series, VtkCollection((fs::path(out_dir) / (f.series + ".pvd")).string()))
+                .first;
+      it->second.add(t, f.file);
     }
   };
-  VectorXd u = VectorXd::Zero(problem_->num_dofs());
+  VectorXd u = VectorXd::Zero(system_->num_dofs());
   int sliding_steps = 0;  // consecutive steps of steady sliding (the plateau so far)
   auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
     try {
@@ -252,8 +248,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
       // The caller sees every converged step, the one that completes the plateau too.
       if (user_callback && !user_callback(uc, t, st)) return false;
       if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
-        const ContactCounts& c = st.contact;
-        if (steady_sliding(c.active, c.slip, c.slip_back, c.drag_ratio, contact_mu())) {
+        if (sliding_steadily()) {
           if (++sliding_steps >= full_slip_steps_) {
             res.full_slip = true;
             if (log) *log << "full slip at t = " << t << ": stopping\n";
@@ -271,7 +266,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   };
   if (error.empty()) {
     try {
-      res.solver = solver.solve(*problem_, u, on_step);
+      res.solver = solver.solve(*system_, u, on_step);
     } catch (const std::exception& e) {  // from commit(): u is the last converged state
       error = e.what();
       res.solver.t = res.steps.empty() ? settings_.t0 : res.steps.back().t;
@@ -296,14 +291,16 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   if (!out_dir.empty()) {
     Json s = Json::object();
     s["name"] = name_;
-    s["body"] = rod_ ? "rod" : "shell";
+    std::string types;  // "rod", "shell" or, with several bodies, e.g. "rod, shell"
+    for (int b = 0; b < num_bodies(); ++b) types += (b > 0 ? ", " : "") + body(b).type();
+    s["body"] = types;
     s["status"] = to_string(res.solver.status);
     s["message"] = res.solver.message;
     s["t"] = json_number(res.solver.t);
     s["steps"] = res.solver.steps;
     s["cutbacks"] = res.solver.cutbacks;
     s["newton_iterations"] = res.solver.total_iterations;
-    s["dofs"] = problem_->num_dofs();
+    s["dofs"] = system_->num_dofs();
     s["full_slip"] = res.full_slip;
     s["time_total_s"] = json_number(res.solver.time_total);
     s["time_assembly_s"] = json_number(res.solver.time_assembly);

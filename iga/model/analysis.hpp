@@ -1,9 +1,13 @@
-// A whole analysis from a model file (docs/model_format.md, "Analysis sections"): the body (a
-// Kirchhoff rod on a curve, or a Kirchhoff-Love shell on a surface of the geometry section),
-// its material, boundary conditions and springs, loads along load curves, contact with a rigid
-// surface of the geometry section (CTRS for rods, [KS15] Sects. 4-5; STAS for shells, Sects.
-// 2-3), solver settings and output requests; run() drives the nonlinear solver and writes the
-// results (CSV per step, ParaView files, a JSON summary).
+// A whole analysis from a model file (docs/model_format.md, "Analysis sections"): the bodies
+// (Kirchhoff rods on curves, Kirchhoff-Love shells on surfaces of the geometry section; Body),
+// their materials, boundary conditions and springs, loads along load curves, contact pairs of a
+// body with a rigid surface of the geometry section (CTRS for rods, [KS15] Sects. 4-5; STAS for
+// shells, Sects. 2-3; ContactPair), solver settings and output requests; run() drives the
+// nonlinear solver over all bodies (BodySystem) and writes the results (CSV per step, ParaView
+// files, a JSON summary). The driver sees bodies and pairs only through their interfaces; this
+// version's model files hold one body and at most one pair.
+//
+// Notation: u the unknowns of all bodies, u_b the block of body b (BodySystem); t pseudo-time.
 // Every input error is a ModelError naming the file, the JSON path and the value.
 #pragma once
 
@@ -17,6 +21,7 @@
 #include "geometry/json_reader.hpp"
 #include "iga/contact_integrals/rod_contact_problem.hpp"
 #include "iga/contact_integrals/shell_contact_problem.hpp"
+#include "iga/core/body_system.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
 namespace iga {
@@ -28,31 +33,31 @@ struct AnalysisMonitor {
   std::string name;
   double u = 0.0;  ///< rod: the curve parameter; shell: the surface parameters (u, v)
   double v = 0.0;
+  int body = 0;  ///< index of the body in the model
+};
+
+/// A control point whose reaction is recorded per step ("output": "reactions").
+struct AnalysisReaction {
+  int point = 0;
+  int body = 0;  ///< index of the body in the model
 };
 
 /// Output requests of the "output" section.
 struct AnalysisOutput {
   enum class Vtk { kNone, kLast, kAll };
   Vtk vtk = Vtk::kLast;                   ///< ParaView files: none, the last step, every step
-  std::vector<int> reactions;             ///< control points whose reactions go to steps.csv
+  std::vector<AnalysisReaction> reactions;  ///< control points whose reactions go to steps.csv
   std::vector<AnalysisMonitor> monitors;  ///< displacements that go to steps.csv
-  /// Points per element (per direction for shells) in the VTK files; 0: 16 for rods, 4 for
-  /// shells.
+  /// Points per element (per direction for shells) in the VTK files; 0: each body's default
+  /// (16 for rods, 4 for shells).
   int samples_per_element = 0;
-};
-
-/// Contact point counts of the contact pair at a converged step.
-struct ContactCounts {
-  int active = 0, stick = 0, slip = 0;
-  double drag_ratio = 0.0;  ///< rods: friction across / along the rope (CurveContactCounts)
-  int slip_back = 0;        ///< rods: slipping points pulling the other way than the most
 };
 
 /// One converged step as recorded by Analysis::run.
 struct AnalysisStep {
   double t = 0.0;
   int iterations = 0;
-  ContactCounts contact;
+  ContactCounts contact;                ///< summed over the pairs (drag_ratio: the largest)
   std::vector<Vector3d> reactions;      ///< at AnalysisOutput::reactions, Cartesian
   std::vector<Vector3d> displacements;  ///< at AnalysisOutput::monitors
 };
@@ -67,7 +72,7 @@ struct AnalysisResult {
   std::vector<AnalysisStep> steps;
   VectorXd u;                 ///< state at the last converged step (time solver.t)
   bool full_slip = false;     ///< the run stopped at the onset of full slip
-  double contact_time = 0.0;  ///< seconds in the contact integral (part of the assembly)
+  double contact_time = 0.0;  ///< seconds in the contact integrals (part of the assembly)
 };
 
 class Analysis {
@@ -80,29 +85,42 @@ class Analysis {
 
   const std::string& name() const { return name_; }
   const GeometryModel& geometry() const { return geometry_; }
-  BodyKind body_kind() const { return kind_; }
-  const std::string& body_name() const { return body_; }
-  ControlPointProblem& problem() { return *problem_; }
-  /// The rod (shell) problem; std::logic_error if the body is a shell (rod).
+  // ---- bodies and pairs -------------------------------------------------------------------------
+  int num_bodies() const { return system_->num_bodies(); }
+  Body& body(int b) { return system_->body(b); }
+  const Body& body(int b) const { return system_->body(b); }
+  const std::string& body_name(int b = 0) const {
+    return body_names_.at(static_cast<std::size_t>(b));
+  }
+  int num_pairs() const { return static_cast<int>(pairs_.size()); }
+  const ContactPair& pair(int k) const { return *pairs_.at(static_cast<std::size_t>(k)).pair; }
+  /// The body of pair k.
+  int pair_body(int k) const { return pairs_.at(static_cast<std::size_t>(k)).body; }
+  /// All bodies as one problem (the solver's).
+  BodySystem& problem() { return *system_; }
+
+  // ---- the first body, typed (for programs and tests that know their model) -----------------
+  /// The kind of the first body.
+  BodyKind body_kind() const;
+  /// The first body as a rod (shell) problem; std::logic_error if it is a shell (rod).
   RodProblem& rod_problem();
   ShellProblem& shell_problem();
-  /// The rod problem with contact, or nullptr if the body is a shell or has no contact.
-  RodContactProblem* contact_problem() { return rod_contact_; }
-  /// The shell problem with contact, or nullptr if the body is a rod or has no contact.
-  ShellContactProblem* shell_contact_problem() { return shell_contact_; }
-  bool has_contact() const { return rod_contact_ != nullptr || shell_contact_ != nullptr; }
-  /// Contact point counts of the last assembly (zeros without contact).
+  /// The first contact pair as a rod's CTRS pair (a shell's STAS pair), or nullptr if it is not
+  /// one.
+  CurveContactPair* rod_contact();
+  SurfaceContactPair* shell_contact();
+
+  bool has_contact() const { return !pairs_.empty(); }
+  /// Contact point counts of the last assembly, summed over the pairs (zeros without contact).
   ContactCounts contact_counts() const;
-  /// Coulomb coefficient of the contact pair (0 without contact).
-  double contact_mu() const;
-  /// Seconds spent in the contact integral so far (0 without contact).
+  /// Seconds spent in the contact integrals so far (0 without contact).
   double contact_time() const;
   /// The named load curves of the model, in the file's order (steps.csv has a column for each).
   const std::vector<std::pair<std::string, LoadCurve>>& load_curves() const { return curves_; }
   /// One line: the body (elements, degree, control points), unknowns, contact (pieces, points,
   /// strategy), the pseudo-time span.
   std::string describe() const;
-  /// Displacement of the monitored point at the state (u, t).
+  /// Displacement of the monitored point at the state (u, t) of all bodies.
   Vector3d displacement(const AnalysisMonitor& m, const VectorXd& u, double t) const;
   const NonlinearSolverSettings& solver_settings() const { return settings_; }
   NonlinearSolverSettings& solver_settings() { return settings_; }
@@ -126,16 +144,27 @@ class Analysis {
   AnalysisResult run(std::ostream* log = nullptr, const std::string& out_dir = {},
                      const AnalysisStepCallback& on_step = {});
 
-  /// ParaView files of the state (u, t): for a rod <dir>/<stem>_rod.vtk (centre line with
-  /// axial force and curvature), for a shell <dir>/<stem>_shell.vtk (the sampled surface with
-  /// displacement, normal, membrane forces and moments in a local Cartesian frame) and, with
-  /// contact, <dir>/<stem>_contact.vtk (active points: rods N, T, B (68)-(70), slip; shells
-  /// N (34), gap, tangential force, slip). Returns the file names written (relative to dir).
+  /// A file written by write_output and the ParaView series (.pvd) it belongs to (empty: none).
+  struct OutputFile {
+    std::string series, file;
+  };
+  /// ParaView files of the state (u, t), in this order: each body sampled with its fields and
+  /// its pairs' (Body::sample; <stem>_<type>.vtk for one body, <stem>_<name>.vtk for several:
+  /// a rod's centre line with axial force and curvature, a shell's surface with displacement,
+  /// normal, membrane forces and moments in a local Cartesian frame); then per contact pair
+  /// (suffix _<k> with several) its active points (<stem>_contact.vtk: rods N, T, B (68)-(70),
+  /// slip; shells N (34), gap, tangential force, slip), the same seen from the tool
+  /// (<stem>_tool_contact.vtk) and the contact fields on a grid of each bounded piece of the
+  /// tool (<stem>_tool.vtk, or _tool_<i> per piece). File names are relative to dir.
+  std::vector<OutputFile> write_output(const std::string& dir, const std::string& stem,
+                                       const VectorXd& u, double t);
+  /// The file names of write_output.
   std::vector<std::string> write_vtk(const std::string& dir, const std::string& stem,
                                      const VectorXd& u, double t);
 
-  /// The rigid surface of the contact pair sampled as quadrilaterals (<dir>/<stem>.vtk, pieces
-  /// with an unbounded domain are left out); false (nothing written) without contact.
+  /// The rigid surface of each contact pair sampled as quadrilaterals (<dir>/<stem>.vtk, or
+  /// <stem>_<i>.vtk per piece, <stem>_<k>... per pair with several; pieces with an unbounded
+  /// domain are left out); false (nothing written) without contact.
   bool write_rigid_vtk(const std::string& dir, const std::string& stem) const;
 
   /// Reactions (f_int - f_ext + contact, Cartesian) at the output's reaction points.
@@ -143,16 +172,18 @@ class Analysis {
 
  private:
   Analysis() = default;
+  /// Whether every pair slides steadily (steady_sliding); false without pairs.
+  bool sliding_steadily() const;
+  struct PairRef {
+    ContactPair* pair;  ///< owned by its body
+    int body;
+  };
   std::string name_;
   GeometryModel geometry_;
-  BodyKind kind_ = BodyKind::kRod;
-  std::string body_;
-  std::unique_ptr<ControlPointProblem> problem_;
-  RodProblem* rod_ = nullptr;
-  ShellProblem* shell_ = nullptr;
-  RodContactProblem* rod_contact_ = nullptr;
-  ShellContactProblem* shell_contact_ = nullptr;
-  std::shared_ptr<const RigidSurface> rigid_;
+  std::vector<std::unique_ptr<Body>> bodies_;
+  std::vector<std::string> body_names_;
+  std::vector<PairRef> pairs_;
+  std::unique_ptr<BodySystem> system_;  ///< on the heap: it points to the bodies
   std::vector<std::pair<std::string, LoadCurve>> curves_;
   NonlinearSolverSettings settings_;
   AnalysisOutput output_;

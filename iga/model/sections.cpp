@@ -525,7 +525,8 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
   if (o.has("reactions")) {
     const JsonCursor r = o["reactions"];
     r.expect_array();
-    for (std::size_t k = 0; k < r.size(); ++k) out.reactions.push_back(point_index(r[k], ctx));
+    for (std::size_t k = 0; k < r.size(); ++k)
+      out.reactions.push_back({point_index(r[k], ctx), ctx.body_index});
   }
   if (o.has("monitors")) {  // [{"name": "centre", "at": xi or [u, v]}]
     const JsonCursor ml = o["monitors"];
@@ -534,6 +535,7 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
       const JsonCursor m = ml[k];
       m.expect_object({"name", "at", "description"});
       AnalysisMonitor mon;
+      mon.body = ctx.body_index;
       mon.name = m["name"].as_string();
       if (mon.name.empty() || mon.name.find_first_of(",\"\n") != std::string::npos)
         m["name"].fail("must be a non-empty name without commas, quotes or line breaks");
@@ -566,9 +568,7 @@ void for_each_entry(const JsonCursor& root, const char* key, F f) {
 
 /// The rod body, its contact pair, boundary conditions and loads.
 std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                      const GeometryModel& geometry, const JsonCursor& materials,
-                                      std::shared_ptr<const RigidSurface>& rigid_out,
-                                      RodContactProblem*& contact_out) {
+                                      const GeometryModel& geometry, const JsonCursor& materials) {
   b.expect_object(
       {"type", "curve", "material", "quadrature_points", "bending", "stress_free", "description"});
   const JsonCursor cc = b["curve"];
@@ -602,7 +602,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   }
   ctx.n_points = rod->num_control_points();
 
-  std::unique_ptr<RodProblem> problem;
+  auto problem = std::make_unique<RodProblem>(std::move(*rod));
   if (root.has("contact") && root["contact"].size() == 1) {
     const JsonCursor c = root["contact"][0];
     // The type first: a shell's contact keys would otherwise be reported as unknown keys.
@@ -612,18 +612,15 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
                      "slip_tol", "description"});
     check_body(c, ctx);
-    rigid_out = rigid_surface(c["rigid"], geometry);
+    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry);
     ContactParameters cp;
     penalty_and_friction(c, cp);
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
     const ContactEnforcement enforcement = parse_enforcement(c);
     const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
-    auto p = std::make_unique<RodContactProblem>(std::move(*rod), rigid_out, cp, ppe);
-    p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-    contact_out = p.get();
-    problem = std::move(p);
-  } else {
-    problem = std::make_unique<RodProblem>(std::move(*rod));
+    auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), rigid, cp, ppe);
+    pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+    problem->attach(std::move(pair));
   }
   for_each_entry(root, "boundary_conditions",
                  [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
@@ -634,9 +631,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
 /// The shell body, its contact pair, boundary conditions, springs and loads.
 std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                           const GeometryModel& geometry,
-                                          const JsonCursor& materials,
-                                          std::shared_ptr<const RigidSurface>& rigid_out,
-                                          ShellContactProblem*& contact_out) {
+                                          const JsonCursor& materials) {
   b.expect_object({"type", "surface", "material", "quadrature_points", "description"});
   const JsonCursor sc = b["surface"];
   ctx.surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
@@ -664,7 +659,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   ctx.nv = ctx.surface->num_v();
   ctx.n_points = ctx.nu * ctx.nv;
 
-  std::unique_ptr<ShellProblem> problem;
+  auto problem = std::make_unique<ShellProblem>(std::move(*shell));
   if (root.has("contact") && root["contact"].size() == 1) {
     const JsonCursor c = root["contact"][0];
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
@@ -673,7 +668,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
                      "points_per_direction", "search_distance", "enforcement", "penetration_tol",
                      "slip_tol", "max_augmentations", "description"});
     check_body(c, ctx);
-    rigid_out = rigid_surface(c["rigid"], geometry);
+    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry);
     for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
       if (piece == ctx.surface)
         c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
@@ -694,16 +689,14 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
         int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
     const ContactEnforcement enforcement = parse_enforcement(c);
+    cp.thickness = problem->shell().material().thickness;
     try {
-      auto p = std::make_unique<ShellContactProblem>(std::move(*shell), rigid_out, cp);
-      p->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-      contact_out = p.get();
-      problem = std::move(p);
+      auto pair = std::make_unique<SurfaceContactPair>(problem->shell().reference(), rigid, cp);
+      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+      problem->attach(std::move(pair));
     } catch (const std::invalid_argument& e) {
       c.fail_plain(e.what());
     }
-  } else {
-    problem = std::make_unique<ShellProblem>(std::move(*shell));
   }
   for_each_entry(root, "boundary_conditions",
                  [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });

@@ -18,6 +18,7 @@ namespace iga::model_detail {
 struct Context {
   std::map<std::string, LoadCurve> curves;
   std::string body;  // the one body's name
+  int body_index = 0;  // its index in the model
   BodyKind kind = BodyKind::kRod;
   const NurbsCurve* curve = nullptr;      // rod
   const NurbsSurface* surface = nullptr;  // shell
@@ -38,16 +39,13 @@ void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const Nonlinear
 /// Materials ("materials" entries).
 ShellMaterial parse_shell_material(const JsonCursor& m);
 RodSection parse_rod_material(const JsonCursor& m);
-/// The rod (shell) body b of the model root, its contact pair, boundary conditions and loads.
+/// The rod (shell) body b of the model root with its contact pair attached, its boundary
+/// conditions and loads.
 std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                      const GeometryModel& geometry, const JsonCursor& materials,
-                                      std::shared_ptr<const RigidSurface>& rigid_out,
-                                      RodContactProblem*& contact_out);
+                                      const GeometryModel& geometry, const JsonCursor& materials);
 std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                           const GeometryModel& geometry,
-                                          const JsonCursor& materials,
-                                          std::shared_ptr<const RigidSurface>& rigid_out,
-                                          ShellContactProblem*& contact_out);
+                                          const JsonCursor& materials);
 /// The "solver" and "output" sections.
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps);
 AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx);

@@ -105,4 +105,18 @@ void VtkCollection::add(double time, const std::string& file) {
   os << "  </Collection>\n</VTKFile>\n";
 }
 
+void write_vtk(const std::string& path, const SampledMesh& mesh, const std::string& title) {
+  switch (mesh.shape) {
+    case SampledMesh::Shape::kPoints:
+      write_vtk_polydata(path, mesh.points, false, mesh.fields, title);
+      return;
+    case SampledMesh::Shape::kPolyline:
+      write_vtk_polydata(path, mesh.points, true, mesh.fields, title);
+      return;
+    case SampledMesh::Shape::kGrid:
+      write_vtk_grid(path, mesh.points, mesh.nu, mesh.nv, mesh.fields, title);
+      return;
+  }
+}
+
 }  // namespace iga

@@ -9,13 +9,12 @@
 
 #include <Eigen/Core>
 
+#include "iga/core/sampled_mesh.hpp"
+
 namespace iga {
 
 /// Point data of one VTK file: named scalar or 3-vector fields, one value per point.
-struct VtkPointData {
-  std::vector<std::pair<std::string, std::vector<double>>> scalars;
-  std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> vectors;
-};
+using VtkPointData = PointFields;
 
 /// No file holds a non-finite number: a non-finite coordinate or field value is written as 0
 /// and its point gets the scalar field non_finite = 1 (present only when some point needs it).
@@ -32,6 +31,10 @@ void write_vtk_polydata(const std::string& path, const std::vector<Eigen::Vector
 /// points is not nu nv or nu, nv < 2.
 void write_vtk_grid(const std::string& path, const std::vector<Eigen::Vector3d>& points, int nu,
                     int nv, const VtkPointData& data = {}, const std::string& title = "iga");
+
+/// Writes a sampled mesh (a body, contact points, a tool's grid) with its fields: points and
+/// polylines as write_vtk_polydata, grids as write_vtk_grid.
+void write_vtk(const std::string& path, const SampledMesh& mesh, const std::string& title = "iga");
 
 /// A ParaView collection (.pvd): (time, file) pairs, files relative to the .pvd's folder.
 class VtkCollection {

@@ -80,6 +80,7 @@
 #include <functional>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -263,12 +264,24 @@ class RodProblem : public ControlPointProblem {
   /// Moment M at parameter xi (use the domain ends for end moments); see the class comment.
   void add_moment(double xi, const Vector3d& M, LoadCurve curve = ramp());
 
-  bool symmetric() const override { return moments_.empty(); }
-
   /// The current centre line (reference knots and weights, current control points).
   NurbsCurve current_curve(const VectorXd& u, double t) const;
 
+  // ---- Body ------------------------------------------------------------------------------------
+  std::string type() const override { return "rod"; }
+  /// "rod of 8 elements (degree 3, 11 control points)".
+  std::string describe() const override;
+  int default_samples() const override { return 16; }
+  /// Displacement of the centre line point at parameter pu (pv unused).
+  Vector3d displacement(double pu, double pv, const VectorXd& u, double t) const override;
+
  protected:
+  bool model_symmetric() const override { return moments_.empty(); }
+  /// The centre line sampled per element (kPolyline) with the axial force and the curvature. A
+  /// sample where the strains cannot be evaluated (a zero tangent, e.g. at an end whose first
+  /// two control points coincide) gets zero force and curvature and the flag singular = 1.
+  SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
+
   /// g = f_int - (moment loads), tangent triplets.
   void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;

@@ -50,6 +50,7 @@
 #include <initializer_list>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "iga/core/control_point_problem.hpp"
@@ -89,14 +90,25 @@ class ShellProblem : public ControlPointProblem {
   void add_edge_load(SurfaceEdge edge, const Vector3d& q, LoadCurve curve = ramp());
   void add_point_load(double u, double v, const Vector3d& F, LoadCurve curve = ramp());
 
-  bool symmetric() const override { return pressures_.empty(); }
-
   /// The current surface (reference knots and weights, current control points).
   NurbsSurface current_surface(const VectorXd& u, double t) const;
+
+  // ---- Body ------------------------------------------------------------------------------------
+  std::string type() const override { return "shell"; }
+  /// "shell of 64 elements (degree 2 x 2, 100 control points)".
+  std::string describe() const override;
+  int default_samples() const override { return 4; }
   /// Displacement x(u, v) - X(u, v) of the surface point at parameters (u, v).
-  Vector3d displacement(double u, double v, const VectorXd& state, double t) const;
+  Vector3d displacement(double u, double v, const VectorXd& state, double t) const override;
 
  protected:
+  bool model_symmetric() const override { return pressures_.empty(); }
+  /// The surface sampled on a grid, `samples` intervals per element span and direction (kGrid),
+  /// with the displacement, the normal, membrane forces and moments in a local Cartesian frame
+  /// (ShellStresses) and the von Mises stress; a sample where they cannot be evaluated gets
+  /// zeros and the flag singular = 1.
+  SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
+
   /// g = f_int - f_pressure + springs; tangent triplets.
   void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;

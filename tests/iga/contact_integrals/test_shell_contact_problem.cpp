@@ -67,7 +67,8 @@ TEST_CASE(
       Analysis a = Analysis::from_json(doc, kSaddle);
       const AnalysisResult r = a.run();
       REQUIRE(r.solver.converged());
-      ShellContactProblem& p = *a.shell_contact_problem();
+      ShellProblem& p = a.shell_problem();  // with the contact pair attached
+      const SurfaceContact& contact = a.shell_contact()->contact();
       CHECK(p.symmetric() == (mu == 0.0 && std::string(strategy) == "master"));
       // A state off the converged one: the friction increments are non-zero, so that points
       // sit on one side of the stick-slip kink.
@@ -76,7 +77,7 @@ TEST_CASE(
       VectorXd u = r.u;
       for (Eigen::Index k = 0; k < u.size(); ++k) u[k] += 2e-5 * U(g);
       const double err = problem_tangent_error(p, u, 610.0, 1e-7);
-      const SurfaceContactCounts n = p.contact().counts();
+      const SurfaceContactCounts n = contact.counts();
       INFO(strategy << ", mu = " << mu << ": " << p.status() << ", relative error " << err);
       REQUIRE(n.active > 20);
       if (mu > 0.0) CHECK(n.stick + n.slip == n.active);

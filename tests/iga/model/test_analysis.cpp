@@ -72,7 +72,7 @@ TEST_CASE("analysis: data/helix.json reproduces the C++ model with a pitch and (
 TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the circle",
           "[iga][analysis]") {
   Analysis a = Analysis::load(kData + "rollup.json");
-  CHECK(a.contact_problem() == nullptr);
+  CHECK(a.rod_contact() == nullptr);
   const AnalysisResult r = a.run();
   REQUIRE(r.solver.converged());
   RodProblem& p = a.rod_problem();

@@ -1,0 +1,117 @@
+// The CTRS pair of a rod with a rigid surface; see curve_contact_pair.hpp.
+#include "iga/contact_integrals/curve_contact_pair.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <utility>
+
+namespace iga {
+
+namespace {
+
+CurveContact make_contact(const NurbsCurve& reference, const RigidSurface* rigid,
+                          const ContactParameters& params, int points_per_element) {
+  if (rigid == nullptr) throw std::invalid_argument("CurveContactPair: the rigid surface is null");
+  return CurveContact(reference, *rigid, params, points_per_element);
+}
+
+}  // namespace
+
+CurveContactPair::CurveContactPair(const NurbsCurve& reference,
+                                   std::shared_ptr<const RigidSurface> rigid,
+                                   const ContactParameters& params, int points_per_element)
+    : RigidContactPair(rigid, make_contact(reference, rigid.get(), params, points_per_element)) {
+  const std::vector<double> br = reference.knots().breaks();
+  for (std::size_t k = 0; k + 1 < br.size(); ++k) elements_.push_back({br[k], br[k + 1]});
+}
+
+std::unique_ptr<ContactPair> CurveContactPair::clone() const {
+  return std::make_unique<CurveContactPair>(*this);
+}
+
+bool CurveContactPair::symmetric() const {
+  const ContactParameters& p = contact().parameters();
+  return !(p.mu > 0.0 && p.eps_t > 0.0);
+}
+
+ContactCounts CurveContactPair::counts() const {
+  const CurveContactCounts c = contact().counts();
+  return {c.active, c.stick, c.slip, c.drag_ratio(), std::min(c.slip_positive, c.slip_negative)};
+}
+
+std::string CurveContactPair::describe() const {
+  return "CTRS contact with a rigid surface of " + std::to_string(rigid().num_patches()) +
+         " piece(s), " + std::to_string(contact().points().size()) + " contact points";
+}
+
+void CurveContactPair::add_fields(SampledMesh& body) const {
+  struct Fields {
+    double pressure = 0.0, T = 0.0, B = 0.0, state = 0.0;
+  };
+  // The weighted means per element.
+  std::vector<Fields> per(elements_.size());
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const Interval& I = elements_[e];
+    Fields& f = per[e];
+    double w = 0.0;
+    for (const CurveContactPoint& cp : contact().points()) {
+      if (cp.eta < I.lo || cp.eta > I.hi) continue;
+      w += cp.weight;
+      if (!cp.law.active) continue;
+      f.pressure += cp.weight * -cp.N;
+      f.T += cp.weight * cp.T;
+      f.B += cp.weight * cp.B;
+      f.state = std::max(f.state, cp.law.slip ? 2.0 : 1.0);
+    }
+    if (w > 0.0) {
+      f.pressure /= w;
+      f.T /= w;
+      f.B /= w;
+    }
+  }
+  std::vector<double> pressure, traction_T, traction_B, state;
+  for (int e : body.elements) {
+    const Fields f = e >= 0 && static_cast<std::size_t>(e) < per.size()
+                         ? per[static_cast<std::size_t>(e)]
+                         : Fields{};
+    pressure.push_back(f.pressure);
+    traction_T.push_back(f.T);
+    traction_B.push_back(f.B);
+    state.push_back(f.state);
+  }
+  body.fields.scalars.push_back({"contact_pressure", pressure});
+  body.fields.scalars.push_back({"contact_traction_T", traction_T});
+  body.fields.scalars.push_back({"contact_traction_B", traction_B});
+  body.fields.scalars.push_back({"contact_state", state});
+}
+
+SampledMesh CurveContactPair::points() const {
+  SampledMesh m;
+  std::vector<Vector3d> normal;
+  std::vector<double> N, T, B, slip;
+  for (const CurveContactPoint& cp : contact().points()) {
+    if (!cp.law.active) continue;
+    m.points.push_back(cp.x);
+    normal.push_back(cp.law.normal);
+    N.push_back(cp.N);
+    T.push_back(cp.T);
+    B.push_back(cp.B);
+    slip.push_back(cp.law.slip ? 1.0 : 0.0);
+  }
+  m.fields.scalars = {{"N", N}, {"T", T}, {"B", B}, {"slip", slip}};
+  m.fields.vectors = {{"normal", normal}};
+  return m;
+}
+
+std::vector<ContactFoot> CurveContactPair::feet() const {
+  std::vector<ContactFoot> f;
+  for (const CurveContactPoint& cp : contact().points()) {
+    if (!cp.law.active) continue;
+    // On the tool the traction is opposite to the rope's; the footprint is 1.5 times the
+    // point's length share of the rope.
+    f.push_back({cp.law.foot, -cp.N, cp.law.slip ? 2.0 : 1.0, 1.5 * cp.weight, -cp.law.T_vector});
+  }
+  return f;
+}
+
+}  // namespace iga

@@ -1,0 +1,71 @@
+// The part common to the contact pairs of a body with one rigid surface (CurveContactPair:
+// CTRS, SurfaceContactPair: STAS; [KS15]): the contact integral added to the body's residual and
+// tangent (timed), its friction history committed only at converged load steps ((35)-(36)),
+// exact enforcement by augmentation, the status line.
+//
+// Notation: x the body's control points, g its Cartesian residual (3 n, g = f_int - f_ext), K
+// the triplets of dg/dx; t the pseudo-time.
+#pragma once
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "iga/core/contact_pair.hpp"
+
+namespace iga {
+
+/// Integral: the contact integral (CurveContact, SurfaceContact) with assemble(x, g, K*),
+/// commit(), predict(t), augment(), restore(), roundoff(), enforcement(), augmentation() and
+/// counts() (active, stick, slip); copyable.
+template <class Integral>
+class RigidContactPair : public ContactPair {
+ public:
+  const Integral& contact() const { return contact_; }
+  Integral& contact() { return contact_; }
+
+  void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
+    const auto start = std::chrono::steady_clock::now();
+    x_.assign(x.begin(), x.end());  // no reallocation after the first call
+    contact_.predict(t);            // augmented Lagrange: the step's first multipliers
+    contact_.assemble(x_, g, K);    // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
+    time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  void commit() override { contact_.commit(); }
+  /// Exact enforcement (augmented Lagrange, ContactEnforcement): the integral checks the
+  /// largest |gap| of the points carrying a force in the state of the last assembly (the
+  /// solver's converged u) and updates its multipliers (Uzawa); penalty: always satisfied.
+  AugmentResult augment() override { return contact_.augment(); }
+  void restore() override { contact_.restore(); }
+  double roundoff() const override { return contact_.roundoff(); }
+  double time() const override { return time_; }
+  double mu() const override { return contact_.parameters().mu; }
+  /// "contact 24 (stick 10, slip 14)"; augmented Lagrange: "contact 24 (stick 10, slip 14),
+  /// |gap| 3.1e-05", the largest |gap| of a point carrying a force at the last check.
+  std::string status() const override {
+    const auto c = contact_.counts();
+    std::string s = "contact " + std::to_string(c.active) + " (stick " + std::to_string(c.stick) +
+                    ", slip " + std::to_string(c.slip) + ")";
+    if (contact_.enforcement().augmented) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, ", |gap| %.1e", contact_.augmentation().max_gap);
+      s += buf;
+    }
+    return s;
+  }
+
+ protected:
+  RigidContactPair(std::shared_ptr<const RigidSurface> rigid, Integral contact)
+      : ContactPair(std::move(rigid)), contact_(std::move(contact)) {}
+
+ private:
+  Integral contact_;
+  std::vector<Vector3d> x_;  ///< work copy of the control points (the integrals take a vector)
+  double time_ = 0.0;
+};
+
+}  // namespace iga

@@ -1,0 +1,82 @@
+// The shell as a Body: its description and sampled output fields.
+#include <cmath>
+#include <exception>
+#include <string>
+
+#include "iga/shell/shell_problem.hpp"
+
+namespace iga {
+
+namespace {
+
+/// Parameters of a grid over the element spans: `samples` intervals per span.
+std::vector<double> span_samples(const std::vector<double>& breaks, int samples) {
+  std::vector<double> s;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+    for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
+      s.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / samples);
+  return s;
+}
+
+}  // namespace
+
+std::string ShellProblem::describe() const {
+  const NurbsSurface& S = shell_.reference();
+  return "shell of " + std::to_string(shell_.num_elements()) + " elements (degree " +
+         std::to_string(S.degree_u()) + " x " + std::to_string(S.degree_v()) + ", " +
+         std::to_string(num_control_points()) + " control points)";
+}
+
+SampledMesh ShellProblem::sample_model(const VectorXd& u, double t, int samples) const {
+  const std::vector<Vector3d> x = current_points(u, t);
+  const NurbsSurface& S = shell_.reference();
+  const std::vector<double> bu = S.knots_u().breaks(), bv = S.knots_v().breaks();
+  const std::vector<double> us = span_samples(bu, samples), vs = span_samples(bv, samples);
+  SampledMesh m;
+  m.shape = SampledMesh::Shape::kGrid;
+  m.nu = static_cast<int>(us.size());
+  m.nv = static_cast<int>(vs.size());
+  const int ne_u = static_cast<int>(bu.size()) - 1;
+  std::vector<Vector3d> disp, normal, nloc, mloc;
+  std::vector<double> von_mises, singular;
+  for (std::size_t j = 0; j < vs.size(); ++j)
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      const double pu = us[i], pv = vs[j];
+      // The element of the sample: span i / samples (the first sample of a span belongs to the
+      // span before it, as the grid is built).
+      const int eu = i == 0 ? 0 : static_cast<int>((i - 1) / static_cast<std::size_t>(samples));
+      const int ev = j == 0 ? 0 : static_cast<int>((j - 1) / static_cast<std::size_t>(samples));
+      const Vector3d p = shell_.point(pu, pv, x);
+      m.points.push_back(p);
+      m.params.push_back({pu, pv});
+      m.elements.push_back(eu + ne_u * ev);
+      disp.push_back(p - S.point(pu, pv));
+      Vector3d nrm = Vector3d::Zero(), nl = Vector3d::Zero(), ml = Vector3d::Zero();
+      double vm = 0.0;
+      bool ok = true;
+      try {
+        nrm = shell_.normal(pu, pv, x);
+        const ShellStresses st = shell_.stresses(pu, pv, x);
+        nl = st.membrane_force_local;
+        ml = st.moment_local;
+        vm = st.von_mises;
+        ok = nrm.allFinite() && nrm.norm() > 0.5 && nl.allFinite() && ml.allFinite() &&
+             std::isfinite(vm);
+      } catch (const std::exception&) {
+        ok = false;
+      }
+      normal.push_back(ok ? nrm : Vector3d::Zero());
+      nloc.push_back(ok ? nl : Vector3d::Zero());
+      mloc.push_back(ok ? ml : Vector3d::Zero());
+      von_mises.push_back(ok ? vm : 0.0);
+      singular.push_back(ok ? 0.0 : 1.0);
+    }
+  m.fields.scalars = {{"von_mises", von_mises}, {"singular", singular}};
+  m.fields.vectors = {{"displacement", disp},
+                      {"normal", normal},
+                      {"membrane_force_N11_N22_N12", nloc},
+                      {"moment_M11_M22_M12", mloc}};
+  return m;
+}
+
+}  // namespace iga
