@@ -32,7 +32,8 @@ namespace {
 
 NurbsSurface load(const std::string& file) {
   const std::string path = std::string(IGA_SOURCE_DIR) + "/data/" + file;
-  const GeometryModel g = parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
+  const GeometryModel g =
+      parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
   for (const auto& [name, e] : g.entities)
     if (const auto* s = std::get_if<NurbsSurface>(&e)) return *s;
   throw std::runtime_error(path + ": no NURBS surface");
@@ -46,7 +47,8 @@ struct Reference {
     const Domain2 d = s.domain();
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const Vector2d t(d.u.lo + (d.u.hi - d.u.lo) * i / (n - 1), d.v.lo + (d.v.hi - d.v.lo) * j / (n - 1));
+        const Vector2d t(d.u.lo + (d.u.hi - d.u.lo) * i / (n - 1),
+                         d.v.lo + (d.v.hi - d.v.lo) * j / (n - 1));
         uv.push_back(t);
         x.push_back(s.point(t[0], t[1]));
       }
@@ -108,7 +110,8 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
         const SurfaceDerivs d = s.derivs(u, v, 1);
         pts[i] = d.S + (2 * U(g) - 1) * 0.05 * size * d.Su.cross(d.Sv).normalized();
       } else if (set == 'B') {
-        pts[i] = c + 1.3 * Vector3d((2 * U(g) - 1) * half.x(), (2 * U(g) - 1) * half.y(), (2 * U(g) - 1) * half.z());
+        pts[i] = c + 1.3 * Vector3d((2 * U(g) - 1) * half.x(), (2 * U(g) - 1) * half.y(),
+                                    (2 * U(g) - 1) * half.z());
       } else {
         Vector3d dir(U(g) - 0.5, U(g) - 0.5, U(g) - 0.5);
         pts[i] = c + (1.0 + 2.0 * U(g)) * diag * dir.normalized();
@@ -162,7 +165,8 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
     // rays towards the reference foot, for interior feet
     std::vector<std::size_t> ray_ids;
     for (std::size_t i = 0; i < N; ++i)
-      if (refs[i].status == ProjectionStatus::interior && (refs[i].point - pts[i]).norm() > 1e-6 * size)
+      if (refs[i].status == ProjectionStatus::interior &&
+          (refs[i].point - pts[i]).norm() > 1e-6 * size)
         ray_ids.push_back(i);
     std::vector<ProjectionResult> rays(ray_ids.size());
     const double ray_rate = ray_ids.empty() ? 0.0 : rate(ray_ids.size(), [&] {
@@ -175,12 +179,16 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
     double ray_worst = 0.0;
     for (std::size_t k = 0; k < ray_ids.size(); ++k) {
       const std::size_t i = ray_ids[k];
-      const bool ok = found(rays[k].status) && (rays[k].point - refs[i].point).norm() <= 1e-8 * diag;
+      const bool ok =
+          found(rays[k].status) && (rays[k].point - refs[i].point).norm() <= 1e-8 * diag;
       ray_good += ok;
       if (found(rays[k].status)) ray_worst = std::max(ray_worst, rays[k].residual);
     }
-    std::printf("%-9s %c | rays %9.0f /s on %zu interior feet | nearest hit found %8.4f %% | worst ray residual %.1e\n",
-                label, set, ray_rate, ray_ids.size(), ray_ids.empty() ? 100.0 : 100.0 * ray_good / ray_ids.size(), ray_worst);
+    std::printf(
+        "%-9s %c | rays %9.0f /s on %zu interior feet | nearest hit found %8.4f %% | worst ray "
+        "residual %.1e\n",
+        label, set, ray_rate, ray_ids.size(),
+        ray_ids.empty() ? 100.0 : 100.0 * ray_good / ray_ids.size(), ray_worst);
   }
 }
 

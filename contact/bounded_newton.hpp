@@ -71,8 +71,8 @@ double projected_residual(const LocalModel<D>& m, const Eigen::Matrix<double, D,
                           const Box<D>& box) {
   double res = 0.0;
   for (int i = 0; i < D; ++i) {
-    const bool held = !box.wrap[i] && ((t[i] <= box.lo[i] && m.g[i] > 0.0) ||
-                                       (t[i] >= box.hi[i] && m.g[i] < 0.0));
+    const bool held = !box.wrap[i] &&
+                      ((t[i] <= box.lo[i] && m.g[i] > 0.0) || (t[i] >= box.hi[i] && m.g[i] < 0.0));
     if (!held) res = std::max(res, std::abs(m.g[i]) / m.scale[i]);
   }
   return res;
@@ -115,8 +115,8 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
     // Active set (held at a bound) and the projected-gradient (orthogonality) residual.
     bool active[D];
     for (int i = 0; i < D; ++i)
-      active[i] = !box.wrap[i] && ((t[i] <= box.lo[i] && m.g[i] > 0.0) ||
-                                   (t[i] >= box.hi[i] && m.g[i] < 0.0));
+      active[i] = !box.wrap[i] &&
+                  ((t[i] <= box.lo[i] && m.g[i] > 0.0) || (t[i] >= box.hi[i] && m.g[i] < 0.0));
     const double res = projected_residual<D>(m, t, box);
     out.residual = res;
     if (res <= opt.tol_residual) {

@@ -81,11 +81,11 @@ struct ContactParameters {
 
 /// Converged state of the previous load step at one contact point.
 struct ContactHistory {
-  bool active = false;               ///< in contact at the last converged step
-  int patch = -1;                    ///< rigid patch of the stored foot (warm start)
-  Vector2d xi = Vector2d::Zero();    ///< foot parameters xi_(n) (warm start only)
-  Vector3d foot = Vector3d::Zero();  ///< the anchor rho_(n): the stored foot point
-  Vector2d T = Vector2d::Zero();     ///< contravariant T^i_(n) (output only)
+  bool active = false;                   ///< in contact at the last converged step
+  int patch = -1;                        ///< rigid patch of the stored foot (warm start)
+  Vector2d xi = Vector2d::Zero();        ///< foot parameters xi_(n) (warm start only)
+  Vector3d foot = Vector3d::Zero();      ///< the anchor rho_(n): the stored foot point
+  Vector2d T = Vector2d::Zero();         ///< contravariant T^i_(n) (output only)
   Vector3d T_vector = Vector3d::Zero();  ///< the committed tangential force T_(n), 3-D
 };
 
@@ -96,8 +96,8 @@ struct ContactPoint {
   double gap = 0.0;     ///< xi^3 (52)
   double N = 0.0;       ///< normal force (34) (augmented: lambda_N + eps_N gap), <= 0
   double phi = 0.0;     ///< slip function |T_tr| - mu |N| of the trial force (35)
-  double slip_distance = 0.0;  ///< |g_T|, the slip since the anchor (stick: elastic creep)
-  Vector2d T = Vector2d::Zero();         ///< contravariant tangential force T^i (36)
+  double slip_distance = 0.0;     ///< |g_T|, the slip since the anchor (stick: elastic creep)
+  Vector2d T = Vector2d::Zero();  ///< contravariant tangential force T^i (36)
   Vector3d T_vector = Vector3d::Zero();  ///< the tangential force T = T^i rho_i (3-D)
   Vector2d xi = Vector2d::Zero();        ///< foot parameters
   Vector3d foot = Vector3d::Zero();

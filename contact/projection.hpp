@@ -35,9 +35,9 @@ inline bool found(ProjectionStatus s) {
 }
 
 struct ProjectionResult {
-  Vector2d uv = Vector2d::Zero();         ///< surface parameters (alpha^1, alpha^2)
-  Vector3d point = Vector3d::Zero();      ///< rho(uv), the foot point
-  Vector3d normal = Vector3d::Zero();     ///< oriented unit normal n at uv
+  Vector2d uv = Vector2d::Zero();      ///< surface parameters (alpha^1, alpha^2)
+  Vector3d point = Vector3d::Zero();   ///< rho(uv), the foot point
+  Vector3d normal = Vector3d::Zero();  ///< oriented unit normal n at uv
   /// Closest point: signed distance, |x - rho| with the sign of (x - rho).n (eq. 10: p along
   /// n in the interior). Ray: the ray parameter xi^3 with x + xi^3 N = rho (eqs. 2-3).
   double distance = 0.0;

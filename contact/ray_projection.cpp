@@ -27,9 +27,8 @@ double wrap_into(double t, const Interval& I) {
 
 // Newton (5) on (alpha1, alpha2, xi3) within the box. Statuses: interior/edge/vertex at a hit,
 // tangent where n.N -> 0 (9), miss where the iterate leaves the box or does not converge.
-ProjectionResult ray_newton(const Surface& s, const Vector3d& x, const Vector3d& N,
-                            Vector2d uv, double xi, const RayBox& box,
-                            const ProjectionOptions& opt) {
+ProjectionResult ray_newton(const Surface& s, const Vector3d& x, const Vector3d& N, Vector2d uv,
+                            double xi, const RayBox& box, const ProjectionOptions& opt) {
   const Domain2& B = box.bounds;
   auto place = [&](Vector2d& t) {
     t[0] = box.wrap_u ? wrap_into(t[0], B.u) : std::clamp(t[0], B.u.lo, B.u.hi);
@@ -79,7 +78,8 @@ ProjectionResult ray_newton(const Surface& s, const Vector3d& x, const Vector3d&
     const Vector2d unclamped = next;
     place(next);
     // The hit lies outside the box when Newton keeps pushing across a (non-wrapping) bound.
-    const bool out = (!box.wrap_u && unclamped[0] != next[0]) || (!box.wrap_v && unclamped[1] != next[1]);
+    const bool out =
+        (!box.wrap_u && unclamped[0] != next[0]) || (!box.wrap_v && unclamped[1] != next[1]);
     pushed_out = out ? pushed_out + 1 : 0;
     if (pushed_out >= 3) return r;  // miss
     converged_step = !out && std::abs(delta[0]) <= opt.tol_step * (1.0 + std::abs(uv[0])) &&
@@ -156,7 +156,8 @@ ProjectionResult ray_project(const PatchProjector& patch, const Vector3d& x, con
     if (lb > best_abs) break;
     const BezierPatch& el = patch.elements()[static_cast<std::size_t>(e)];
     // Seed: the element's sample nearest to the line (a 4 x 4 grid).
-    Vector2d seed = Vector2d(0.5 * (el.range.u.lo + el.range.u.hi), 0.5 * (el.range.v.lo + el.range.v.hi));
+    Vector2d seed =
+        Vector2d(0.5 * (el.range.u.lo + el.range.u.hi), 0.5 * (el.range.v.lo + el.range.v.hi));
     double seed_d = kInf, seed_xi = 0.0;
     for (int j = 0; j < 4; ++j)
       for (int i = 0; i < 4; ++i) {

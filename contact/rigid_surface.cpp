@@ -66,25 +66,36 @@ int RigidSurface::add(const NurbsSurface& s) {
 int RigidSurface::add(const AnalyticSurface& s) {
   Piece p;
   // Copy the concrete type (the pieces outlive the caller's objects).
-  if (const auto* q = dynamic_cast<const Plane*>(&s)) p.surface = std::make_shared<Plane>(*q);
-  else if (const auto* q1 = dynamic_cast<const Sphere*>(&s)) p.surface = std::make_shared<Sphere>(*q1);
-  else if (const auto* q2 = dynamic_cast<const Cylinder*>(&s)) p.surface = std::make_shared<Cylinder>(*q2);
-  else if (const auto* q3 = dynamic_cast<const Torus*>(&s)) p.surface = std::make_shared<Torus>(*q3);
-  else if (const auto* q4 = dynamic_cast<const Cone*>(&s)) p.surface = std::make_shared<Cone>(*q4);
-  else if (const auto* q5 = dynamic_cast<const Hyperboloid*>(&s)) p.surface = std::make_shared<Hyperboloid>(*q5);
-  else if (const auto* q6 = dynamic_cast<const Revolution*>(&s)) p.surface = std::make_shared<Revolution>(*q6);
-  else throw std::invalid_argument("unsupported analytic surface " + s.type_name());
+  if (const auto* q = dynamic_cast<const Plane*>(&s))
+    p.surface = std::make_shared<Plane>(*q);
+  else if (const auto* q1 = dynamic_cast<const Sphere*>(&s))
+    p.surface = std::make_shared<Sphere>(*q1);
+  else if (const auto* q2 = dynamic_cast<const Cylinder*>(&s))
+    p.surface = std::make_shared<Cylinder>(*q2);
+  else if (const auto* q3 = dynamic_cast<const Torus*>(&s))
+    p.surface = std::make_shared<Torus>(*q3);
+  else if (const auto* q4 = dynamic_cast<const Cone*>(&s))
+    p.surface = std::make_shared<Cone>(*q4);
+  else if (const auto* q5 = dynamic_cast<const Hyperboloid*>(&s))
+    p.surface = std::make_shared<Hyperboloid>(*q5);
+  else if (const auto* q6 = dynamic_cast<const Revolution*>(&s))
+    p.surface = std::make_shared<Revolution>(*q6);
+  else
+    throw std::invalid_argument("unsupported analytic surface " + s.type_name());
   // Box: sampled over a bounded domain; unbounded pieces get an infinite box.
   const Domain2 d = s.domain();
-  if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) && std::isfinite(d.v.hi)) {
+  if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) &&
+      std::isfinite(d.v.hi)) {
     // Sampling bounds the surface only approximately: pad by the largest sample spacing.
     double pad = 0.0;
     const int n = 24;
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        const SurfaceDerivs dd = s.derivs(d.u.lo + (d.u.hi - d.u.lo) * i / n, d.v.lo + (d.v.hi - d.v.lo) * j / n, 1);
+        const SurfaceDerivs dd =
+            s.derivs(d.u.lo + (d.u.hi - d.u.lo) * i / n, d.v.lo + (d.v.hi - d.v.lo) * j / n, 1);
         p.box.extend(dd.S);
-        pad = std::max(pad, dd.Su.norm() * (d.u.hi - d.u.lo) / n + dd.Sv.norm() * (d.v.hi - d.v.lo) / n);
+        pad = std::max(pad,
+                       dd.Su.norm() * (d.u.hi - d.u.lo) / n + dd.Sv.norm() * (d.v.hi - d.v.lo) / n);
       }
     p.box.lo.array() -= pad;
     p.box.hi.array() += pad;
@@ -201,7 +212,8 @@ ProjectionResult RigidSurface::closest_point_within(const Vector3d& x, double ma
   return best;
 }
 
-ProjectionResult RigidSurface::closest_point(const Vector3d& x, const ProjectionOptions& opt) const {
+ProjectionResult RigidSurface::closest_point(const Vector3d& x,
+                                             const ProjectionOptions& opt) const {
   return closest_point_within(x, kInf, opt);
 }
 
@@ -253,8 +265,8 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
 }
 
 std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vector3d>& points,
-                                                         double search_distance, bool use_cgal,
-                                                         const ProjectionOptions& opt) const {
+                                                           double search_distance, bool use_cgal,
+                                                           const ProjectionOptions& opt) const {
   // Broad phase: every Bezier element of every NURBS piece, tagged (piece, element).
   std::vector<Box3> boxes;
   std::vector<std::pair<int, int>> tag;
@@ -264,8 +276,9 @@ std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vec
         boxes.push_back(P->element_boxes()[e]);
         tag.emplace_back(i, static_cast<int>(e));
       }
-  const std::vector<SearchPair> pairs = use_cgal ? broad_phase(points, boxes, search_distance)
-                                                 : RigidBoxIndex(boxes, search_distance).query(points);
+  const std::vector<SearchPair> pairs = use_cgal
+                                            ? broad_phase(points, boxes, search_distance)
+                                            : RigidBoxIndex(boxes, search_distance).query(points);
   // Narrow phase: per point, per piece, the projection among the candidate elements.
   std::vector<ProjectionResult> out(points.size());
   std::vector<int> ids;
@@ -308,8 +321,9 @@ ProjectionResult RigidSurface::ray(const Vector3d& x, const Vector3d& N,
   int iterations = 0;
   for (int i = 0; i < num_patches(); ++i) {
     const Piece& p = pieces_[static_cast<std::size_t>(i)];
-    ProjectionResult r = p.nurbs ? ray_project(*p.nurbs, x, N, opt)
-                                 : ray_project_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, N, opt);
+    ProjectionResult r =
+        p.nurbs ? ray_project(*p.nurbs, x, N, opt)
+                : ray_project_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, N, opt);
     r.patch = i;
     iterations += r.iterations;
     tangent = tangent || r.status == ProjectionStatus::tangent;

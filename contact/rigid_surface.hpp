@@ -30,7 +30,9 @@ class RigidSurface {
   int num_patches() const { return static_cast<int>(pieces_.size()); }
   const Surface& patch(int i) const { return *pieces_[static_cast<std::size_t>(i)].surface; }
   /// The NURBS projector of patch i, or nullptr for an analytic piece.
-  const PatchProjector* nurbs(int i) const { return pieces_[static_cast<std::size_t>(i)].nurbs.get(); }
+  const PatchProjector* nurbs(int i) const {
+    return pieces_[static_cast<std::size_t>(i)].nurbs.get();
+  }
   /// Bounding box of all pieces (infinite for unbounded analytic surfaces).
   const Box3& box() const { return box_; }
 

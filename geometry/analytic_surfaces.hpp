@@ -145,8 +145,7 @@ class Hyperboloid final : public AnalyticSurface {
 class Revolution final : public AnalyticSurface {
  public:
   /// f(r) = sum_k coeffs[k] r^k; u = r >= 0, v = polar angle.
-  Revolution(const Placement& pl, std::vector<double> coeffs,
-             const Domain2& d = default_domain());
+  Revolution(const Placement& pl, std::vector<double> coeffs, const Domain2& d = default_domain());
   static Domain2 default_domain();
   const std::vector<double>& coeffs() const { return c_; }
   /// f(r), f'(r), f''(r)

@@ -145,9 +145,12 @@ void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const 
 void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> U,
                      BasisDerivs& ders) {
   switch (p) {
-    case 2: return ders_basis_funs_impl<2>(span, u, p, nd, U, ders);
-    case 3: return ders_basis_funs_impl<3>(span, u, p, nd, U, ders);
-    default: return ders_basis_funs_impl<0>(span, u, p, nd, U, ders);
+    case 2:
+      return ders_basis_funs_impl<2>(span, u, p, nd, U, ders);
+    case 3:
+      return ders_basis_funs_impl<3>(span, u, p, nd, U, ders);
+    default:
+      return ders_basis_funs_impl<0>(span, u, p, nd, U, ders);
   }
 }
 

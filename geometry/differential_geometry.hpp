@@ -22,16 +22,16 @@ inline Matrix3d skew(const Vector3d& v) {
 }
 
 struct SurfaceFrame {
-  Vector3d a1 = Vector3d::Zero(), a2 = Vector3d::Zero();  ///< rho_1, rho_2
-  Vector3d n = Vector3d::Zero();                          ///< unit normal (oriented)
-  double jacobian = 0.0;                                  ///< |rho_1 x rho_2|
-  Matrix2d a = Matrix2d::Zero();                          ///< a_ij = rho_i . rho_j
-  Matrix2d a_inv = Matrix2d::Zero();                      ///< a^ij
+  Vector3d a1 = Vector3d::Zero(), a2 = Vector3d::Zero();                ///< rho_1, rho_2
+  Vector3d n = Vector3d::Zero();                                        ///< unit normal (oriented)
+  double jacobian = 0.0;                                                ///< |rho_1 x rho_2|
+  Matrix2d a = Matrix2d::Zero();                                        ///< a_ij = rho_i . rho_j
+  Matrix2d a_inv = Matrix2d::Zero();                                    ///< a^ij
   Vector3d a1_contra = Vector3d::Zero(), a2_contra = Vector3d::Zero();  ///< rho^i = a^ij rho_j
-  Matrix2d h = Matrix2d::Zero();                          ///< h_ij = rho_ij . n (needs order 2)
-  double mean_curvature = 0.0;                            ///< H = (k1 + k2)/2
-  double gauss_curvature = 0.0;                           ///< K = k1 k2 = det h / det a
-  double k1 = 0.0, k2 = 0.0;                              ///< principal curvatures, k1 >= k2
+  Matrix2d h = Matrix2d::Zero();                              ///< h_ij = rho_ij . n (needs order 2)
+  double mean_curvature = 0.0;                                ///< H = (k1 + k2)/2
+  double gauss_curvature = 0.0;                               ///< K = k1 k2 = det h / det a
+  double k1 = 0.0, k2 = 0.0;                                  ///< principal curvatures, k1 >= k2
   Vector3d dir1 = Vector3d::Zero(), dir2 = Vector3d::Zero();  ///< unit principal directions
 };
 

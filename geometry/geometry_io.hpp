@@ -23,8 +23,8 @@ struct PatchGroup {
   bool operator==(const PatchGroup&) const = default;
 };
 
-using GeometryEntity = std::variant<NurbsCurve, NurbsSurface, Plane, Sphere, Cylinder, Torus,
-                                    Cone, Hyperboloid, Revolution, PatchGroup>;
+using GeometryEntity = std::variant<NurbsCurve, NurbsSurface, Plane, Sphere, Cylinder, Torus, Cone,
+                                    Hyperboloid, Revolution, PatchGroup>;
 
 /// The "geometry" section of a model: named entities in file order.
 struct GeometryModel {

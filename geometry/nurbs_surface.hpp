@@ -19,9 +19,8 @@ class NurbsSurface : public Surface {
  public:
   NurbsSurface() = default;
   /// Throws GeometryError on inconsistent data. Empty `weights` means all 1 (B-spline).
-  NurbsSurface(int degree_u, std::vector<double> knots_u, int degree_v,
-               std::vector<double> knots_v, const std::vector<Vector3d>& points,
-               const std::vector<double>& weights = {});
+  NurbsSurface(int degree_u, std::vector<double> knots_u, int degree_v, std::vector<double> knots_v,
+               const std::vector<Vector3d>& points, const std::vector<double>& weights = {});
   /// From homogeneous control points (w P, w), u fastest.
   NurbsSurface(KnotVector knots_u, KnotVector knots_v, std::vector<Vector4d> pw);
 

@@ -24,7 +24,8 @@ struct Refined {
 
 // A5.4 (p. 164) on the rows of P (n+1 rows); X non-decreasing, strictly inside the domain or at
 // interior knots.
-Refined refine_rows(int p, const std::vector<double>& U, const RowNet& P, std::span<const double> X) {
+Refined refine_rows(int p, const std::vector<double>& U, const RowNet& P,
+                    std::span<const double> X) {
   const int n = static_cast<int>(P.rows()) - 1;
   const int m = n + p + 1;
   const int r = static_cast<int>(X.size()) - 1;
@@ -32,8 +33,9 @@ Refined refine_rows(int p, const std::vector<double>& U, const RowNet& P, std::s
   const double lo = U[p], hi = U[m - p];
   for (int j = 0; j <= r; ++j) {
     if (!(X[j] > lo && X[j] < hi))
-      throw GeometryError("knot to insert " + std::to_string(X[j]) + " is outside the open domain (" +
-                          std::to_string(lo) + ", " + std::to_string(hi) + ")");
+      throw GeometryError("knot to insert " + std::to_string(X[j]) +
+                          " is outside the open domain (" + std::to_string(lo) + ", " +
+                          std::to_string(hi) + ")");
     if (j > 0 && X[j] < X[j - 1]) throw GeometryError("knots to insert must be non-decreasing");
   }
   const int a = find_span(n + 1, p, X[0], U);
@@ -124,13 +126,15 @@ Refined elevate_rows(int p, const std::vector<double>& U, const RowNet& P, int t
 
 RowNet curve_rows(const NurbsCurve& c) {
   RowNet M(c.num_control_points(), 4);
-  for (int i = 0; i < c.num_control_points(); ++i) M.row(i) = c.homogeneous()[static_cast<std::size_t>(i)].transpose();
+  for (int i = 0; i < c.num_control_points(); ++i)
+    M.row(i) = c.homogeneous()[static_cast<std::size_t>(i)].transpose();
   return M;
 }
 
 std::vector<Vector4d> rows_to_points(const RowNet& M) {
   std::vector<Vector4d> pw(static_cast<std::size_t>(M.rows()));
-  for (Eigen::Index i = 0; i < M.rows(); ++i) pw[static_cast<std::size_t>(i)] = M.row(i).transpose();
+  for (Eigen::Index i = 0; i < M.rows(); ++i)
+    pw[static_cast<std::size_t>(i)] = M.row(i).transpose();
   return pw;
 }
 
@@ -253,8 +257,7 @@ std::vector<BezierSegment> bezier_extract(const NurbsCurve& c) {
 }
 
 std::vector<BezierPatch> bezier_extract(const NurbsSurface& s) {
-  const NurbsSurface b =
-      refine_knots(s, bezier_knots(s.knots_u()), bezier_knots(s.knots_v()));
+  const NurbsSurface b = refine_knots(s, bezier_knots(s.knots_u()), bezier_knots(s.knots_v()));
   const std::vector<double> bu = b.knots_u().breaks(), bv = b.knots_v().breaks();
   const int p = b.degree_u(), q = b.degree_v();
   std::vector<BezierPatch> patches;

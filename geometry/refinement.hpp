@@ -41,7 +41,9 @@ struct BezierPatch {
   int degree_u = 0, degree_v = 0;
   int element_u = 0, element_v = 0;  ///< element indices in u and v
   std::vector<Vector4d> pw;
-  Vector4d pw_at(int i, int j) const { return pw[static_cast<std::size_t>(i + (degree_u + 1) * j)]; }
+  Vector4d pw_at(int i, int j) const {
+    return pw[static_cast<std::size_t>(i + (degree_u + 1) * j)];
+  }
 };
 
 /// A5.6-equivalent: raise every interior knot to multiplicity p and cut into elements.
@@ -53,7 +55,10 @@ std::vector<BezierPatch> bezier_extract(const NurbsSurface& s);
 struct Box3 {
   Vector3d lo = Vector3d::Constant(std::numeric_limits<double>::infinity());
   Vector3d hi = Vector3d::Constant(-std::numeric_limits<double>::infinity());
-  void extend(const Vector3d& x) { lo = lo.cwiseMin(x); hi = hi.cwiseMax(x); }
+  void extend(const Vector3d& x) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
 };
 Box3 bounding_box(const BezierPatch& b);
 Box3 bounding_box(const BezierSegment& b);

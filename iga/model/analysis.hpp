@@ -45,9 +45,9 @@ struct AnalysisReaction {
 /// Output requests of the "output" section.
 struct AnalysisOutput {
   enum class Vtk { kNone, kLast, kAll };
-  Vtk vtk = Vtk::kLast;                   ///< ParaView files: none, the last step, every step
+  Vtk vtk = Vtk::kLast;                     ///< ParaView files: none, the last step, every step
   std::vector<AnalysisReaction> reactions;  ///< control points whose reactions go to steps.csv
-  std::vector<AnalysisMonitor> monitors;  ///< displacements that go to steps.csv
+  std::vector<AnalysisMonitor> monitors;    ///< displacements that go to steps.csv
   /// Points per element (per direction for shells) in the VTK files; 0: each body's default
   /// (16 for rods, 4 for shells).
   int samples_per_element = 0;

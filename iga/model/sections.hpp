@@ -17,7 +17,7 @@ namespace iga::model_detail {
 /// What later sections need of earlier ones while a model is read.
 struct Context {
   std::map<std::string, LoadCurve> curves;
-  std::string body;  // the one body's name
+  std::string body;    // the one body's name
   int body_index = 0;  // its index in the model
   BodyKind kind = BodyKind::kRod;
   const NurbsCurve* curve = nullptr;      // rod

@@ -39,13 +39,13 @@ double tangent_error(const Surface& s, const Vector3d& r, const Vector2d& guess,
                  at(s, r - e, c.xi, p, h, lambda_n, lambda_t).force) /
                 (2 * step);
   }
-  return (fd - c.stiffness).cwiseAbs().maxCoeff() / std::max(c.stiffness.cwiseAbs().maxCoeff(), p.eps_n);
+  return (fd - c.stiffness).cwiseAbs().maxCoeff() /
+         std::max(c.stiffness.cwiseAbs().maxCoeff(), p.eps_n);
 }
 
 }  // namespace
 
-TEST_CASE("contact law: frictionless penalty force along the normal (34), (52)",
-          "[contact][law]") {
+TEST_CASE("contact law: frictionless penalty force along the normal (34), (52)", "[contact][law]") {
   const Cylinder cyl(Placement{}, 2.0);
   const ContactParameters p{1000.0, 0.0, 0.0, 0.1};
   ContactHistory h;
@@ -60,8 +60,10 @@ TEST_CASE("contact law: frictionless penalty force along the normal (34), (52)",
   CHECK(free.force.norm() == 0.0);
 }
 
-TEST_CASE("contact law: stick below and slip on the Coulomb cone (35)-(36), friction opposes "
-          "sliding", "[contact][law]") {
+TEST_CASE(
+    "contact law: stick below and slip on the Coulomb cone (35)-(36), friction opposes "
+    "sliding",
+    "[contact][law]") {
   const Cylinder cyl(Placement{}, 2.0);
   const ContactParameters p{1000.0, 1000.0, 0.3, 0.0};
   ContactHistory h;
@@ -71,7 +73,8 @@ TEST_CASE("contact law: stick below and slip on the Coulomb cone (35)-(36), fric
   h.foot = cyl.point(0.5, 0.0);
   for (double slide : {1e-4, 1e-3, 1e-1}) {
     // the point moved along the axis by `slide` since the last converged step, pressing 0.01
-    const Vector3d r = (2.0 - 0.01) * Vector3d(std::cos(0.5), std::sin(0.5), 0.0) + Vector3d(0, 0, slide);
+    const Vector3d r =
+        (2.0 - 0.01) * Vector3d(std::cos(0.5), std::sin(0.5), 0.0) + Vector3d(0, 0, slide);
     const ContactPoint c = at(cyl, r, h.xi, p, h);
     REQUIRE(c.active);
     const double absN = -c.N, Tn = c.T_vector.norm();
@@ -93,7 +96,8 @@ TEST_CASE("contact law: the tangent df/dr matches finite differences (normal, st
   std::uniform_real_distribution<double> U(0.0, 1.0);
   const double pi = std::numbers::pi;
   const Torus torus(Placement{}, 3.0, 1.0);
-  const NurbsSurface nurbs = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0, 4.0);
+  const NurbsSurface nurbs =
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 2.0, 4.0);
   const Surface* surfaces[2] = {&torus, &nurbs};
   int n_slip = 0, n_stick = 0;
   for (const Surface* s : surfaces) {

@@ -63,7 +63,8 @@ TEST_CASE("RigidSurface: warm starts follow a point around the cylinder across p
   const RigidSurface four = split_cylinder(4, 1.0, 2.0);
   // The path starts at 0.1 rad (inside patch 0) and ends at 5 pi + 0.1 (inside patch 2), so
   // it crosses 10 sector boundaries; none of its points lies exactly on one.
-  ProjectionResult prev = four.closest_point(Vector3d(1.2 * std::cos(0.1), 1.2 * std::sin(0.1), 1.0));
+  ProjectionResult prev =
+      four.closest_point(Vector3d(1.2 * std::cos(0.1), 1.2 * std::sin(0.1), 1.0));
   int patch_changes = 0;
   for (int k = 1; k <= 800; ++k) {
     const double a = 0.1 + 2.5 * 2 * kPi * k / 800;  // 2.5 turns: seams and shared edges
@@ -96,7 +97,8 @@ TEST_CASE("RigidSurface: rays on a split cylinder hit as on the single patch",
 
 TEST_CASE("RigidSurface: groups of a model file act as one surface", "[contact][multipatch]") {
   const std::string path = std::string(IGA_SOURCE_DIR) + "/data/cylinder_4patch.json";
-  const GeometryModel m = parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
+  const GeometryModel m =
+      parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
   const RigidSurface rs = RigidSurface::from_geometry(m, "cylinder");
   CHECK(rs.num_patches() == 4);
   const ProjectionResult r = rs.closest_point(Vector3d(0.0, -3.0, 2.0));

@@ -131,7 +131,8 @@ TEST_CASE("validate_knots: rejects inconsistent knot vectors with the index and 
   const std::vector<double> good = {0, 0, 0, 0.5, 1, 1, 1};
   REQUIRE_NOTHROW(validate_knots(2, good, 4));
   CHECK_THROWS_WITH(validate_knots(0, good, 6), Contains("degree must be"));
-  CHECK_THROWS_WITH(validate_knots(2, good, 5), Contains("knot count must be control points + degree + 1 = 8, got 7"));
+  CHECK_THROWS_WITH(validate_knots(2, good, 5),
+                    Contains("knot count must be control points + degree + 1 = 8, got 7"));
   const std::vector<double> decreasing = {0, 0, 0, 0.7, 0.5, 1, 1, 1};
   CHECK_THROWS_WITH(validate_knots(2, decreasing, 5), Contains("knot 4 = 0.5 < knot 3 = 0.7"));
   const std::vector<double> triple = {0, 0, 0, 0.5, 0.5, 0.5, 1, 1, 1};
@@ -171,7 +172,8 @@ TEST_CASE("ders_basis_funs: the order <= 2 fast path equals the general A2.3 loo
       ders_basis_funs(span, u, p, 3, U, general);  // general loop
       for (int d = 0; d <= 2; ++d)
         for (int j = 0; j <= p; ++j)
-          CHECK(fast[d][j] == Approx(general[d][j]).epsilon(1e-12).margin(1e-12 * (1 + std::abs(general[1][j]))));
+          CHECK(fast[d][j] ==
+                Approx(general[d][j]).epsilon(1e-12).margin(1e-12 * (1 + std::abs(general[1][j]))));
     }
   }
 }

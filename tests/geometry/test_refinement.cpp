@@ -111,7 +111,8 @@ TEST_CASE("bezier_extract: each element is the rational Bezier form of its span"
   }
   const NurbsSurface s = test::random_surface(rng, 3, 2, 7, 5, true);
   const std::vector<BezierPatch> patches = bezier_extract(s);
-  REQUIRE(static_cast<int>(patches.size()) == s.knots_u().num_elements() * s.knots_v().num_elements());
+  REQUIRE(static_cast<int>(patches.size()) ==
+          s.knots_u().num_elements() * s.knots_v().num_elements());
   for (const BezierPatch& b : patches) {
     const Box3 box = bounding_box(b);
     for (double tu = 0; tu <= 1.0; tu += 0.1)
@@ -122,7 +123,8 @@ TEST_CASE("bezier_extract: each element is the rational Bezier form of its span"
           std::vector<Vector4d> row;
           for (int i = 0; i <= b.degree_u; ++i) row.push_back(b.pw_at(i, j));
           for (std::size_t r = 1; r < row.size(); ++r)
-            for (std::size_t i = 0; i + r < row.size(); ++i) row[i] = (1 - tu) * row[i] + tu * row[i + 1];
+            for (std::size_t i = 0; i + r < row.size(); ++i)
+              row[i] = (1 - tu) * row[i] + tu * row[i + 1];
           col.push_back(row[0]);
         }
         const Vector3d xb = rational_bernstein(col, tv);

@@ -38,8 +38,8 @@ inline ProjectionResult brute_force_closest(const Surface& s, const Vector3d& x,
 /// The first NURBS surface of a model file in data/.
 inline NurbsSurface data_surface(const std::string& file) {
   const std::string path = std::string(IGA_SOURCE_DIR) + "/data/" + file;
-  const GeometryModel g = parse_geometry(read_json_file(path)["geometry"], path,
-                                         JsonPointer("/geometry"));
+  const GeometryModel g =
+      parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
   for (const auto& [name, e] : g.entities)
     if (const auto* s = std::get_if<NurbsSurface>(&e)) return *s;
   throw std::runtime_error(path + ": no NURBS surface");
