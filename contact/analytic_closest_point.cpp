@@ -344,7 +344,7 @@ ProjectionResult hyperboloid_closest_point_ks(double a, const Vector3d& x_local,
 
 ProjectionResult closest_point_analytic(const AnalyticSurface& s, const Vector3d& x,
                                         const ProjectionOptions& opt) {
-  const View V = view_of(s, "closest_point_analytic");
+  const View V = view_of(s);
   const Vector3d xl = V.E.transpose() * (x - V.c);
   const double z = xl.z();
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -53,39 +53,42 @@ struct View {
   Domain2 dom;
 };
 
-inline View view_of(const AnalyticSurface& s, const char* caller) {
+inline View view_of(const AnalyticSurface& s) {
   View v;
   v.s = &s;
   v.c = s.placement().center;
   v.E = s.placement().frame();
   v.sign = s.normal_sign();
   v.dom = s.domain();
-  if (dynamic_cast<const Plane*>(&s) != nullptr) {
-    v.kind = Kind::plane;
-  } else if (const Sphere* sp = dynamic_cast<const Sphere*>(&s)) {
-    v.kind = Kind::sphere;
-    v.R = v.L = sp->radius();
-  } else if (const Cylinder* cy = dynamic_cast<const Cylinder*>(&s)) {
-    v.kind = Kind::cylinder;
-    v.R = v.L = cy->radius();
-  } else if (const Torus* to = dynamic_cast<const Torus*>(&s)) {
-    v.kind = Kind::torus;
-    v.R = to->major_radius();
-    v.r = to->minor_radius();
-    v.L = v.R + v.r;
-  } else if (const Cone* co = dynamic_cast<const Cone*>(&s)) {
-    v.kind = Kind::cone;
-    v.alpha = co->alpha();
-  } else if (const Hyperboloid* hy = dynamic_cast<const Hyperboloid*>(&s)) {
-    v.kind = Kind::hyperboloid;
-    v.a = hy->a();
-  } else if (const Revolution* re = dynamic_cast<const Revolution*>(&s)) {
-    v.kind = Kind::revolution;
-    v.rev = re;
-  } else {
-    throw GeometryError(std::string(caller) + ": unsupported analytic surface type '" +
-                        s.type_name() + "'");
-  }
+  visit_analytic(s, Overloaded{
+                        [&](const Plane&) { v.kind = Kind::plane; },
+                        [&](const Sphere& sp) {
+                          v.kind = Kind::sphere;
+                          v.R = v.L = sp.radius();
+                        },
+                        [&](const Cylinder& cy) {
+                          v.kind = Kind::cylinder;
+                          v.R = v.L = cy.radius();
+                        },
+                        [&](const Torus& to) {
+                          v.kind = Kind::torus;
+                          v.R = to.major_radius();
+                          v.r = to.minor_radius();
+                          v.L = v.R + v.r;
+                        },
+                        [&](const Cone& co) {
+                          v.kind = Kind::cone;
+                          v.alpha = co.alpha();
+                        },
+                        [&](const Hyperboloid& hy) {
+                          v.kind = Kind::hyperboloid;
+                          v.a = hy.a();
+                        },
+                        [&](const Revolution& re) {
+                          v.kind = Kind::revolution;
+                          v.rev = &re;
+                        },
+                    });
   return v;
 }
 

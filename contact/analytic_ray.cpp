@@ -382,7 +382,7 @@ void revolution_ray(const View& V, const Vector3d& x, const Vector3d& N, const V
 
 ProjectionResult ray_project_analytic(const AnalyticSurface& s, const Vector3d& x,
                                       const Vector3d& N_in, const ProjectionOptions& opt) {
-  const View V = view_of(s, "ray_project_analytic");
+  const View V = view_of(s);
   // A zero or non-finite direction defines no ray: a miss, as for NURBS patches (a batch of
   // rays goes on). Scaled by its largest component first, so that a huge finite direction
   // (|N|^2 overflowing) is still a direction.

@@ -66,22 +66,7 @@ int RigidSurface::add(const NurbsSurface& s) {
 int RigidSurface::add(const AnalyticSurface& s) {
   Piece p;
   // Copy the concrete type (the pieces outlive the caller's objects).
-  if (const auto* q = dynamic_cast<const Plane*>(&s))
-    p.surface = std::make_shared<Plane>(*q);
-  else if (const auto* q1 = dynamic_cast<const Sphere*>(&s))
-    p.surface = std::make_shared<Sphere>(*q1);
-  else if (const auto* q2 = dynamic_cast<const Cylinder*>(&s))
-    p.surface = std::make_shared<Cylinder>(*q2);
-  else if (const auto* q3 = dynamic_cast<const Torus*>(&s))
-    p.surface = std::make_shared<Torus>(*q3);
-  else if (const auto* q4 = dynamic_cast<const Cone*>(&s))
-    p.surface = std::make_shared<Cone>(*q4);
-  else if (const auto* q5 = dynamic_cast<const Hyperboloid*>(&s))
-    p.surface = std::make_shared<Hyperboloid>(*q5);
-  else if (const auto* q6 = dynamic_cast<const Revolution*>(&s))
-    p.surface = std::make_shared<Revolution>(*q6);
-  else
-    throw std::invalid_argument("unsupported analytic surface " + s.type_name());
+  p.surface = std::shared_ptr<const Surface>(s.clone());
   // Box: sampled over a bounded domain; unbounded pieces get an infinite box.
   const Domain2 d = s.domain();
   if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) &&

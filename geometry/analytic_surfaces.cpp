@@ -116,7 +116,7 @@ AnalyticSurface::AnalyticSurface(const Placement& pl, const Domain2& d)
 
 // ---- Plane (8) ------------------------------------------------------------------------------
 
-Plane::Plane(const Placement& pl, const Domain2& d) : AnalyticSurface(pl, d) {
+Plane::Plane(const Placement& pl, const Domain2& d) : AnalyticKind(pl, d) {
   check_domain("Plane", d);
 }
 
@@ -143,7 +143,7 @@ bool Plane::operator==(const Plane& o) const {
 // ---- Sphere (B.4) ---------------------------------------------------------------------------
 
 Sphere::Sphere(const Placement& pl, double radius, const Domain2& d)
-    : AnalyticSurface(pl, d), R_(radius) {
+    : AnalyticKind(pl, d), R_(radius) {
   check_positive("Sphere: radius", radius);
   check_domain("Sphere", d);
 }
@@ -185,7 +185,7 @@ bool Sphere::operator==(const Sphere& o) const {
 // ---- Cylinder (B.10) ------------------------------------------------------------------------
 
 Cylinder::Cylinder(const Placement& pl, double radius, const Domain2& d)
-    : AnalyticSurface(pl, d), R_(radius) {
+    : AnalyticKind(pl, d), R_(radius) {
   check_positive("Cylinder: radius", radius);
   check_domain("Cylinder", d);
 }
@@ -222,7 +222,7 @@ bool Cylinder::operator==(const Cylinder& o) const {
 // ---- Torus (B.16) ---------------------------------------------------------------------------
 
 Torus::Torus(const Placement& pl, double major_radius, double minor_radius, const Domain2& d)
-    : AnalyticSurface(pl, d), R_(major_radius), r_(minor_radius) {
+    : AnalyticKind(pl, d), R_(major_radius), r_(minor_radius) {
   check_positive("Torus: major radius", major_radius);
   check_positive("Torus: minor radius", minor_radius);
   if (!(minor_radius < major_radius))
@@ -273,7 +273,7 @@ bool Torus::operator==(const Torus& o) const {
 // ---- Cone (B.23) ----------------------------------------------------------------------------
 
 Cone::Cone(const Placement& pl, double alpha, const Domain2& d)
-    : AnalyticSurface(pl, d), alpha_(alpha) {
+    : AnalyticKind(pl, d), alpha_(alpha) {
   if (!(alpha > 0.0 && alpha < 0.5 * std::numbers::pi))
     fail("Cone: alpha must lie in (0, pi/2), got " + num(alpha));
   check_domain("Cone", d);
@@ -316,7 +316,7 @@ bool Cone::operator==(const Cone& o) const {
 // ---- Hyperboloid (11), (13), (15) -----------------------------------------------------------
 
 Hyperboloid::Hyperboloid(const Placement& pl, double a, const Domain2& d)
-    : AnalyticSurface(pl, d), a_(a) {
+    : AnalyticKind(pl, d), a_(a) {
   if (!std::isfinite(a)) fail("Hyperboloid: a must be finite, got " + num(a));
   check_domain("Hyperboloid", d);
 }
@@ -348,7 +348,7 @@ bool Hyperboloid::operator==(const Hyperboloid& o) const {
 // ---- Revolution (A.1) -----------------------------------------------------------------------
 
 Revolution::Revolution(const Placement& pl, std::vector<double> coeffs, const Domain2& d)
-    : AnalyticSurface(pl, d), c_(std::move(coeffs)) {
+    : AnalyticKind(pl, d), c_(std::move(coeffs)) {
   for (std::size_t k = 0; k < c_.size(); ++k)
     if (!std::isfinite(c_[k]))
       fail("Revolution: coeffs[" + std::to_string(k) + "] must be finite, got " + num(c_[k]));

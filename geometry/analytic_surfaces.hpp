@@ -25,6 +25,7 @@
 // domains without lo < hi; the message names the value.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,8 +47,35 @@ struct Placement {
   Matrix3d frame() const;
 };
 
+class Plane;
+class Sphere;
+class Cylinder;
+class Torus;
+class Cone;
+class Hyperboloid;
+class Revolution;
+
+/// The analytic surface types, visited: a new type is one class deriving from
+/// AnalyticKind<itself> plus its visit() here, and every visitor (the projections' view, the
+/// JSON output) then fails to compile until it handles the new type.
+class AnalyticVisitor {
+ public:
+  virtual ~AnalyticVisitor() = default;
+  virtual void visit(const Plane& s) = 0;
+  virtual void visit(const Sphere& s) = 0;
+  virtual void visit(const Cylinder& s) = 0;
+  virtual void visit(const Torus& s) = 0;
+  virtual void visit(const Cone& s) = 0;
+  virtual void visit(const Hyperboloid& s) = 0;
+  virtual void visit(const Revolution& s) = 0;
+};
+
 class AnalyticSurface : public Surface {
  public:
+  /// Calls v.visit with the surface's own type.
+  virtual void accept(AnalyticVisitor& v) const = 0;
+  /// A copy of the concrete type.
+  virtual std::unique_ptr<AnalyticSurface> clone() const = 0;
   const Placement& placement() const { return place_; }
   /// Parameter bounds used for display, sampling and patch limits (may be infinite).
   void set_domain(const Domain2& d) { domain_ = d; }
@@ -60,7 +88,46 @@ class AnalyticSurface : public Surface {
   Domain2 domain_;
 };
 
-class Plane final : public AnalyticSurface {
+/// accept() and clone() of the concrete type T (T derives from AnalyticKind<T>).
+template <class T>
+class AnalyticKind : public AnalyticSurface {
+ public:
+  void accept(AnalyticVisitor& v) const override { v.visit(static_cast<const T&>(*this)); }
+  std::unique_ptr<AnalyticSurface> clone() const override {
+    return std::make_unique<T>(static_cast<const T&>(*this));
+  }
+
+ protected:
+  using AnalyticSurface::AnalyticSurface;
+};
+
+/// Calls f with the surface's own type: f must take every type (an overload set such as
+/// Overloaded{[](const Plane&) {...}, ...}), else the call does not compile.
+template <class F>
+void visit_analytic(const AnalyticSurface& s, F&& f) {
+  struct Adapter final : AnalyticVisitor {
+    F& f;
+    explicit Adapter(F& g) : f(g) {}
+    void visit(const Plane& x) override { f(x); }
+    void visit(const Sphere& x) override { f(x); }
+    void visit(const Cylinder& x) override { f(x); }
+    void visit(const Torus& x) override { f(x); }
+    void visit(const Cone& x) override { f(x); }
+    void visit(const Hyperboloid& x) override { f(x); }
+    void visit(const Revolution& x) override { f(x); }
+  } adapter(f);
+  s.accept(adapter);
+}
+
+/// An overload set of lambdas (for visit_analytic).
+template <class... Fs>
+struct Overloaded : Fs... {
+  using Fs::operator()...;
+};
+template <class... Fs>
+Overloaded(Fs...) -> Overloaded<Fs...>;
+
+class Plane final : public AnalyticKind<Plane> {
  public:
   explicit Plane(const Placement& pl = {}, const Domain2& d = default_domain());
   static Domain2 default_domain();
@@ -69,7 +136,7 @@ class Plane final : public AnalyticSurface {
   bool operator==(const Plane& o) const;
 };
 
-class Sphere final : public AnalyticSurface {
+class Sphere final : public AnalyticKind<Sphere> {
  public:
   Sphere(const Placement& pl, double radius, const Domain2& d = default_domain());
   static Domain2 default_domain();
@@ -83,7 +150,7 @@ class Sphere final : public AnalyticSurface {
   double R_;
 };
 
-class Cylinder final : public AnalyticSurface {
+class Cylinder final : public AnalyticKind<Cylinder> {
  public:
   Cylinder(const Placement& pl, double radius, const Domain2& d = default_domain());
   static Domain2 default_domain();
@@ -97,7 +164,7 @@ class Cylinder final : public AnalyticSurface {
   double R_;
 };
 
-class Torus final : public AnalyticSurface {
+class Torus final : public AnalyticKind<Torus> {
  public:
   Torus(const Placement& pl, double major_radius, double minor_radius,
         const Domain2& d = default_domain());
@@ -114,7 +181,7 @@ class Torus final : public AnalyticSurface {
   double R_, r_;
 };
 
-class Cone final : public AnalyticSurface {
+class Cone final : public AnalyticKind<Cone> {
  public:
   /// alpha in (0, pi/2): angle between the generator and the plane normal to the axis.
   Cone(const Placement& pl, double alpha, const Domain2& d = default_domain());
@@ -129,7 +196,7 @@ class Cone final : public AnalyticSurface {
   double alpha_;
 };
 
-class Hyperboloid final : public AnalyticSurface {
+class Hyperboloid final : public AnalyticKind<Hyperboloid> {
  public:
   Hyperboloid(const Placement& pl, double a, const Domain2& d = default_domain());
   static Domain2 default_domain();
@@ -142,7 +209,7 @@ class Hyperboloid final : public AnalyticSurface {
   double a_;
 };
 
-class Revolution final : public AnalyticSurface {
+class Revolution final : public AnalyticKind<Revolution> {
  public:
   /// f(r) = sum_k coeffs[k] r^k; u = r >= 0, v = polar angle.
   Revolution(const Placement& pl, std::vector<double> coeffs, const Domain2& d = default_domain());

@@ -621,15 +621,18 @@ Json analytic_json(const AnalyticSurface& s) {
   j["center"] = vec3_json(s.placement().center);
   j["axis"] = vec3_json(s.placement().axis);
   if (!ref_dir_degenerate(s.placement())) j["ref_dir"] = vec3_json(s.placement().ref_dir);
-  if (const auto* sp = dynamic_cast<const Sphere*>(&s)) j["radius"] = sp->radius();
-  if (const auto* cy = dynamic_cast<const Cylinder*>(&s)) j["radius"] = cy->radius();
-  if (const auto* to = dynamic_cast<const Torus*>(&s)) {
-    j["major_radius"] = to->major_radius();
-    j["minor_radius"] = to->minor_radius();
-  }
-  if (const auto* co = dynamic_cast<const Cone*>(&s)) j["alpha"] = co->alpha();
-  if (const auto* hy = dynamic_cast<const Hyperboloid*>(&s)) j["a"] = hy->a();
-  if (const auto* re = dynamic_cast<const Revolution*>(&s)) j["profile"] = re->coeffs();
+  visit_analytic(s, Overloaded{
+                        [](const Plane&) {},
+                        [&](const Sphere& sp) { j["radius"] = sp.radius(); },
+                        [&](const Cylinder& cy) { j["radius"] = cy.radius(); },
+                        [&](const Torus& to) {
+                          j["major_radius"] = to.major_radius();
+                          j["minor_radius"] = to.minor_radius();
+                        },
+                        [&](const Cone& co) { j["alpha"] = co.alpha(); },
+                        [&](const Hyperboloid& hy) { j["a"] = hy.a(); },
+                        [&](const Revolution& re) { j["profile"] = re.coeffs(); },
+                    });
   j["domain"] = {{"u", interval_json(s.domain().u)}, {"v", interval_json(s.domain().v)}};
   j["normal"] = normal_name(s);
   return j;

@@ -381,3 +381,37 @@ TEST_CASE("analytic surfaces: constructors reject invalid parameters, naming the
   REQUIRE_NOTHROW(Cone(pl, 1e-3));
   REQUIRE_NOTHROW(Hyperboloid(pl, 0.0));
 }
+
+TEST_CASE("analytic surfaces: clone() keeps the type and the shape, visit_analytic the type",
+          "[geometry][analytic]") {
+  const Placement pl{Vector3d(0.1, -0.2, 0.3), Vector3d(0.2, 0.1, 1.0), Vector3d(1, 0, 0)};
+  std::vector<std::unique_ptr<AnalyticSurface>> all;
+  all.push_back(std::make_unique<Plane>(pl));
+  all.push_back(std::make_unique<Sphere>(pl, 1.7));
+  all.push_back(std::make_unique<Cylinder>(pl, 0.8));
+  all.push_back(std::make_unique<Torus>(pl, 2.0, 0.7));
+  all.push_back(std::make_unique<Cone>(pl, 0.6));
+  all.push_back(std::make_unique<Hyperboloid>(pl, 0.4));
+  all.push_back(std::make_unique<Revolution>(pl, std::vector<double>{0.5, 0.0, 0.3}));
+  for (const auto& s : all) {
+    INFO(s->type_name());
+    const std::unique_ptr<AnalyticSurface> c = s->clone();
+    CHECK(c->type_name() == s->type_name());
+    CHECK(c.get() != s.get());
+    const SurfaceDerivs a = s->derivs(0.3, 0.4, 2), b = c->derivs(0.3, 0.4, 2);
+    CHECK(a.S == b.S);
+    CHECK(a.Suv == b.Suv);
+    // The visitor sees the concrete type: its name is the surface's own.
+    std::string seen;
+    visit_analytic(*c, Overloaded{
+                           [&](const Plane&) { seen = "plane"; },
+                           [&](const Sphere&) { seen = "sphere"; },
+                           [&](const Cylinder&) { seen = "cylinder"; },
+                           [&](const Torus&) { seen = "torus"; },
+                           [&](const Cone&) { seen = "cone"; },
+                           [&](const Hyperboloid&) { seen = "hyperboloid"; },
+                           [&](const Revolution&) { seen = "revolution"; },
+                       });
+    CHECK(seen == s->type_name());
+  }
+}
