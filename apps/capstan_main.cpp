@@ -17,7 +17,7 @@
 // (contact points with N, T, B, slip) for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 
-#include "apps/resources.hpp"
+#include "apps/common/resources.hpp"
 #include "apps/rope_sweep.hpp"
 
 int main(int argc, char** argv) {

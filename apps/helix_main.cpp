@@ -12,7 +12,7 @@
 // <case>_rod.vtk and <case>_contact.vtk for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 
-#include "apps/resources.hpp"
+#include "apps/common/resources.hpp"
 #include "apps/rope_sweep.hpp"
 
 int main(int argc, char** argv) {

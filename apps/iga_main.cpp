@@ -10,6 +10,7 @@
 // Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
 #include <iostream>
 
+#include "apps/common/app_common.hpp"
 #include "apps/iga_commands.hpp"
 
 int main(int argc, char** argv) {
@@ -24,11 +25,8 @@ int main(int argc, char** argv) {
   const iga::app::Action make = iga::app::add_make_command(app);
   const iga::app::Action project = iga::app::add_project_command(app);
   const iga::app::Action run = iga::app::add_run_command(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;  // --help, --version: 0; a bad command line: 2 (not 105...)
-  }
+  // --help, --version: 0; a bad command line: 2
+  if (const int status = iga::app::parse_command_line(app, argc, argv); status >= 0) return status;
 
   // 2. Run the chosen subcommand; every library error ends here with a message.
   try {

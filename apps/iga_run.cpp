@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 
+#include "apps/common/app_common.hpp"
 #include "apps/iga_commands.hpp"
 #include "iga/model/analysis.hpp"
 
@@ -22,8 +23,7 @@ struct RunOptions {
 };
 
 int run_model(const RunOptions& o) {
-  Json doc = read_json_file(o.file);
-  for (const std::string& s : o.sets) apply_override(doc, o.file, s);
+  Json doc = read_model(o.file, false, o.sets);
   Analysis a = Analysis::from_json(doc, o.file);
   const std::string out =
       o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
@@ -31,11 +31,11 @@ int run_model(const RunOptions& o) {
   std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
   std::cout << "iga run: " << o.file << ": " << a.describe() << "\n";
   const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out);
-  std::cout << "iga run: results in " << out << " (steps.csv, summary.json"
-            << (a.output().vtk == AnalysisOutput::Vtk::kNone ? ""
-                : a.body_kind() == BodyKind::kRod            ? ", rod.pvd"
-                                                             : ", shell.pvd")
-            << ")\n";
+  std::cout << "iga run: results in " << out << " (steps.csv, summary.json";
+  if (a.output().vtk != AnalysisOutput::Vtk::kNone)  // one series per body (write_output)
+    for (int b = 0; b < a.num_bodies(); ++b)
+      std::cout << ", " << (a.num_bodies() == 1 ? a.body(b).type() : a.body_name(b)) << ".pvd";
+  std::cout << ")\n";
   const bool ok =
       r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
   if (!ok) std::cout << "iga run: the run ended early: " << r.solver.message << "\n";

@@ -14,6 +14,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "apps/common/app_common.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/output/output_format.hpp"
 
@@ -147,15 +148,10 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   cli.add_flag("--profile", profile,
                "Report the time shares: assembly (rod, contact), linear solves");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
-  try {
-    cli.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return cli.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad command line: 2 (not CLI11's 105...)
-  }
+  if (const int status = parse_command_line(cli, argc, argv); status >= 0) return status;
 
   // 2. Model: read, override, validate once (an error names the file and the JSON path).
-  Json doc = read_json_file(model_file);
-  for (const std::string& s : sets) apply_override(doc, model_file, s);
+  Json doc = read_model(model_file, false, sets);  // --quick is the sweep's own (app/quick)
   if (penalty && doc.is_object() && doc.contains("contact") && doc["contact"].is_array())
     for (Json& c : doc["contact"]) {
       if (!c.is_object()) continue;  // reported by the validation below
@@ -339,17 +335,16 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
 
   // 5. Plot and summary.
-  const std::string cmd = "/usr/bin/python3 \"" + ra.plot_script + "\" \"" +
-                          (dir / (ra.name + ".csv")).string() + "\" \"" +
-                          (dir / (ra.name + ".png")).string() + "\" 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    std::cout << ra.name << ": warning: the plot failed (" << cmd << ")\n";
-  const std::string pcmd = "/usr/bin/python3 \"" +
-                           (fs::path(ra.plot_script).parent_path() / "plot_pressure.py").string() +
-                           "\" \"" + (dir / (ra.name + "_pressure.csv")).string() + "\" \"" +
-                           (dir / (ra.name + "_pressure.png")).string() + "\" 2>&1";
-  if (std::system(pcmd.c_str()) != 0)
-    std::cout << ra.name << ": warning: the pressure plot failed (" << pcmd << ")\n";
+  const std::string table = (dir / (ra.name + ".csv")).string();
+  if (!run_python(ra.plot_script, {table, (dir / (ra.name + ".png")).string()}))
+    std::cout << ra.name << ": warning: the plot failed (" << ra.plot_script << " " << table
+              << ")\n";
+  const std::string pscript =
+      (fs::path(ra.plot_script).parent_path() / "plot_pressure.py").string();
+  const std::string pcsv = (dir / (ra.name + "_pressure.csv")).string();
+  if (!run_python(pscript, {pcsv, (dir / (ra.name + "_pressure.png")).string()}))
+    std::cout << ra.name << ": warning: the pressure plot failed (" << pscript << " " << pcsv
+              << ")\n";
   std::cout << ra.name << ": " << cases.size() - failed << "/" << cases.size()
             << " cases, max |rel_error| " << worst << ", " << steps_total << " steps, "
             << static_cast<double>(iterations_total) / std::max(steps_total, 1)

@@ -46,7 +46,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "apps/resources.hpp"
+#include "apps/common/app_common.hpp"
+#include "apps/common/resources.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/output/vtk_writer.hpp"
 
@@ -326,24 +327,10 @@ int main(int argc, char** argv) try {
                "Only the sticking-circle check (79)-(81): the small block of app/block_model at "
                "radii around mu/a");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
-  try {
-    cli.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return cli.exit(e) == 0 ? 0 : 2;  // --help: 0; a bad command line: 2 (not CLI11's 105...)
-  }
+  if (const int status = iga::app::parse_command_line(cli, argc, argv); status >= 0) return status;
 
   // 1. Model: read, quick overrides, --set, validated once before any run.
-  Json doc = read_json_file(model_file);
-  if (quick) {
-    const JsonCursor root(doc, model_file);
-    if (!root.has("app") || !root["app"].has("quick"))
-      root.fail_plain("--quick: the model has no \"app\"/\"quick\" overrides");
-    const JsonCursor q = root["app"]["quick"];
-    if (!q.json().is_object()) q.fail_type("an object {\"/json/pointer\": value}");
-    for (const std::string& k : q.keys())
-      apply_override(doc, model_file, k + "=" + q[k].json().dump());
-  }
-  for (const std::string& s : sets) apply_override(doc, model_file, s);
+  Json doc = iga::app::read_model(model_file, quick, sets);
   AppSection app = read_app(doc, model_file);
   if (!strategy.empty()) doc[app.strategy] = strategy;
   if (!mu_list.empty()) {
@@ -579,10 +566,9 @@ int main(int argc, char** argv) try {
   }
 
   // 5. Plots.
-  const std::string cmd = "/usr/bin/python3 \"" + iga::app::resource("scripts/plot_saddle.py") +
-                          "\" \"" + dir.string() + "\" 2>&1";
-  if (std::system(cmd.c_str()) != 0)
-    std::cout << "saddle: warning: the plots failed (" << cmd << ")\n";
+  const std::string script = iga::app::resource("scripts/plot_saddle.py");
+  if (!iga::app::run_python(script, {dir.string()}))
+    std::cout << "saddle: warning: the plots failed (" << script << " " << dir.string() << ")\n";
   return failed > 0 ? 2 : 0;
 } catch (const std::exception& e) {
   std::cerr << "saddle: error: " << e.what() << "\n";

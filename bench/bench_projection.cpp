@@ -24,20 +24,12 @@
 #include "contact/ray_projection.hpp"
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
+#include "tests/support/projection_reference.hpp"
 
 using namespace iga;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-NurbsSurface load(const std::string& file) {
-  const std::string path = std::string(IGA_SOURCE_DIR) + "/data/" + file;
-  const GeometryModel g =
-      parse_geometry(read_json_file(path)["geometry"], path, JsonPointer("/geometry"));
-  for (const auto& [name, e] : g.entities)
-    if (const auto* s = std::get_if<NurbsSurface>(&e)) return *s;
-  throw std::runtime_error(path + ": no NURBS surface");
-}
 
 struct Reference {
   int n = 150;
@@ -203,7 +195,7 @@ int main(int argc, char** argv) {
   }
   const std::size_t N = static_cast<std::size_t>(n_arg);
   std::printf("closest point and ray projection, %zu points per set, one core\n", N);
-  run_case("freeform", load("freeform_bicubic.json"), N);
-  run_case("torus", load("torus_patch.json"), N);
+  run_case("freeform", test::data_surface("freeform_bicubic.json"), N);
+  run_case("torus", test::data_surface("torus_patch.json"), N);
   return 0;
 }

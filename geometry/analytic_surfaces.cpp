@@ -2,6 +2,7 @@
 // order 2. References: [KS15] (8), (11), (13), (15), (A.1), (B.4), (B.10), (B.16), (B.23); see
 // ../shared/paper/EQUATIONS.md. Parametrizations and normal orientations: analytic_surfaces.hpp.
 #include "geometry/analytic_surfaces.hpp"
+#include "geometry/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,10 +22,7 @@ namespace {
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 std::string num(double x) {
-  std::ostringstream os;
-  os.precision(12);
-  os << x;
-  return os.str();
+  return num_text(x, 12);
 }
 
 // Streams rather than string '+': GCC 12 at -O3 warns falsely (-Wrestrict) on the latter.

@@ -21,6 +21,7 @@
 #include "geometry/bspline_basis.hpp"
 #include "geometry/fitting.hpp"
 #include "geometry/knot_vector.hpp"
+#include "geometry/number_text.hpp"
 
 namespace iga {
 
@@ -30,10 +31,7 @@ constexpr double kPi = std::numbers::pi;
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
 std::string num(double x) {
-  std::ostringstream os;
-  os.precision(12);
-  os << x;
-  return os.str();
+  return num_text(x, 12);
 }
 
 [[noreturn]] void fail(const std::string& msg) {
@@ -434,6 +432,7 @@ WrapPath make_wrap_path(const WrapPathSpec& w) {
     for (int j = 0; j < kSamples; ++j) t.push_back(a + (b - a) * j / kSamples);
   }
   t.push_back(s3);
+  Q.reserve(t.size());
   for (double s : t) Q.push_back(path(s));
   CurveFit fit = fit_curve(Q, t, 3, knots);
   // Degree elevation keeps the curve and each knot's continuity (C2 inside, C1 at the tangent

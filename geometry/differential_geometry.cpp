@@ -3,6 +3,7 @@
 // n = rho_1 x rho_2 / |rho_1 x rho_2|), see ../shared/paper/EQUATIONS.md; do Carmo,
 // Differential Geometry of Curves and Surfaces, Sects. 1.5 and 3.2-3.3.
 #include "geometry/differential_geometry.hpp"
+#include "geometry/number_text.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,10 +18,7 @@ namespace iga {
 
 namespace {
 std::string num(double x) {
-  std::ostringstream os;
-  os.precision(6);
-  os << x;
-  return os.str();
+  return num_text(x, 6);
 }
 }  // namespace
 

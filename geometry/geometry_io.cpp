@@ -342,7 +342,7 @@ int parse_count(const JsonCursor& c, int lo, int hi) {
   return n;
 }
 Vector3d parse_direction(const JsonCursor& c) {
-  const Vector3d d = parse_vec3(c);
+  Vector3d d = parse_vec3(c);
   if (!(d.norm() > 0.0)) c.fail("must be a non-zero vector");
   return d;
 }

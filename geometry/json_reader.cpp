@@ -83,6 +83,10 @@ std::string bare_message(const std::string& what) {
 /// parse error happened. Keys are appended to objects without the linear search of
 /// ordered_json's own insertion (duplicates are excluded here by a hash set), so an object
 /// with millions of keys costs linear, not quadratic, time.
+// bugprone-exception-escape: the implicit destructor destroys root_, whose destructor
+// (nlohmann::json's non-recursive destroy) reserves a work vector; out of memory there ends the
+// program, as for any destructor.
+// NOLINTNEXTLINE(bugprone-exception-escape)
 class PathTracker final : public nlohmann::json_sax<Json> {
  public:
   struct Frame {

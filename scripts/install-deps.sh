@@ -9,7 +9,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libcgal-dev libsuitesparse-dev nlohmann-json3-dev
   catch2 libcli11-dev libbenchmark-dev
-  python3 python3-matplotlib clang-format
+  python3 python3-matplotlib clang-format clang-tidy
 )
 [[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)
 

@@ -18,7 +18,7 @@ CurveContact make_contact(const NurbsCurve& reference, const RigidSurface* rigid
 }  // namespace
 
 CurveContactPair::CurveContactPair(const NurbsCurve& reference,
-                                   std::shared_ptr<const RigidSurface> rigid,
+                                   const std::shared_ptr<const RigidSurface>& rigid,
                                    const ContactParameters& params, int points_per_element)
     : RigidContactPair(rigid, make_contact(reference, rigid.get(), params, points_per_element)) {
   const std::vector<double> br = reference.knots().breaks();

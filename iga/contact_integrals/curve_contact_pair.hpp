@@ -16,7 +16,7 @@ class CurveContactPair final : public RigidContactPair<CurveContact> {
  public:
   /// The pair of the curve `reference` (the rod's centre line) with `rigid` (not null:
   /// std::invalid_argument); `points_per_element` in 1..16.
-  CurveContactPair(const NurbsCurve& reference, std::shared_ptr<const RigidSurface> rigid,
+  CurveContactPair(const NurbsCurve& reference, const std::shared_ptr<const RigidSurface>& rigid,
                    const ContactParameters& params, int points_per_element);
 
   std::unique_ptr<ContactPair> clone() const override;

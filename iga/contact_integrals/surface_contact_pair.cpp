@@ -177,7 +177,7 @@ SurfaceContact make_contact(const NurbsSurface& reference, const RigidSurface* r
 }  // namespace
 
 SurfaceContactPair::SurfaceContactPair(const NurbsSurface& reference,
-                                       std::shared_ptr<const RigidSurface> rigid,
+                                       const std::shared_ptr<const RigidSurface>& rigid,
                                        const SurfaceContactParameters& params)
     : RigidContactPair(rigid, make_contact(reference, rigid.get(), params)),
       breaks_u_(reference.knots_u().breaks()),

@@ -17,7 +17,8 @@ class SurfaceContactPair final : public RigidContactPair<SurfaceContact> {
  public:
   /// The pair of the surface `reference` (the shell's mid-surface; params.thickness must be the
   /// shell's) with `rigid` (not null: std::invalid_argument).
-  SurfaceContactPair(const NurbsSurface& reference, std::shared_ptr<const RigidSurface> rigid,
+  SurfaceContactPair(const NurbsSurface& reference,
+                     const std::shared_ptr<const RigidSurface>& rigid,
                      const SurfaceContactParameters& params);
 
   std::unique_ptr<ContactPair> clone() const override;

@@ -38,7 +38,7 @@ class ControlPointProblem : public Body {
     dofs_.prescribe(point, component, value, std::move(curve));
   }
   /// All three components of the displacement = d * curve(t) (d in the local basis).
-  void prescribe(int point, const Vector3d& d, LoadCurve curve = ramp()) {
+  void prescribe(int point, const Vector3d& d, const LoadCurve& curve = ramp()) {
     for (int c = 0; c < 3; ++c) prescribe(point, c, d[c], curve);
   }
   /// Whether component c of point i is constrained; its free DOF index otherwise (-1 if not).

@@ -176,6 +176,86 @@ bool Analysis::sliding_steadily() const {
   return !pairs_.empty();
 }
 
+bool Analysis::plateau_complete(double t, int& sliding_steps) const {
+  if (!has_contact() || stop_full_slip_after_ < 0.0 || t <= stop_full_slip_after_ + 1e-12)
+    return false;
+  if (!sliding_steadily()) {
+    sliding_steps = 0;  // the plateau is a run of consecutive sliding steps
+    return false;
+  }
+  return ++sliding_steps >= full_slip_steps_;
+}
+
+AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) {
+  AnalysisStep st;
+  st.t = t;
+  st.iterations = iterations;
+  st.contact = contact_counts();
+  if (!output_.reactions.empty()) st.reactions = reactions(u, t);
+  for (const AnalysisMonitor& m : output_.monitors)
+    st.displacements.push_back(displacement(m, u, t));
+  return st;
+}
+
+void Analysis::write_csv_header(std::ostream& csv) const {
+  csv << "step,t,iterations,active,stick,slip";
+  for (const AnalysisReaction& q : output_.reactions)
+    for (const char* c : {"x", "y", "z", "norm"})
+      csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
+  for (const AnalysisMonitor& m : output_.monitors)
+    for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
+  for (const auto& [name, curve] : curves_) csv << "," << name;
+  csv << "\n";
+}
+
+void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
+  // csv_number: a non-finite value is an empty cell, never nan or inf.
+  csv << index << "," << csv_number(st.t) << "," << st.iterations << "," << st.contact.active << ","
+      << st.contact.stick << "," << st.contact.slip;
+  for (const Vector3d& r : st.reactions)
+    csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z()) << ","
+        << csv_number(r.norm());
+  for (const Vector3d& d : st.displacements)
+    csv << "," << csv_number(d.x()) << "," << csv_number(d.y()) << "," << csv_number(d.z());
+  for (const auto& [name, curve] : curves_) csv << "," << csv_number(curve(st.t));
+  csv << std::endl;  // flushed: a run that stops midway keeps its rows
+}
+
+void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& res) const {
+  Json s = Json::object();
+  s["name"] = name_;
+  std::string types;  // "rod", "shell" or, with several bodies, e.g. "rod, shell"
+  for (int b = 0; b < num_bodies(); ++b) types += (b > 0 ? ", " : "") + body(b).type();
+  s["body"] = types;
+  s["status"] = to_string(res.solver.status);
+  s["message"] = res.solver.message;
+  s["t"] = json_number(res.solver.t);
+  s["steps"] = res.solver.steps;
+  s["cutbacks"] = res.solver.cutbacks;
+  s["newton_iterations"] = res.solver.total_iterations;
+  s["dofs"] = system_->num_dofs();
+  s["full_slip"] = res.full_slip;
+  s["time_total_s"] = json_number(res.solver.time_total);
+  s["time_assembly_s"] = json_number(res.solver.time_assembly);
+  s["time_contact_s"] = json_number(res.contact_time);
+  s["time_linear_solve_s"] = json_number(res.solver.time_linear_solve);
+  std::ofstream(fs::path(out_dir) / "summary.json") << format_json(s) << "\n";
+}
+
+std::string Analysis::open_output(const std::string& out_dir, std::ofstream& csv) const {
+  fs::create_directories(out_dir);
+  csv.open(fs::path(out_dir) / "steps.csv");
+  if (!csv) throw std::runtime_error(out_dir + "/steps.csv: cannot write file");
+  write_csv_header(csv);
+  if (output_.vtk == AnalysisOutput::Vtk::kNone) return {};
+  try {
+    write_rigid_vtk(out_dir, "rigid");
+  } catch (const std::exception& e) {
+    return std::string("writing the rigid surface's ParaView file: ") + e.what();
+  }
+  return {};
+}
+
 AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
                              const AnalysisStepCallback& user_callback) {
   AnalysisResult res;
@@ -185,27 +265,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   // An error after the start (output of a converged step, the problem's history update, the
   // user's callback, the last ParaView files) ends the run with status `failed` and this message;
   // summary.json and the rows written so far stay.
-  std::string error;
-  if (!out_dir.empty()) {
-    fs::create_directories(out_dir);
-    csv.open(fs::path(out_dir) / "steps.csv");
-    if (!csv) throw std::runtime_error(out_dir + "/steps.csv: cannot write file");
-    csv << "step,t,iterations,active,stick,slip";
-    for (const AnalysisReaction& q : output_.reactions)
-      for (const char* c : {"x", "y", "z", "norm"})
-        csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
-    for (const AnalysisMonitor& m : output_.monitors)
-      for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
-    for (const auto& [name, curve] : curves_) csv << "," << name;
-    csv << "\n";
-    if (output_.vtk != AnalysisOutput::Vtk::kNone) {
-      try {
-        write_rigid_vtk(out_dir, "rigid");
-      } catch (const std::exception& e) {
-        error = std::string("writing the rigid surface's ParaView file: ") + e.what();
-      }
-    }
-  }
+  std::string error = out_dir.empty() ? std::string() : open_output(out_dir, csv);
   // One ParaView series (<series>.pvd) per body, pair and piece of a tool (write_output).
   std::map<std::string, VtkCollection> pvd;
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
@@ -223,40 +283,19 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   int sliding_steps = 0;  // consecutive steps of steady sliding (the plateau so far)
   auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
     try {
-      AnalysisStep st;
-      st.t = t;
-      st.iterations = at.iterations;
-      st.contact = contact_counts();
-      if (!output_.reactions.empty()) st.reactions = reactions(uc, t);
-      for (const AnalysisMonitor& m : output_.monitors)
-        st.displacements.push_back(displacement(m, uc, t));
+      const AnalysisStep st = record_step(uc, t, at.iterations);
       res.steps.push_back(st);
       if (csv.is_open()) {
-        // csv_number: a non-finite value is an empty cell, never nan or inf.
-        csv << res.steps.size() << "," << csv_number(t) << "," << st.iterations << ","
-            << st.contact.active << "," << st.contact.stick << "," << st.contact.slip;
-        for (const Vector3d& r : st.reactions)
-          csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z())
-              << "," << csv_number(r.norm());
-        for (const Vector3d& d : st.displacements)
-          csv << "," << csv_number(d.x()) << "," << csv_number(d.y()) << "," << csv_number(d.z());
-        for (const auto& [name, curve] : curves_) csv << "," << csv_number(curve(t));
-        csv << std::endl;  // flushed: a run that stops midway keeps its rows
+        write_csv_row(csv, static_cast<int>(res.steps.size()), st);
         if (output_.vtk == AnalysisOutput::Vtk::kAll)
           vtk(uc, t, "step" + std::to_string(res.steps.size()));
       }
       // The caller sees every converged step, the one that completes the plateau too.
       if (user_callback && !user_callback(uc, t, st)) return false;
-      if (has_contact() && stop_full_slip_after_ >= 0.0 && t > stop_full_slip_after_ + 1e-12) {
-        if (sliding_steadily()) {
-          if (++sliding_steps >= full_slip_steps_) {
-            res.full_slip = true;
-            if (log) *log << "full slip at t = " << t << ": stopping\n";
-            return false;
-          }
-        } else {
-          sliding_steps = 0;  // the plateau is a run of consecutive sliding steps
-        }
+      if (plateau_complete(t, sliding_steps)) {
+        res.full_slip = true;
+        if (log) *log << "full slip at t = " << t << ": stopping\n";
+        return false;
       }
       return true;
     } catch (const std::exception& e) {
@@ -288,26 +327,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     res.solver.message = error + "; the state is the last converged one, t = " + fmt(res.solver.t);
     if (log) *log << "run failed: " << res.solver.message << "\n";
   }
-  if (!out_dir.empty()) {
-    Json s = Json::object();
-    s["name"] = name_;
-    std::string types;  // "rod", "shell" or, with several bodies, e.g. "rod, shell"
-    for (int b = 0; b < num_bodies(); ++b) types += (b > 0 ? ", " : "") + body(b).type();
-    s["body"] = types;
-    s["status"] = to_string(res.solver.status);
-    s["message"] = res.solver.message;
-    s["t"] = json_number(res.solver.t);
-    s["steps"] = res.solver.steps;
-    s["cutbacks"] = res.solver.cutbacks;
-    s["newton_iterations"] = res.solver.total_iterations;
-    s["dofs"] = system_->num_dofs();
-    s["full_slip"] = res.full_slip;
-    s["time_total_s"] = json_number(res.solver.time_total);
-    s["time_assembly_s"] = json_number(res.solver.time_assembly);
-    s["time_contact_s"] = json_number(res.contact_time);
-    s["time_linear_solve_s"] = json_number(res.solver.time_linear_solve);
-    std::ofstream(fs::path(out_dir) / "summary.json") << format_json(s) << "\n";
-  }
+  if (!out_dir.empty()) write_summary(out_dir, res);
   return res;
 }
 

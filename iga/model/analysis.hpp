@@ -174,6 +174,19 @@ class Analysis {
   Analysis() = default;
   /// Whether every pair slides steadily (steady_sliding); false without pairs.
   bool sliding_steadily() const;
+  /// After a converged step at t: counts the consecutive steps of steady sliding past
+  /// stop_at_full_slip_after (sliding_steps) and tells whether they complete the plateau.
+  bool plateau_complete(double t, int& sliding_steps) const;
+  /// The record of a converged step at (u, t): counts, reactions, monitored displacements.
+  AnalysisStep record_step(const VectorXd& u, double t, int iterations);
+  /// Creates out_dir, opens steps.csv (csv) with its header (failure: std::runtime_error) and
+  /// writes the rigid surface's ParaView file; returns the error of that file, empty if none.
+  std::string open_output(const std::string& out_dir, std::ofstream& csv) const;
+  /// steps.csv: the header, and the row of the step with 1-based `index`.
+  void write_csv_header(std::ostream& csv) const;
+  void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;
+  /// summary.json of a run.
+  void write_summary(const std::string& out_dir, const AnalysisResult& res) const;
   struct PairRef {
     ContactPair* pair;  ///< owned by its body
     int body;

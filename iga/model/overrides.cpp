@@ -63,7 +63,7 @@ JsonPointer model_pointer(const JsonCursor& c, const Json& doc) {
   const std::string s = c.as_string();
   if (s.empty() || s[0] != '/' || !escapes_valid(s))
     c.fail("expected a JSON pointer (\"/section/key\", ~0 for '~' and ~1 for '/')");
-  const JsonPointer p(s);
+  JsonPointer p(s);
   if (!has_entry(doc, p)) c.fail("names no entry of the model");
   return p;
 }

@@ -16,6 +16,7 @@
 #include <tuple>
 
 #include "geometry/constructions.hpp"
+#include "geometry/number_text.hpp"
 #include "iga/model/model.hpp"
 #include "iga/output/output_format.hpp"
 #include "iga/output/vtk_writer.hpp"
@@ -25,9 +26,7 @@ namespace iga::model_detail {
 namespace fs = std::filesystem;
 
 std::string fmt(double v) {
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
+  return num_text(v, 10);
 }
 
 /// Largest accepted "t_end" (pseudo-time).
@@ -62,7 +61,7 @@ Vector3d vec3(const JsonCursor& c) {
 }
 /// The value of `key` in `o`, which must be one of `names`.
 std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names) {
-  const std::string s = c.as_string();
+  std::string s = c.as_string();
   std::string list;
   for (const char* n : names) {
     if (s == n) return s;

@@ -13,35 +13,35 @@ namespace {
 
 enum class Cells { kVertices, kPolyline, kQuads };
 
-void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, Cells cells, int nu,
-           int nv, const VtkPointData& data, const std::string& title) {
-  const std::size_t n = points.size();
-  for (const auto& [name, v] : data.scalars)
-    if (v.size() != n)
-      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(v.size()) +
+/// Every field has one value per point; std::runtime_error naming the file otherwise.
+void check_lengths(const std::string& path, std::size_t n, const VtkPointData& data) {
+  const auto check = [&](const std::string& name, std::size_t size) {
+    if (size != n)
+      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(size) +
                                " values for " + std::to_string(n) + " points");
-  for (const auto& [name, v] : data.vectors)
-    if (v.size() != n)
-      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(v.size()) +
-                               " values for " + std::to_string(n) + " points");
-  // No output file holds a non-finite number: such a value is written as 0 and its point gets
-  // the flag non_finite = 1 (a field added only when some point needs it).
-  std::vector<double> flag(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
+  };
+  for (const auto& [name, v] : data.scalars) check(name, v.size());
+  for (const auto& [name, v] : data.vectors) check(name, v.size());
+}
+
+/// 1 at the points with a non-finite coordinate or field value, else 0.
+std::vector<double> non_finite_flags(const std::vector<Eigen::Vector3d>& points,
+                                     const VtkPointData& data) {
+  std::vector<double> flag(points.size(), 0.0);
+  for (std::size_t i = 0; i < points.size(); ++i) {
     bool ok = points[i].allFinite();
     for (const auto& f : data.scalars) ok = ok && std::isfinite(f.second[i]);
     for (const auto& f : data.vectors) ok = ok && f.second[i].allFinite();
     if (!ok) flag[i] = 1.0;
   }
-  const bool flagged = std::find(flag.begin(), flag.end(), 1.0) != flag.end();
-  const auto finite = [](double x) { return std::isfinite(x) ? x : 0.0; };
-  std::ofstream os(path);
-  if (!os) throw std::runtime_error("cannot write " + path);
-  os << std::setprecision(12);
-  os << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
-  os << "POINTS " << n << " double\n";
-  for (const Eigen::Vector3d& p : points)
-    os << finite(p.x()) << " " << finite(p.y()) << " " << finite(p.z()) << "\n";
+  return flag;
+}
+
+double finite(double x) {
+  return std::isfinite(x) ? x : 0.0;
+}
+
+void write_cells(std::ostream& os, std::size_t n, Cells cells, int nu, int nv) {
   if (cells == Cells::kQuads) {
     const int quads = (nu - 1) * (nv - 1);
     os << "POLYGONS " << quads << " " << 5 * quads << "\n";
@@ -58,22 +58,44 @@ void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, 
     os << "VERTICES " << n << " " << 2 * n << "\n";
     for (std::size_t i = 0; i < n; ++i) os << "1 " << i << "\n";
   }
-  if (n > 0 && (!data.scalars.empty() || !data.vectors.empty() || flagged)) {
-    os << "POINT_DATA " << n << "\n";
-    for (const auto& [name, v] : data.scalars) {
-      os << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-      for (double x : v) os << finite(x) << "\n";
-    }
-    if (flagged) {
-      os << "SCALARS non_finite double 1\nLOOKUP_TABLE default\n";
-      for (double x : flag) os << x << "\n";
-    }
-    for (const auto& [name, v] : data.vectors) {
-      os << "VECTORS " << name << " double\n";
-      for (const Eigen::Vector3d& x : v)
-        os << finite(x.x()) << " " << finite(x.y()) << " " << finite(x.z()) << "\n";
-    }
+}
+
+void write_point_data(std::ostream& os, std::size_t n, const VtkPointData& data,
+                      const std::vector<double>& flag, bool flagged) {
+  if (n == 0 || (data.scalars.empty() && data.vectors.empty() && !flagged)) return;
+  os << "POINT_DATA " << n << "\n";
+  for (const auto& [name, v] : data.scalars) {
+    os << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
+    for (double x : v) os << finite(x) << "\n";
   }
+  if (flagged) {
+    os << "SCALARS non_finite double 1\nLOOKUP_TABLE default\n";
+    for (double x : flag) os << x << "\n";
+  }
+  for (const auto& [name, v] : data.vectors) {
+    os << "VECTORS " << name << " double\n";
+    for (const Eigen::Vector3d& x : v)
+      os << finite(x.x()) << " " << finite(x.y()) << " " << finite(x.z()) << "\n";
+  }
+}
+
+void write(const std::string& path, const std::vector<Eigen::Vector3d>& points, Cells cells, int nu,
+           int nv, const VtkPointData& data, const std::string& title) {
+  const std::size_t n = points.size();
+  check_lengths(path, n, data);
+  // No output file holds a non-finite number: such a value is written as 0 and its point gets
+  // the flag non_finite = 1 (a field added only when some point needs it).
+  const std::vector<double> flag = non_finite_flags(points, data);
+  const bool flagged = std::find(flag.begin(), flag.end(), 1.0) != flag.end();
+  std::ofstream os(path);
+  if (!os) throw std::runtime_error("cannot write " + path);
+  os << std::setprecision(12);
+  os << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET POLYDATA\n";
+  os << "POINTS " << n << " double\n";
+  for (const Eigen::Vector3d& p : points)
+    os << finite(p.x()) << " " << finite(p.y()) << " " << finite(p.z()) << "\n";
+  write_cells(os, n, cells, nu, nv);
+  write_point_data(os, n, data, flag, flagged);
   if (!os) throw std::runtime_error("error while writing " + path);
 }
 

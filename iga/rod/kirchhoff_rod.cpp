@@ -10,6 +10,7 @@
 #include <string>
 
 #include "geometry/differential_geometry.hpp"
+#include "geometry/number_text.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -220,9 +221,7 @@ void centre_line_derivs(const RationalBasis& B, std::span<const Vector3d> x, Vec
 }
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  return num_text(v, 6);
 }
 
 }  // namespace
@@ -244,7 +243,7 @@ RodSection RodSection::rectangular(double E, double w, double h, const Vector3d&
 // KirchhoffRod
 
 KirchhoffRod::KirchhoffRod(NurbsCurve reference, RodSection section, RodOptions options)
-    : reference_(std::move(reference)), section_(section), options_(options) {
+    : reference_(std::move(reference)), section_(std::move(section)), options_(options) {
   const int p = reference_.degree();
   if (p < 2)
     throw RodError("KirchhoffRod: the curve must be of degree >= 2 (C1), got " + std::to_string(p));
@@ -401,56 +400,53 @@ double KirchhoffRod::energy(std::span<const Vector3d> x) const {
   return Pi;
 }
 
-void KirchhoffRod::element_forces(int e, std::span<const Vector3d> x, RodElementVector& f) const {
+template <bool Tangent>
+void KirchhoffRod::element_kernel(int e, std::span<const Vector3d> x, RodElementVector& f,
+                                  RodElementMatrix* K) const {
   const Element& el = elements_[static_cast<std::size_t>(e)];
   const int np = degree() + 1;
   f.setZero(3 * np);
+  if constexpr (Tangent) K->setZero(3 * np, 3 * np);
   Vector3d a, b;
   for (int g = 0; g < el.qp_count; ++g) {
     const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + g)];
     centre_line_derivs(q.basis, x, a, b);
     Density d;
-    density(q, section_, options_.bending, a, b, 1, d);
-    // f_j = int (dW/dr' R_j' + dW/dr'' R_j'') dS
+    density(q, section_, options_.bending, a, b, Tangent ? 2 : 1, d);
     const Vector3d ga = q.wJ * d.g.head<3>(), gb = q.wJ * d.g.tail<3>();
+    Matrix3d Haa, Hab, Hba, Hbb;
+    if constexpr (Tangent) {
+      Haa = q.wJ * d.H.topLeftCorner<3, 3>();
+      Hab = q.wJ * d.H.topRightCorner<3, 3>();
+      Hba = q.wJ * d.H.bottomLeftCorner<3, 3>();
+      Hbb = q.wJ * d.H.bottomRightCorner<3, 3>();
+    }
     for (int j = 0; j < np; ++j) {
-      const std::size_t k = static_cast<std::size_t>(j);
-      f.segment<3>(3 * j).noalias() += q.basis.dN[k] * ga + q.basis.ddN[k] * gb;
+      const double dNj = q.basis.dN[static_cast<std::size_t>(j)];
+      const double ddNj = q.basis.ddN[static_cast<std::size_t>(j)];
+      // f_j = int (dW/dr' R_j' + dW/dr'' R_j'') dS
+      f.segment<3>(3 * j).noalias() += dNj * ga + ddNj * gb;
+      if constexpr (Tangent) {
+        // K_jk = (R_j' H_aa + R_j'' H_ba) R_k' + (R_j' H_ab + R_j'' H_bb) R_k''
+        const Matrix3d Ga = dNj * Haa + ddNj * Hba;
+        const Matrix3d Gb = dNj * Hab + ddNj * Hbb;
+        for (int k = 0; k < np; ++k) {
+          const double dNk = q.basis.dN[static_cast<std::size_t>(k)];
+          const double ddNk = q.basis.ddN[static_cast<std::size_t>(k)];
+          K->template block<3, 3>(3 * j, 3 * k).noalias() += dNk * Ga + ddNk * Gb;
+        }
+      }
     }
   }
 }
 
+void KirchhoffRod::element_forces(int e, std::span<const Vector3d> x, RodElementVector& f) const {
+  element_kernel<false>(e, x, f, nullptr);
+}
+
 void KirchhoffRod::element_tangent(int e, std::span<const Vector3d> x, RodElementVector& f,
                                    RodElementMatrix& K) const {
-  const Element& el = elements_[static_cast<std::size_t>(e)];
-  const int np = degree() + 1;
-  f.setZero(3 * np);
-  K.setZero(3 * np, 3 * np);
-  Vector3d a, b;
-  for (int g = 0; g < el.qp_count; ++g) {
-    const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + g)];
-    centre_line_derivs(q.basis, x, a, b);
-    Density d;
-    density(q, section_, options_.bending, a, b, 2, d);
-    const Vector3d ga = q.wJ * d.g.head<3>(), gb = q.wJ * d.g.tail<3>();
-    const Matrix3d Haa = q.wJ * d.H.topLeftCorner<3, 3>();
-    const Matrix3d Hab = q.wJ * d.H.topRightCorner<3, 3>();
-    const Matrix3d Hba = q.wJ * d.H.bottomLeftCorner<3, 3>();
-    const Matrix3d Hbb = q.wJ * d.H.bottomRightCorner<3, 3>();
-    for (int j = 0; j < np; ++j) {
-      const double dNj = q.basis.dN[static_cast<std::size_t>(j)];
-      const double ddNj = q.basis.ddN[static_cast<std::size_t>(j)];
-      f.segment<3>(3 * j).noalias() += dNj * ga + ddNj * gb;
-      // K_jk = (R_j' H_aa + R_j'' H_ba) R_k' + (R_j' H_ab + R_j'' H_bb) R_k''
-      const Matrix3d Ga = dNj * Haa + ddNj * Hba;
-      const Matrix3d Gb = dNj * Hab + ddNj * Hbb;
-      for (int k = 0; k < np; ++k) {
-        const double dNk = q.basis.dN[static_cast<std::size_t>(k)];
-        const double ddNk = q.basis.ddN[static_cast<std::size_t>(k)];
-        K.block<3, 3>(3 * j, 3 * k).noalias() += dNk * Ga + ddNk * Gb;
-      }
-    }
-  }
+  element_kernel<true>(e, x, f, &K);
 }
 
 void KirchhoffRod::assemble(std::span<const Vector3d> x, Eigen::VectorXd& f_int,

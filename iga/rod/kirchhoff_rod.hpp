@@ -207,6 +207,10 @@ class KirchhoffRod {
 
  private:
   QuadraturePoint make_point(double xi, double weight, double element_length) const;
+  /// The one element kernel: forces f (Tangent = false) or forces and tangent K (true).
+  template <bool Tangent>
+  void element_kernel(int e, std::span<const Vector3d> x, RodElementVector& f,
+                      RodElementMatrix* K) const;
 
   struct Element {
     int first = 0;     ///< first control point

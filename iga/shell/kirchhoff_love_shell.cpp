@@ -9,6 +9,7 @@
 #include <string>
 
 #include "geometry/differential_geometry.hpp"
+#include "geometry/number_text.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -23,9 +24,7 @@ using Matrix6d = Eigen::Matrix<double, 6, 6>;
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 
 std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
+  return num_text(v, 6);
 }
 
 [[noreturn]] void fail(const std::string& msg) {

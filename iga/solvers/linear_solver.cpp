@@ -288,7 +288,7 @@ LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
 
 LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
   if (&b == &x) {
-    const VectorXd copy = b;
+    const VectorXd copy = b;  // NOLINT(performance-unnecessary-copy-initialization): b is x
     return solve(copy, x);
   }
   Impl& m = *impl_;
