@@ -178,35 +178,49 @@ std::vector<CgalBox> rigid_cgal_boxes(const char* where, const std::vector<Box3>
 
 // ---- CGAL broad phase -------------------------------------------------------------------
 
+namespace {
+
+/// The broad phase of `queries` (named `what` in errors) against `boxes`: query_box(q, i, out)
+/// checks query i and sets out to its CGAL box, or returns false to leave it out.
+template <class Query, class QueryBox>
+std::vector<SearchPair> broad_phase_of(const char* where, const char* what,
+                                       const std::vector<Query>& queries,
+                                       const std::vector<Box3>& boxes, double distance,
+                                       QueryBox query_box) {
+  check_distance(where, distance);
+  check_count(where, what, queries.size());
+  check_count(where, "boxes", boxes.size());
+  std::vector<CgalBox> rigid = rigid_cgal_boxes(where, boxes, distance);
+  std::vector<CgalBox> cgal;
+  cgal.reserve(queries.size());
+  CgalBox b;
+  for (std::size_t q = 0; q < queries.size(); ++q)
+    if (query_box(queries[q], q, b)) cgal.push_back(b);
+  return intersect(cgal, rigid, queries.size());
+}
+
+}  // namespace
+
 std::vector<SearchPair> broad_phase(const std::vector<Vector3d>& points,
                                     const std::vector<Box3>& boxes, double distance) {
   constexpr const char* where = "broad_phase(points, boxes)";
-  check_distance(where, distance);
-  check_count(where, "points", points.size());
-  check_count(where, "boxes", boxes.size());
-  std::vector<CgalBox> rigid = rigid_cgal_boxes(where, boxes, distance);
-  std::vector<CgalBox> queries;
-  queries.reserve(points.size());
-  for (std::size_t q = 0; q < points.size(); ++q) {
-    check_point(where, points[q], q);
-    queries.push_back(make_cgal_box(points[q], points[q], 2 * q));  // zero-extent box
-  }
-  return intersect(queries, rigid, points.size());
+  return broad_phase_of(where, "points", points, boxes, distance,
+                        [where](const Vector3d& p, std::size_t q, CgalBox& b) {
+                          check_point(where, p, q);
+                          b = make_cgal_box(p, p, 2 * q);  // zero-extent box
+                          return true;
+                        });
 }
 
 std::vector<SearchPair> broad_phase(const std::vector<Box3>& query_boxes,
                                     const std::vector<Box3>& boxes, double distance) {
   constexpr const char* where = "broad_phase(query_boxes, boxes)";
-  check_distance(where, distance);
-  check_count(where, "query_boxes", query_boxes.size());
-  check_count(where, "boxes", boxes.size());
-  std::vector<CgalBox> rigid = rigid_cgal_boxes(where, boxes, distance);
-  std::vector<CgalBox> queries;
-  queries.reserve(query_boxes.size());
-  for (std::size_t q = 0; q < query_boxes.size(); ++q)
-    if (query_box(where, query_boxes[q], q))
-      queries.push_back(make_cgal_box(query_boxes[q].lo, query_boxes[q].hi, 2 * q));
-  return intersect(queries, rigid, query_boxes.size());
+  return broad_phase_of(where, "query_boxes", query_boxes, boxes, distance,
+                        [where](const Box3& box, std::size_t q, CgalBox& b) {
+                          if (!query_box(where, box, q)) return false;
+                          b = make_cgal_box(box.lo, box.hi, 2 * q);
+                          return true;
+                        });
 }
 
 // ---- RigidBoxIndex: uniform grid ([Eri05] Sect. 7.1) -------------------------------------

@@ -35,7 +35,17 @@
 
 namespace iga {
 
-/// The multipliers' bookkeeping of one contact integral.
+/// The multipliers of one contact point (the point types of the integrals derive from it).
+struct ContactMultipliers {
+  double lambda_n = 0.0;            ///< normal multiplier lambda_N (augmented Lagrange), <= 0
+  double lambda_n_committed = 0.0;  ///< lambda_N at the last converged step
+  double lambda_n_before = 0.0;     ///< lambda_N at the commit before (predictor)
+  /// Tangential multiplier lambda_T (slip_tol > 0), in the form the integral's law carries the
+  /// tangential force (a 3-D vector, or covariant components in the first two entries).
+  Vector3d lambda_t = Vector3d::Zero();
+};
+
+/// The multipliers' bookkeeping of one contact integral; Point derives from ContactMultipliers.
 struct NormalAugmentation {
   int step_updates = 0;      ///< updates since the last commit or restore
   int total_updates = 0;     ///< updates since construction
@@ -68,18 +78,23 @@ struct NormalAugmentation {
   /// multipliers extrapolated linearly in t from the last two commits, lambda_N = min(0,
   /// lambda_c + (t - t_c) / (t_c - t_b) (lambda_c - lambda_b)), so that a steadily growing
   /// contact force is met without an update; lambda_c at t = t_c (output, reactions).
-  template <class Point, class Lambda, class Committed, class Before>
-  void predict(std::vector<Point>& points, const ContactEnforcement& e, double t, Lambda lambda,
-               Committed committed, Before before) {
+  template <class Point>
+  void predict(std::vector<Point>& points, const ContactEnforcement& e, double t) {
     if (!e.augmented || step_updates > 0) return;
     t_last = t;
     const double span = t_committed - t_before;
     const double ratio = commits >= 2 && span > 0.0 ? (t - t_committed) / span : 0.0;
-    for (Point& cp : points)
-      lambda(cp) = std::min(0.0, committed(cp) + ratio * (committed(cp) - before(cp)));
+    for (ContactMultipliers& m : points)
+      m.lambda_n =
+          std::min(0.0, m.lambda_n_committed + ratio * (m.lambda_n_committed - m.lambda_n_before));
   }
-  /// At a commit: the times of the last two commits.
-  void commit() {
+  /// At a commit: the points' multipliers and the times of the last two commits.
+  template <class Point>
+  void commit(std::vector<Point>& points) {
+    for (ContactMultipliers& m : points) {
+      m.lambda_n_before = m.lambda_n_committed;
+      m.lambda_n_committed = m.lambda_n;
+    }
     step_updates = 0;
     previous_gap = previous_slip = 0.0;
     tangential = false;
@@ -90,7 +105,9 @@ struct NormalAugmentation {
   }
 
   /// After a cut-back: the step starts again from the committed multipliers.
-  void restore() {
+  template <class Point>
+  void restore(std::vector<Point>& points) {
+    for (ContactMultipliers& m : points) m.lambda_n = m.lambda_n_committed;
     step_updates = 0;
     previous_gap = previous_slip = 0.0;
     tangential = false;
@@ -98,14 +115,12 @@ struct NormalAugmentation {
   }
 
   /// The Uzawa step over `points`: active(cp), gap(cp), N(cp) read the state of the last
-  /// assembly; lambda(cp) is the normal multiplier (a reference). Friction (slip_tol > 0):
-  /// sticks(cp) and slip(cp) (|g_T|) of the last assembly, T(cp) its tangential force in the
-  /// form the law carries, lambda_t(cp) the tangential multiplier (a reference).
-  template <class Point, class Active, class Gap, class Force, class Lambda, class Sticks,
-            class Slip, class Traction, class LambdaT>
+  /// assembly. Friction (slip_tol > 0): sticks(cp) and slip(cp) (|g_T|) of the last assembly,
+  /// T(cp) its tangential force in the form the law carries (Vector3d).
+  template <class Point, class Active, class Gap, class Force, class Sticks, class Slip,
+            class Traction>
   AugmentResult update(std::vector<Point>& points, const ContactEnforcement& e, Active active,
-                       Gap gap, Force N, Lambda lambda, Sticks sticks, Slip slip, Traction T,
-                       LambdaT lambda_t) {
+                       Gap gap, Force N, Sticks sticks, Slip slip, Traction T) {
     if (!e.augmented) return {};
     max_gap = max_slip = 0.0;
     for (const Point& cp : points) {
@@ -138,10 +153,9 @@ struct NormalAugmentation {
     previous_slip = max_slip;
     ++step_updates;
     ++total_updates;
-    for (Point& cp : points) lambda(cp) = active(cp) ? std::min(0.0, N(cp)) : 0.0;
+    for (Point& cp : points) cp.lambda_n = active(cp) ? std::min(0.0, N(cp)) : 0.0;
     if (e.slip_tol > 0.0) {
-      for (Point& cp : points)
-        lambda_t(cp) = active(cp) ? T(cp) : std::decay_t<decltype(T(cp))>::Zero();
+      for (Point& cp : points) cp.lambda_t = active(cp) ? Vector3d(T(cp)) : Vector3d::Zero();
       tangential = true;
     }
     if (!normal_ok)

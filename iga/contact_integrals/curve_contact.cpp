@@ -166,10 +166,8 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
 void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
     cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
-    cp.lambda_n_before = cp.lambda_n_committed;
-    cp.lambda_n_committed = cp.lambda_n;
   }
-  augmentation_.commit();
+  augmentation_.commit(points_);
 }
 
 AugmentResult CurveContact::augment() {
@@ -178,25 +176,19 @@ AugmentResult CurveContact::augment() {
       points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
       [](const CurveContactPoint& cp) { return cp.law.gap; },
       [](const CurveContactPoint& cp) { return cp.law.N; },
-      [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
       [friction](const CurveContactPoint& cp) {
         return friction && cp.law.active && !cp.law.slip && cp.history.patch >= 0;
       },
       [](const CurveContactPoint& cp) { return cp.law.slip_distance; },
-      [](const CurveContactPoint& cp) -> Vector3d { return cp.law.T_vector; },
-      [](CurveContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
+      [](const CurveContactPoint& cp) -> Vector3d { return cp.law.T_vector; });
 }
 
 void CurveContact::predict(double t) {
-  augmentation_.predict(
-      points_, enforcement_, t, [](CurveContactPoint& cp) -> double& { return cp.lambda_n; },
-      [](const CurveContactPoint& cp) { return cp.lambda_n_committed; },
-      [](const CurveContactPoint& cp) { return cp.lambda_n_before; });
+  augmentation_.predict(points_, enforcement_, t);
 }
 
 void CurveContact::restore() {
-  for (CurveContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
-  augmentation_.restore();
+  augmentation_.restore(points_);
 }
 
 double CurveContact::roundoff() const {

@@ -24,18 +24,14 @@
 namespace iga {
 
 /// One contact point's state for output.
-struct CurveContactPoint {
-  double eta = 0.0;                      ///< curve parameter
-  double weight = 0.0;                   ///< quadrature weight times reference ds/deta
-  Vector3d x = Vector3d::Zero();         ///< current position r_s
-  ProjectionResult foot;                 ///< its projection (warm start of the next evaluation)
-  ContactPoint law;                      ///< the point law's state
-  ContactHistory history;                ///< committed state of the last converged step
-  double lambda_n = 0.0;                 ///< normal multiplier lambda_N (augmented Lagrange), <= 0
-  double lambda_n_committed = 0.0;       ///< lambda_N at the last converged step
-  double lambda_n_before = 0.0;          ///< lambda_N at the commit before (predictor)
-  Vector3d lambda_t = Vector3d::Zero();  ///< tangential multiplier lambda_T (slip_tol > 0)
-  double N = 0.0, T = 0.0, B = 0.0;      ///< normal (68), pulling (69) and dragging (70) forces
+struct CurveContactPoint : ContactMultipliers {
+  double eta = 0.0;                  ///< curve parameter
+  double weight = 0.0;               ///< quadrature weight times reference ds/deta
+  Vector3d x = Vector3d::Zero();     ///< current position r_s
+  ProjectionResult foot;             ///< its projection (warm start of the next evaluation)
+  ContactPoint law;                  ///< the point law's state
+  ContactHistory history;            ///< committed state of the last converged step
+  double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
 };
 
 struct CurveContactCounts {

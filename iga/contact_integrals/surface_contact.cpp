@@ -512,10 +512,8 @@ void SurfaceContact::commit() {
       h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
     }
     cp.history = h;
-    cp.lambda_n_before = cp.lambda_n_committed;
-    cp.lambda_n_committed = cp.lambda_n;
   }
-  augmentation_.commit();
+  augmentation_.commit(points_);
 }
 
 AugmentResult SurfaceContact::augment() {
@@ -524,25 +522,19 @@ AugmentResult SurfaceContact::augment() {
       points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },
       [](const SurfaceContactPoint& cp) { return cp.gap; },
       [](const SurfaceContactPoint& cp) { return cp.N; },
-      [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
       [this](const SurfaceContactPoint& cp) { return sticks(cp); },
       [](const SurfaceContactPoint& cp) { return cp.slip_distance; },
       [master](const SurfaceContactPoint& cp) -> Vector3d {
         return master ? cp.T_vector : Vector3d(cp.T[0], cp.T[1], 0.0);
-      },
-      [](SurfaceContactPoint& cp) -> Vector3d& { return cp.lambda_t; });
+      });
 }
 
 void SurfaceContact::predict(double t) {
-  augmentation_.predict(
-      points_, enforcement_, t, [](SurfaceContactPoint& cp) -> double& { return cp.lambda_n; },
-      [](const SurfaceContactPoint& cp) { return cp.lambda_n_committed; },
-      [](const SurfaceContactPoint& cp) { return cp.lambda_n_before; });
+  augmentation_.predict(points_, enforcement_, t);
 }
 
 void SurfaceContact::restore() {
-  for (SurfaceContactPoint& cp : points_) cp.lambda_n = cp.lambda_n_committed;
-  augmentation_.restore();
+  augmentation_.restore(points_);
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {

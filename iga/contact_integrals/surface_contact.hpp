@@ -131,7 +131,7 @@ struct SurfaceContactParameters {
 };
 
 /// One contact point's state for output.
-struct SurfaceContactPoint {
+struct SurfaceContactPoint : ContactMultipliers {
   int element = 0;                       ///< element index (u fastest over the non-empty spans)
   Vector2d uv = Vector2d::Zero();        ///< shell parameters (xi^1, xi^2)
   double weight = 0.0;                   ///< Gauss weight times the reference area element
@@ -147,13 +147,7 @@ struct SurfaceContactPoint {
   bool slip = false;                     ///< return mapping on the slip surface (36)
   bool first_contact = false;            ///< active, but not in contact at the last converged step
   ContactHistory history;                ///< committed state of the last converged step
-  double lambda_n = 0.0;                 ///< normal multiplier lambda_N (augmented Lagrange), <= 0
-  double lambda_n_committed = 0.0;       ///< lambda_N at the last converged step
-  double lambda_n_before = 0.0;          ///< lambda_N at the commit before (predictor)
-  /// Tangential multiplier lambda_T (slip_tol > 0): master, a 3-D tangent vector like
-  /// T_vector; slave, the covariant components T_i in its first two entries.
-  Vector3d lambda_t = Vector3d::Zero();
-  double slip_distance = 0.0;  ///< |g_T| (master) or the chord of the feet |d| (slave)
+  double slip_distance = 0.0;            ///< |g_T| (master) or the chord of the feet |d| (slave)
 };
 
 /// Active points split into sticking and sliding ones (SurfaceContact::sticks).

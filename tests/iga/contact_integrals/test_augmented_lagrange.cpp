@@ -346,12 +346,13 @@ TEST_CASE(
     "NormalAugmentation: Uzawa update, predictor from the last two commits, penalty raised "
     "when the updates stall",
     "[iga][contact][augmented]") {
-  struct P {
+  struct P : ContactMultipliers {
+    P(bool a, double g, double n) : active(a), gap(g), N(n) {}
     bool active;
-    double gap, N, lambda = 0.0, committed = 0.0, before = 0.0;
+    double gap, N;
     bool stick = false;
     double slip = 0.0;
-    Vector3d T = Vector3d::Zero(), lambda_t = Vector3d::Zero();
+    Vector3d T = Vector3d::Zero();
   };
   std::vector<P> pts{{true, -2e-3, -5.0}, {true, 1e-4, -1.0}, {false, 0.3, 0.0}};
   ContactEnforcement e;
@@ -362,18 +363,17 @@ TEST_CASE(
   auto update = [&] {
     return aug.update(
         pts, e, [](const P& p) { return p.active; }, [](const P& p) { return p.gap; },
-        [](const P& p) { return p.N; }, [](P& p) -> double& { return p.lambda; },
-        [](const P& p) { return p.stick; }, [](const P& p) { return p.slip; },
-        [](const P& p) { return p.T; }, [](P& p) -> Vector3d& { return p.lambda_t; });
+        [](const P& p) { return p.N; }, [](const P& p) { return p.stick; },
+        [](const P& p) { return p.slip; }, [](const P& p) { return p.T; });
   };
   // |gap| 2e-3 > tol: lambda_N <- N at active points, 0 elsewhere
-  pts[2].lambda = -7.0;
+  pts[2].lambda_n = -7.0;
   AugmentResult r = update();
   CHECK(r.status == AugmentStatus::updated);
   CHECK(aug.max_gap == 2e-3);
-  CHECK(pts[0].lambda == -5.0);
-  CHECK(pts[1].lambda == -1.0);
-  CHECK(pts[2].lambda == 0.0);
+  CHECK(pts[0].lambda_n == -5.0);
+  CHECK(pts[1].lambda_n == -1.0);
+  CHECK(pts[2].lambda_n == 0.0);
   CHECK(aug.eps_scale == 1.0);
   // the same |gap| again (stalled): eps_N x 4
   r = update();
@@ -415,44 +415,32 @@ TEST_CASE(
   CHECK(aug.eps_scale == 1.0);  // the normal gaps were within tolerance
   pts[0].slip = 0.9e-3;
   CHECK(update().status == AugmentStatus::satisfied);
-  aug.commit();
+  aug.commit(pts);
   CHECK(!aug.tangential);
   e.slip_tol = 0.0;
   // predictor: commits at t = 1 (lambda -1) and t = 2 (lambda -2), prediction at t = 3: -3
   aug = NormalAugmentation();
-  auto predict = [&](double t) {
-    aug.predict(
-        pts, e, t, [](P& p) -> double& { return p.lambda; }, [](const P& p) { return p.committed; },
-        [](const P& p) { return p.before; });
-  };
-  auto commit = [&] {
-    for (P& p : pts) {
-      p.before = p.committed;
-      p.committed = p.lambda;
-    }
-    aug.commit();
-  };
-  for (P& p : pts) p = P{true, 0.0, 0.0};
+  auto predict = [&](double t) { aug.predict(pts, e, t); };
+  auto commit = [&] { aug.commit(pts); };
+  for (P& p : pts) p = P(true, 0.0, 0.0);
   predict(1.0);
-  for (P& p : pts) p.lambda = -1.0;
+  for (P& p : pts) p.lambda_n = -1.0;
   commit();
   predict(2.0);
-  CHECK(pts[0].lambda == -1.0);  // one commit only: no extrapolation
-  for (P& p : pts) p.lambda = -2.0;
+  CHECK(pts[0].lambda_n == -1.0);  // one commit only: no extrapolation
+  for (P& p : pts) p.lambda_n = -2.0;
   commit();
   predict(3.0);
-  CHECK(pts[0].lambda == Approx(-3.0).epsilon(1e-15));
+  CHECK(pts[0].lambda_n == Approx(-3.0).epsilon(1e-15));
   predict(2.0);
-  CHECK(pts[0].lambda == -2.0);  // at the committed time: the committed multiplier
+  CHECK(pts[0].lambda_n == -2.0);  // at the committed time: the committed multiplier
   predict(0.0);
-  CHECK(pts[0].lambda == 0.0);  // clipped to <= 0
+  CHECK(pts[0].lambda_n == 0.0);  // clipped to <= 0
   // penalty: nothing changes
   ContactEnforcement off;
-  pts[0].lambda = 0.0;
-  aug.predict(
-      pts, off, 3.0, [](P& p) -> double& { return p.lambda; },
-      [](const P& p) { return p.committed; }, [](const P& p) { return p.before; });
-  CHECK(pts[0].lambda == 0.0);
+  pts[0].lambda_n = 0.0;
+  aug.predict(pts, off, 3.0);
+  CHECK(pts[0].lambda_n == 0.0);
 }
 
 namespace {
