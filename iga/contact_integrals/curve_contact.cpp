@@ -51,6 +51,111 @@ void CurveContact::set_enforcement(const ContactEnforcement& e) {
   enforcement_ = e;
 }
 
+namespace {
+
+// Current position r_s = sum_j R_j x_j (77) of a contact point.
+void set_position(const RationalBasis& basis, int p, const std::vector<Vector3d>& x,
+                  CurveContactPoint& cp) {
+  const BasisValues& Rb = basis.N;
+  const int first = basis.first;
+  cp.x.setZero();
+  for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
+}
+
+// The points without a warm start (cold, at positions cold_x) get their feet from the broad
+// phase; a point without one stays cold.
+void project_cold(const RigidSurface& rigid, const std::vector<int>& cold,
+                  const std::vector<Vector3d>& cold_x, double search_distance,
+                  std::vector<CurveContactPoint>& points) {
+  const std::vector<ProjectionResult> feet =
+      rigid.closest_points(cold_x, search_distance, /*use_cgal=*/true);
+  for (std::size_t k = 0; k < cold.size(); ++k) {
+    CurveContactPoint& cp = points[static_cast<std::size_t>(cold[k])];
+    cp.foot = feet[k];
+    if (!found(cp.foot.status)) cp.foot.patch = -1;  // stays cold
+  }
+}
+
+// The point law at a point with its foot found: false (law cleared) without a foot or beyond
+// an open edge, where there is no contact; `anchor_start`: the first assembly (see assemble).
+bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_params, bool tangential,
+                    bool anchor_start, CurveContactPoint& cp) {
+  cp.law = ContactPoint();
+  cp.N = cp.T = cp.B = 0.0;
+  if (!found(cp.foot.status)) return false;
+  if (anchor_start && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
+  // A foot on an open edge or corner of the rigid body with the point off the surface normal
+  // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
+  // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
+  if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
+    const Vector3d d = cp.x - cp.foot.point;
+    const Vector3d& nrm = cp.foot.normal;
+    if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) return false;
+  }
+  cp.law = evaluate_contact(rigid.patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
+                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr);
+  return true;
+}
+
+// R_a -= int R_a f ds at an active point.
+void add_point_residual(const CurveContactPoint& cp, const RationalBasis& basis, int p,
+                        Eigen::VectorXd& R) {
+  const BasisValues& Rb = basis.N;
+  for (int a = 0; a <= p; ++a) {
+    const int A = basis.first + a;
+    R.segment<3>(3 * A) -= cp.weight * Rb[a] * cp.law.force;
+  }
+}
+
+// K_ab -= int R_a R_b df/dr ds at an active point.
+void add_point_tangent(const CurveContactPoint& cp, const RationalBasis& basis, int p,
+                       std::vector<Eigen::Triplet<double>>& K) {
+  const BasisValues& Rb = basis.N;
+  const int first = basis.first;
+  for (int a = 0; a <= p; ++a) {
+    const int A = first + a;
+    for (int b = 0; b <= p; ++b) {
+      const int B = first + b;
+      const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
+      for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 3; ++j) K.emplace_back(3 * A + r, 3 * B + j, k(r, j));
+    }
+  }
+}
+
+// Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
+void set_frame_forces(const RationalBasis& basis, int p, const std::vector<Vector3d>& x,
+                      CurveContactPoint& cp) {
+  Vector3d tangent = Vector3d::Zero();  // r' = sum R_j' x_j, normalized
+  for (int j = 0; j <= p; ++j)
+    tangent += basis.dN[j] * x[static_cast<std::size_t>(basis.first + j)];
+  tangent.normalize();
+  const Vector3d e = -cp.law.normal;
+  const Vector3d g = tangent.cross(e);
+  // [KS15]'s T^i rho_i acts on the surface, -f_T: T = -T^i (rho_i.tau) = f_T.tau.
+  cp.N = cp.law.N;                      // (68)
+  cp.T = cp.law.T_vector.dot(tangent);  // (69)
+  cp.B = cp.law.T_vector.dot(g);        // (70)
+}
+
+// The normal penalty stiffness eps_N n n^T of a point near contact, in the tangent only (see
+// assemble).
+void add_near_stiffness(const CurveContactPoint& cp, const RationalBasis& basis, int p,
+                        double eps_n, std::vector<Eigen::Triplet<double>>& K) {
+  const BasisValues& Rb = basis.N;
+  const int first = basis.first;
+  const Matrix3d kn = eps_n * cp.law.normal * cp.law.normal.transpose();
+  for (int a = 0; a <= p; ++a)
+    for (int b = 0; b <= p; ++b) {
+      const Matrix3d k = cp.weight * Rb[a] * Rb[b] * kn;
+      for (int r = 0; r < 3; ++r)
+        for (int j = 0; j < 3; ++j)
+          K.emplace_back(3 * (first + a) + r, 3 * (first + b) + j, k(r, j));
+    }
+}
+
+}  // namespace
+
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
@@ -59,25 +164,14 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   cold_x_.clear();
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    const BasisValues& Rb = basis_[i].N;
-    const int first = basis_[i].first;
-    cp.x.setZero();
-    for (int j = 0; j <= p; ++j) cp.x += Rb[j] * x[static_cast<std::size_t>(first + j)];
+    set_position(basis_[i], p, x, cp);
     if (cp.foot.patch < 0 || !found(cp.foot.status)) {
       cold_.push_back(static_cast<int>(i));
       cold_x_.push_back(cp.x);
     }
   }
   broad_phase_points_ = static_cast<int>(cold_.size());
-  if (!cold_.empty()) {
-    const std::vector<ProjectionResult> feet =
-        rigid_->closest_points(cold_x_, search_distance_, /*use_cgal=*/true);
-    for (std::size_t k = 0; k < cold_.size(); ++k) {
-      CurveContactPoint& cp = points_[static_cast<std::size_t>(cold_[k])];
-      cp.foot = feet[k];
-      if (!found(cp.foot.status)) cp.foot.patch = -1;  // stays cold
-    }
-  }
+  if (!cold_.empty()) project_cold(*rigid_, cold_, cold_x_, search_distance_, points_);
   // The start state anchors friction: before the first commit, a point with a foot has no
   // history yet, and without one it would carry no friction in the first step (a rope laid on
   // an inclined surface would have nothing to hold it). The first assembly is at the start
@@ -92,55 +186,21 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     CurveContactPoint& cp = points_[i];
-    const BasisValues& Rb = basis_[i].N;
-    const int first = basis_[i].first;
     // Closest point, warm-started from the last foot of this point (cold ones: done above).
     if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
       ++next_cold;
     else
       cp.foot = rigid_->closest_point(cp.x, cp.foot);
-    cp.law = ContactPoint();
-    cp.N = cp.T = cp.B = 0.0;
-    if (!found(cp.foot.status)) continue;
-    if (anchor_start && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
-    // A foot on an open edge or corner of the rigid body with the point off the surface normal
-    // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
-    // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
-    if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
-      const Vector3d d = cp.x - cp.foot.point;
-      const Vector3d& nrm = cp.foot.normal;
-      if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) continue;
-    }
-    cp.law = evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
-                              cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
+    if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start, cp)) continue;
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
       continue;
     }
     any_active = true;
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
-    for (int a = 0; a <= p; ++a) {
-      const int A = first + a;
-      R.segment<3>(3 * A) -= cp.weight * Rb[a] * cp.law.force;
-      if (!K) continue;
-      for (int b = 0; b <= p; ++b) {
-        const int B = first + b;
-        const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
-        for (int r = 0; r < 3; ++r)
-          for (int j = 0; j < 3; ++j) K->emplace_back(3 * A + r, 3 * B + j, k(r, j));
-      }
-    }
-    // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
-    Vector3d tangent = Vector3d::Zero();  // r' = sum R_j' x_j, normalized
-    for (int j = 0; j <= p; ++j)
-      tangent += basis_[i].dN[j] * x[static_cast<std::size_t>(first + j)];
-    tangent.normalize();
-    const Vector3d e = -cp.law.normal;
-    const Vector3d g = tangent.cross(e);
-    // [KS15]'s T^i rho_i acts on the surface, -f_T: T = -T^i (rho_i.tau) = f_T.tau.
-    cp.N = cp.law.N;                      // (68)
-    cp.T = cp.law.T_vector.dot(tangent);  // (69)
-    cp.B = cp.law.T_vector.dot(g);        // (70)
+    add_point_residual(cp, basis_[i], p, R);
+    if (K) add_point_tangent(cp, basis_[i], p, *K);
+    set_frame_forces(basis_[i], p, x, cp);
   }
   // No point in contact, some a hair above the surface: the tangent gets their normal penalty
   // stiffness eps_N n n^T (no force, so the residual and the converged state are unchanged).
@@ -148,19 +208,9 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   // round-off above the cylinder it is fitted to) has a rigid mode at the start, and the first
   // Newton correction is huge (|R| ~ 1e21 with 2 points per element on data/capstan.json).
   if (K && !any_active)
-    for (int i : near_) {
-      const CurveContactPoint& cp = points_[static_cast<std::size_t>(i)];
-      const BasisValues& Rb = basis_[static_cast<std::size_t>(i)].N;
-      const int first = basis_[static_cast<std::size_t>(i)].first;
-      const Matrix3d kn = params_.eps_n * cp.law.normal * cp.law.normal.transpose();
-      for (int a = 0; a <= p; ++a)
-        for (int b = 0; b <= p; ++b) {
-          const Matrix3d k = cp.weight * Rb[a] * Rb[b] * kn;
-          for (int r = 0; r < 3; ++r)
-            for (int j = 0; j < 3; ++j)
-              K->emplace_back(3 * (first + a) + r, 3 * (first + b) + j, k(r, j));
-        }
-    }
+    for (int i : near_)
+      add_near_stiffness(points_[static_cast<std::size_t>(i)], basis_[static_cast<std::size_t>(i)],
+                         p, params_.eps_n, *K);
 }
 
 void CurveContact::commit() {

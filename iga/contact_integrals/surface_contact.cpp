@@ -95,6 +95,197 @@ double shell_face_sign(ShellFace f) {
   return f == ShellFace::kLower ? -1.0 : f == ShellFace::kUpper ? 1.0 : 0.0;
 }
 
+// The control points of an element (first non-zero basis functions first_u, first_v), in the
+// order of the basis values: k = a + (p+1) b.
+void element_dofs(const NurbsSurface& ref, int first_u, int first_v, std::vector<int>& dofs) {
+  const int p = ref.degree_u(), q = ref.degree_v();
+  for (int b = 0, k = 0; b <= q; ++b)
+    for (int a = 0; a <= p; ++a, ++k)
+      dofs[static_cast<std::size_t>(k)] = ref.index(first_u + a, first_v + b);
+}
+
+// A point's law state before its evaluation: not in contact.
+void clear_law_state(SurfaceContactPoint& cp) {
+  cp.active = cp.slip = false;
+  cp.gap = cp.N = cp.phi = cp.slip_distance = 0.0;
+  cp.T.setZero();
+  cp.T_vector.setZero();
+}
+
+// The laws' inputs of an assembly: the penalties (raised where augmentation updates stalled),
+// the Coulomb coefficient, whether friction is on at all (mu, eps_T > 0 as given) and whether
+// the tangential multiplier replaces the committed force (augmented stick).
+struct LawInputs {
+  double eps_n = 0.0, eps_t = 0.0, mu = 0.0;
+  bool friction = false;
+  bool tangential = false;
+};
+
+// Master strategy: (10)-(18), (34)-(36) by the CTRS point law with R = 0 at x_c; df/dG =
+// df/dx_c dx_c/dG. False: not in contact.
+bool master_law(const Surface& rigid_patch, const PointGeometry& g,
+                const ContactParameters& law_params, bool tangential, SurfaceContactPoint& cp,
+                Vector3d& f, Matrix39& df) {
+  const ContactPoint law = evaluate_contact(rigid_patch, cp.foot, g.x, law_params, cp.history,
+                                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr);
+  cp.gap = law.gap;
+  cp.slip_distance = law.slip_distance;
+  if (!law.active) return false;
+  cp.N = law.N;
+  cp.T = law.T;
+  cp.T_vector = law.T_vector;
+  cp.phi = law.phi;
+  cp.slip = law.slip;
+  f = law.force;
+  df.noalias() = law.stiffness * g.Xg;
+  return true;
+}
+
+// The ray hit of the slave strategy as friction needs it: xi3, sigma = sign(n . n_r), dxi3/dG
+// and |N|.
+struct RayHit {
+  double xi3 = 0.0, sigma = 0.0, absN = 0.0;
+  RowVector9 dxi3;
+};
+
+// Slave strategy, friction in the shell's convected coordinates (28), (35)-(36): adds f_T and
+// its derivative to f and df.
+void add_slave_friction(const PointGeometry& g, const RayHit& hit, const LawInputs& in,
+                        SurfaceContactPoint& cp, Vector3d& f, Matrix39& df) {
+  const ContactHistory& h = cp.history;
+  const double xi3 = hit.xi3;
+  const RowVector9& dxi3 = hit.dxi3;
+  const double absN = hit.absN;
+  Matrix32 A;
+  A << g.a1, g.a2;
+  const Matrix2d a = A.transpose() * A;
+  const Matrix2d a_inv = a.inverse();
+  // (28) with the chord d; (35): T_tr_i = T_i^(k) + eps_T d.rho_i
+  const Vector3d d = cp.foot.point - h.foot;
+  Matrix39 dd;
+  dd.noalias() = g.Xg + g.n * dxi3 + xi3 * g.Ng;  // d r/dG, r = x_c + xi3 n
+  cp.slip_distance = d.norm();
+  // the committed T_i, or the tangential multiplier (augmented stick)
+  const Vector2d Tc = in.tangential ? Vector2d(cp.lambda_t.head<2>()) : h.T;
+  const Vector2d t = Tc + in.eps_t * A.transpose() * d;
+  Matrix29 dt;
+  dt.noalias() = in.eps_t * A.transpose() * dd;
+  dt.block<1, 3>(0, 3) += in.eps_t * d.transpose();
+  dt.block<1, 3>(1, 6) += in.eps_t * d.transpose();
+  const Vector2d t_up = a_inv * t;
+  const double m = std::sqrt(t.dot(t_up));  // |T_tr| (35)
+  cp.phi = m - in.mu * absN;
+  Matrix29 dT;
+  if (cp.phi <= 0.0 || m == 0.0) {  // stick (36)
+    cp.T = t;
+    dT = dt;
+  } else {  // slip (36): T = mu |N| T_tr/|T_tr|
+    cp.slip = true;
+    cp.T = in.mu * absN * t / m;
+    const RowVector9 dm =
+        (t_up.transpose() * dt - 0.5 * t_up.transpose() * metric_times(g.a1, g.a2, t_up)) / m;
+    const RowVector9 dabsN = in.eps_n * hit.sigma * dxi3;
+    dT.noalias() = in.mu * (t / m) * dabsN + (in.mu * absN / m) * (dt - t * dm / m);
+  }
+  // f_T = -T_i rho^i = -A a^-1 T
+  const Vector2d u = a_inv * cp.T;
+  cp.T_vector = -A * u;
+  f += cp.T_vector;
+  Matrix29 du;
+  du.noalias() = a_inv * (dT - metric_times(g.a1, g.a2, u));
+  df.noalias() -= A * du;
+  df.block<3, 3>(0, 3) -= u[0] * Matrix3d::Identity();
+  df.block<3, 3>(0, 6) -= u[1] * Matrix3d::Identity();
+}
+
+// Slave strategy: (2)-(5), the hit r = x_c + xi3 n with its rigid basis r_1, r_2; the normal
+// force (34) along nu = sigma n, then friction. False: not in contact.
+bool slave_law(const Surface& rigid_patch, const PointGeometry& g, const LawInputs& in,
+               SurfaceContactPoint& cp, Vector3d& f, Matrix39& df) {
+  const double eps_n = in.eps_n;
+  const SurfaceDerivs rd = rigid_patch.derivs(cp.foot.uv[0], cp.foot.uv[1], 1);
+  RayHit hit;
+  hit.xi3 = cp.foot.distance;
+  hit.sigma = g.n.dot(cp.foot.normal) >= 0.0 ? 1.0 : -1.0;
+  const double xi3 = hit.xi3, sigma = hit.sigma;
+  cp.gap = -sigma * xi3;
+  // (34), augmented: N = min(0, lambda_N + eps_N gap); lambda_N = 0 is the penalty law.
+  const double lambda = cp.lambda_n;
+  if (lambda == 0.0 ? cp.gap > 0.0 : lambda + eps_n * cp.gap > 0.0) return false;
+  Matrix3d J;  // (4)
+  J << rd.Su, rd.Sv, -g.n;
+  const Matrix3d J_inv = J.inverse();
+  // implicit function theorem on F = r(alpha) - x_c - xi3 n = 0 (3)
+  Matrix39 dy;
+  dy.noalias() = J_inv * (g.Xg + xi3 * g.Ng);
+  hit.dxi3 = dy.row(2);
+  const RowVector9& dxi3 = hit.dxi3;
+  cp.N = eps_n * cp.gap + lambda;  // (34), <= 0
+  hit.absN = -cp.N;
+  // f_N = -N nu = eps_N xi3 n - lambda_N sigma n
+  f = eps_n * xi3 * g.n;
+  df.noalias() = eps_n * (g.n * dxi3 + xi3 * g.Ng);
+  if (lambda != 0.0) {
+    f -= lambda * sigma * g.n;
+    df.noalias() -= lambda * sigma * g.Ng;
+  }
+  // no tangential force in the step of first contact (contact/contact_law.hpp)
+  const ContactHistory& h = cp.history;
+  if (in.friction && h.patch >= 0 && h.active) add_slave_friction(g, hit, in, cp, f, df);
+  return true;
+}
+
+// R_a -= w (dx_c/dX_a)^T f at an active point with basis values B (nen rows (R, R_,1, R_,2)):
+// with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f.
+void add_point_residual(const double* B, int nen, const std::vector<int>& dofs, double weight,
+                        const PointGeometry& g, const Vector3d& f, Eigen::VectorXd& R) {
+  const Eigen::Matrix<double, 9, 1> rG = g.Xg.transpose() * f;
+  for (int k = 0; k < nen; ++k) {
+    const double* Bk = B + 3 * k;
+    R.segment<3>(3 * dofs[static_cast<std::size_t>(k)]) -=
+        weight * (Bk[0] * rG.segment<3>(0) + Bk[1] * rG.segment<3>(3) + Bk[2] * rG.segment<3>(6));
+  }
+}
+
+// An active point's share of its element's tangent, collected as the n_active-th point into
+// Nall and Z (see below).
+void collect_point_tangent(const double* B, int nen, const PointGeometry& g, const Vector3d& f,
+                           const Matrix39& df, double c, double weight, int n_active,
+                           Eigen::MatrixXd& Nall, Eigen::MatrixXd& Z) {
+  // d r_G/dG = Xg^T df + c d^2(f.n)/dG^2; K_e -= w B^T M B, B = (R, R_,1, R_,2) x I3.
+  Matrix99 M;
+  M.noalias() = g.Xg.transpose() * df;
+  if (c != 0.0) M.bottomRightCorner<6, 6>() += c * normal_hessian(g, f);
+  M *= -weight;
+  // Collected per element: Nall = [.. Nm_p ..] (nen x 3 n_active), Z_kl = [.. Nm_p M_p^kl ..],
+  // M_p^kl(I, J) = M(3 I + k, 3 J + l), the Z_kl stacked; then K_e^kl = Z_kl Nall^T, one
+  // product per element for all nine component pairs (k, l).
+  const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> Nm(B, nen, 3);
+  Nall.middleCols<3>(3 * n_active) = Nm;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      Matrix3d Mkl;
+      for (int I = 0; I < 3; ++I)
+        for (int Jj = 0; Jj < 3; ++Jj) Mkl(I, Jj) = M(3 * I + k, 3 * Jj + l);
+      Z.block(nen * (3 * k + l), 3 * n_active, nen, 3).noalias() = Nm.lazyProduct(Mkl);
+    }
+}
+
+// K_e = Z Nall^T over the element's n_active points, emitted as triplets.
+void add_element_tangent(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Nall, int n_active,
+                         int nen, const std::vector<int>& dofs, Eigen::MatrixXd& Ke,
+                         std::vector<Eigen::Triplet<double>>& K) {
+  Ke.noalias() = Z.leftCols(3 * n_active) * Nall.leftCols(3 * n_active).transpose();
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      const int row0 = nen * (3 * k + l);
+      for (int bb = 0; bb < nen; ++bb)
+        for (int aa = 0; aa < nen; ++aa)
+          K.emplace_back(3 * dofs[static_cast<std::size_t>(aa)] + k,
+                         3 * dofs[static_cast<std::size_t>(bb)] + l, Ke(row0 + aa, bb));
+    }
+}
+
 }  // namespace
 
 SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface& rigid,
@@ -307,16 +498,9 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
                                 " control points and a residual of size " +
                                 std::to_string(3 * n_cp) + ", got " + std::to_string(x.size()) +
                                 " and " + std::to_string(R.size()));
-  const int p = ref_.degree_u(), q = ref_.degree_v();
   const double c = shell_face_sign(params_.face) * 0.5 * params_.thickness;
   const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
   const int per_element = params_.points_per_direction * params_.points_per_direction;
-  auto element_dofs = [&](int e) {
-    const Element& el = elements_[static_cast<std::size_t>(e)];
-    for (int b = 0, k = 0; b <= q; ++b)
-      for (int a = 0; a <= p; ++a, ++k)
-        dofs_[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
-  };
   const double* const B0 = basis_.data();
   const std::size_t stride = 3 * static_cast<std::size_t>(nen_);
 
@@ -326,7 +510,10 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   PointGeometry g;
   for (std::size_t i = 0; i < points_.size(); ++i) {
     SurfaceContactPoint& cp = points_[i];
-    if (i % static_cast<std::size_t>(per_element) == 0) element_dofs(cp.element);
+    if (i % static_cast<std::size_t>(per_element) == 0) {
+      const Element& el = elements_[static_cast<std::size_t>(cp.element)];
+      element_dofs(ref_, el.first_u, el.first_v, dofs_);
+    }
     point_geometry(B0 + i * stride, nen_, dofs_.data(), x, c, g);
     cp.x = g.x;
     cp.normal = g.n;
@@ -346,156 +533,38 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   anchored_start_ = true;
 
   // 2. Point laws, residual and element tangents.
-  const double eps_n = params_.eps_n * augmentation_.eps_scale;    // 1 but where updates stalled
-  const double eps_t = params_.eps_t * augmentation_.eps_t_scale;  // likewise
-  ContactParameters law_params{eps_n, eps_t, params_.mu, 0.0};
+  LawInputs in;
+  in.eps_n = params_.eps_n * augmentation_.eps_scale;    // 1 but where updates stalled
+  in.eps_t = params_.eps_t * augmentation_.eps_t_scale;  // likewise
+  in.mu = params_.mu;
+  in.friction = params_.mu > 0.0 && params_.eps_t > 0.0;
+  in.tangential = augmentation_.tangential;
+  const ContactParameters law_params{in.eps_n, in.eps_t, params_.mu, 0.0};
   for (std::size_t e = 0; e < elements_.size(); ++e) {
-    element_dofs(static_cast<int>(e));
-    bool any = false;
+    element_dofs(ref_, elements_[e].first_u, elements_[e].first_v, dofs_);
     int n_active = 0;  // points of this element with a tangent contribution
     for (std::size_t i = e * static_cast<std::size_t>(per_element);
          i < (e + 1) * static_cast<std::size_t>(per_element); ++i) {
       SurfaceContactPoint& cp = points_[i];
-      cp.active = cp.slip = false;
-      cp.gap = cp.N = cp.phi = cp.slip_distance = 0.0;
-      cp.T.setZero();
-      cp.T_vector.setZero();
+      clear_law_state(cp);
       if (!found(cp.foot.status)) continue;
       const double* B = B0 + i * stride;
       point_geometry(B, nen_, dofs_.data(), x, c, g);
       polish(cp.foot, g.x, g.n);
+      const Surface& rigid_patch = rigid_->patch(cp.foot.patch);
       Vector3d f;
       Matrix39 df;
-      if (master) {
-        // (10)-(18), (34)-(36) by the CTRS point law with R = 0 at x_c; df/dG = df/dx_c dx_c/dG.
-        const ContactPoint law =
-            evaluate_contact(rigid_->patch(cp.foot.patch), cp.foot, g.x, law_params, cp.history,
-                             cp.lambda_n, augmentation_.tangential ? &cp.lambda_t : nullptr);
-        cp.gap = law.gap;
-        cp.slip_distance = law.slip_distance;
-        if (!law.active) continue;
-        cp.N = law.N;
-        cp.T = law.T;
-        cp.T_vector = law.T_vector;
-        cp.phi = law.phi;
-        cp.slip = law.slip;
-        f = law.force;
-        df.noalias() = law.stiffness * g.Xg;
-      } else {
-        // (2)-(5): the hit r = x_c + xi3 n with its rigid basis r_1, r_2.
-        const SurfaceDerivs rd =
-            rigid_->patch(cp.foot.patch).derivs(cp.foot.uv[0], cp.foot.uv[1], 1);
-        const double xi3 = cp.foot.distance;
-        const double sigma = g.n.dot(cp.foot.normal) >= 0.0 ? 1.0 : -1.0;
-        cp.gap = -sigma * xi3;
-        // (34), augmented: N = min(0, lambda_N + eps_N gap); lambda_N = 0 is the penalty law.
-        const double lambda = cp.lambda_n;
-        if (lambda == 0.0 ? cp.gap > 0.0 : lambda + eps_n * cp.gap > 0.0) continue;
-        Matrix3d J;  // (4)
-        J << rd.Su, rd.Sv, -g.n;
-        const Matrix3d J_inv = J.inverse();
-        // implicit function theorem on F = r(alpha) - x_c - xi3 n = 0 (3)
-        Matrix39 dy;
-        dy.noalias() = J_inv * (g.Xg + xi3 * g.Ng);
-        const RowVector9 dxi3 = dy.row(2);
-        cp.N = eps_n * cp.gap + lambda;  // (34), <= 0
-        const double absN = -cp.N;
-        // f_N = -N nu = eps_N xi3 n - lambda_N sigma n
-        f = eps_n * xi3 * g.n;
-        df.noalias() = eps_n * (g.n * dxi3 + xi3 * g.Ng);
-        if (lambda != 0.0) {
-          f -= lambda * sigma * g.n;
-          df.noalias() -= lambda * sigma * g.Ng;
-        }
-        const ContactHistory& h = cp.history;
-        // no tangential force in the step of first contact (contact/contact_law.hpp)
-        if (params_.mu > 0.0 && params_.eps_t > 0.0 && h.patch >= 0 && h.active) {
-          Matrix32 A;
-          A << g.a1, g.a2;
-          const Matrix2d a = A.transpose() * A;
-          const Matrix2d a_inv = a.inverse();
-          // (28) with the chord d; (35): T_tr_i = T_i^(k) + eps_T d.rho_i
-          const Vector3d d = cp.foot.point - h.foot;
-          Matrix39 dd;
-          dd.noalias() = g.Xg + g.n * dxi3 + xi3 * g.Ng;  // d r/dG, r = x_c + xi3 n
-          cp.slip_distance = d.norm();
-          // the committed T_i, or the tangential multiplier (augmented stick)
-          const Vector2d Tc = augmentation_.tangential ? Vector2d(cp.lambda_t.head<2>()) : h.T;
-          const Vector2d t = Tc + eps_t * A.transpose() * d;
-          Matrix29 dt;
-          dt.noalias() = eps_t * A.transpose() * dd;
-          dt.block<1, 3>(0, 3) += eps_t * d.transpose();
-          dt.block<1, 3>(1, 6) += eps_t * d.transpose();
-          const Vector2d t_up = a_inv * t;
-          const double m = std::sqrt(t.dot(t_up));  // |T_tr| (35)
-          cp.phi = m - params_.mu * absN;
-          Matrix29 dT;
-          if (cp.phi <= 0.0 || m == 0.0) {  // stick (36)
-            cp.T = t;
-            dT = dt;
-          } else {  // slip (36): T = mu |N| T_tr/|T_tr|
-            cp.slip = true;
-            cp.T = params_.mu * absN * t / m;
-            const RowVector9 dm =
-                (t_up.transpose() * dt - 0.5 * t_up.transpose() * metric_times(g.a1, g.a2, t_up)) /
-                m;
-            const RowVector9 dabsN = eps_n * sigma * dxi3;
-            dT.noalias() =
-                params_.mu * (t / m) * dabsN + (params_.mu * absN / m) * (dt - t * dm / m);
-          }
-          // f_T = -T_i rho^i = -A a^-1 T
-          const Vector2d u = a_inv * cp.T;
-          cp.T_vector = -A * u;
-          f += cp.T_vector;
-          Matrix29 du;
-          du.noalias() = a_inv * (dT - metric_times(g.a1, g.a2, u));
-          df.noalias() -= A * du;
-          df.block<3, 3>(0, 3) -= u[0] * Matrix3d::Identity();
-          df.block<3, 3>(0, 6) -= u[1] * Matrix3d::Identity();
-        }
-      }
+      const bool active = master ? master_law(rigid_patch, g, law_params, in.tangential, cp, f, df)
+                                 : slave_law(rigid_patch, g, in, cp, f, df);
+      if (!active) continue;
       cp.active = true;
       cp.first_contact = !cp.history.active;
-      any = true;
-      // R_a -= w (dx_c/dX_a)^T f: with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f.
-      const Eigen::Matrix<double, 9, 1> rG = g.Xg.transpose() * f;
-      for (int k = 0; k < nen_; ++k) {
-        const double* Bk = B + 3 * k;
-        R.segment<3>(3 * dofs_[static_cast<std::size_t>(k)]) -=
-            cp.weight *
-            (Bk[0] * rG.segment<3>(0) + Bk[1] * rG.segment<3>(3) + Bk[2] * rG.segment<3>(6));
-      }
+      add_point_residual(B, nen_, dofs_, cp.weight, g, f, R);
       if (!K) continue;
-      // d r_G/dG = Xg^T df + c d^2(f.n)/dG^2; K_e -= w B^T M B, B = (R, R_,1, R_,2) x I3.
-      Matrix99 M;
-      M.noalias() = g.Xg.transpose() * df;
-      if (c != 0.0) M.bottomRightCorner<6, 6>() += c * normal_hessian(g, f);
-      M *= -cp.weight;
-      // Collected per element: Nall = [.. Nm_p ..] (nen x 3 n_active), Z_kl = [.. Nm_p M_p^kl ..],
-      // M_p^kl(I, J) = M(3 I + k, 3 J + l), the Z_kl stacked; then K_e^kl = Z_kl Nall^T, one
-      // product per element for all nine component pairs (k, l).
-      const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>> Nm(B, nen_,
-                                                                                           3);
-      Nall_.middleCols<3>(3 * n_active) = Nm;
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l) {
-          Matrix3d Mkl;
-          for (int I = 0; I < 3; ++I)
-            for (int Jj = 0; Jj < 3; ++Jj) Mkl(I, Jj) = M(3 * I + k, 3 * Jj + l);
-          Z_.block(nen_ * (3 * k + l), 3 * n_active, nen_, 3).noalias() = Nm.lazyProduct(Mkl);
-        }
+      collect_point_tangent(B, nen_, g, f, df, c, cp.weight, n_active, Nall_, Z_);
       ++n_active;
     }
-    if (!K || !any) continue;
-    Ke_.noalias() = Z_.leftCols(3 * n_active) * Nall_.leftCols(3 * n_active).transpose();
-    for (int k = 0; k < 3; ++k)
-      for (int l = 0; l < 3; ++l) {
-        const int row0 = nen_ * (3 * k + l);
-        for (int bb = 0; bb < nen_; ++bb)
-          for (int aa = 0; aa < nen_; ++aa)
-            K->emplace_back(3 * dofs_[static_cast<std::size_t>(aa)] + k,
-                            3 * dofs_[static_cast<std::size_t>(bb)] + l, Ke_(row0 + aa, bb));
-      }
+    if (K && n_active > 0) add_element_tangent(Z_, Nall_, n_active, nen_, dofs_, Ke_, *K);
   }
 }
 
