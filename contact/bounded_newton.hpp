@@ -65,17 +65,122 @@ Eigen::Matrix<double, D, D> make_positive(const Eigen::Matrix<double, D, D>& H, 
   return Hs;
 }
 
+/// Parameter i rests at a bound with the gradient pointing out of the box (a closed direction
+/// has no bounds): the active set, held fixed in the step.
+template <int D>
+bool held_at_bound(const LocalModel<D>& m, const Eigen::Matrix<double, D, 1>& t, const Box<D>& box,
+                   int i) {
+  return !box.wrap[i] &&
+         ((t[i] <= box.lo[i] && m.g[i] > 0.0) || (t[i] >= box.hi[i] && m.g[i] < 0.0));
+}
+
 /// Largest |g_i| / scale_i over the parameters not held at a bound.
 template <int D>
 double projected_residual(const LocalModel<D>& m, const Eigen::Matrix<double, D, 1>& t,
                           const Box<D>& box) {
   double res = 0.0;
   for (int i = 0; i < D; ++i) {
-    const bool held = !box.wrap[i] &&
-                      ((t[i] <= box.lo[i] && m.g[i] > 0.0) || (t[i] >= box.hi[i] && m.g[i] < 0.0));
+    const bool held = held_at_bound<D>(m, t, box, i);
     if (!held) res = std::max(res, std::abs(m.g[i]) / m.scale[i]);
   }
   return res;
+}
+
+/// Moves s into the box: clamped to the bounds, wrapped around in a closed direction.
+template <int D>
+void into_box(Eigen::Matrix<double, D, 1>& s, const Box<D>& box) {
+  for (int i = 0; i < D; ++i) {
+    if (box.wrap[i]) {
+      const double period = box.hi[i] - box.lo[i];
+      double r = std::fmod(s[i] - box.lo[i], period);
+      if (r < 0) r += period;
+      s[i] = box.lo[i] + r;
+    } else {
+      s[i] = std::clamp(s[i], box.lo[i], box.hi[i]);
+    }
+  }
+}
+
+/// Step tolerance: relative to the box size (or to 1 + |t| where unbounded).
+template <int D>
+Eigen::Matrix<double, D, 1> step_tolerance(const Eigen::Matrix<double, D, 1>& t, const Box<D>& box,
+                                           const ProjectionOptions& opt) {
+  Eigen::Matrix<double, D, 1> step_tol;
+  for (int i = 0; i < D; ++i) {
+    const double w = box.hi[i] - box.lo[i];
+    step_tol[i] = opt.tol_step * (std::isfinite(w) ? w : 1.0 + std::abs(t[i]));
+  }
+  return step_tol;
+}
+
+/// The gradient and Hessian restricted to the free parameters: a held parameter's row and
+/// column become those of the identity and its gradient entry 0, so the step leaves it alone.
+template <int D>
+void reduce_to_free(const bool (&active)[D], Eigen::Matrix<double, D, D>& H,
+                    Eigen::Matrix<double, D, 1>& g) {
+  for (int i = 0; i < D; ++i)
+    if (active[i]) {
+      H.row(i).setZero();
+      H.col(i).setZero();
+      H(i, i) = 1.0;
+      g[i] = 0.0;
+    }
+}
+
+/// A point tried by the line search: its parameters, the step taken to it from the current
+/// iterate, and its model.
+template <int D>
+struct Trial {
+  Eigen::Matrix<double, D, 1> t;
+  Eigen::Matrix<double, D, 1> taken = Eigen::Matrix<double, D, 1>::Zero();
+  LocalModel<D> m;
+};
+
+/// Projected Armijo backtracking from t (model m) along dir; on success `trial` holds the
+/// accepted point, whose model (of order trial_order) is reused as the next iterate's, so an
+/// iteration costs one evaluation when the full step is taken.
+template <int D, class Eval>
+bool projected_line_search(Eval& eval, const LocalModel<D>& m, const Eigen::Matrix<double, D, 1>& t,
+                           const Eigen::Matrix<double, D, 1>& dir, const Box<D>& box,
+                           int trial_order, Trial<D>& trial) {
+  double alpha = 1.0;
+  for (int ls = 0; ls < 40; ++ls) {
+    trial.t = t + alpha * dir;
+    into_box<D>(trial.t, box);
+    trial.taken = trial.t - t;
+    for (int i = 0; i < D; ++i)  // a wrapped step is the short way round
+      if (box.wrap[i]) trial.taken[i] = alpha * dir[i];
+    const double slope = m.g.dot(trial.taken);
+    if (slope < 0.0) {
+      trial.m = eval(trial.t, trial_order);
+      if (trial.m.f <= m.f + 1e-4 * slope) return true;
+      // Near the solution the decrease (~ slope) drops below the round-off of f itself
+      // and Armijo cannot see it; there the projected gradient is the merit instead.
+      if (-slope <= 1e-10 * m.f &&
+          projected_residual<D>(trial.m, trial.t, box) < projected_residual<D>(m, t, box))
+        return true;
+    }
+    alpha *= 0.5;
+  }
+  return false;
+}
+
+/// Every component of the step is within its tolerance.
+template <int D>
+bool step_is_small(const Eigen::Matrix<double, D, 1>& taken,
+                   const Eigen::Matrix<double, D, 1>& step_tol) {
+  bool small = true;
+  for (int i = 0; i < D; ++i) small = small && std::abs(taken[i]) <= step_tol[i];
+  return small;
+}
+
+/// Parameters resting on a bound (closed directions have none).
+template <int D>
+int count_at_bound(const Eigen::Matrix<double, D, 1>& t, const Box<D>& box) {
+  int n = 0;
+  for (int i = 0; i < D; ++i)
+    if (!box.wrap[i] && (t[i] <= box.lo[i] || t[i] >= box.hi[i])) ++n;
+  return n;
 }
 
 /// Minimizes the model over the box from t0. `eval(t, order)` returns LocalModel<D> with the
@@ -88,35 +193,16 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
                                 const ProjectionOptions& opt) {
   using Vec = Eigen::Matrix<double, D, 1>;
   using Mat = Eigen::Matrix<double, D, D>;
-  auto into_box = [&box](Vec& s) {
-    for (int i = 0; i < D; ++i) {
-      if (box.wrap[i]) {
-        const double period = box.hi[i] - box.lo[i];
-        double r = std::fmod(s[i] - box.lo[i], period);
-        if (r < 0) r += period;
-        s[i] = box.lo[i] + r;
-      } else {
-        s[i] = std::clamp(s[i], box.lo[i], box.hi[i]);
-      }
-    }
-  };
-  // Step tolerance: relative to the box size (or to 1 + |t| where unbounded).
-  Vec step_tol;
-  for (int i = 0; i < D; ++i) {
-    const double w = box.hi[i] - box.lo[i];
-    step_tol[i] = opt.tol_step * (std::isfinite(w) ? w : 1.0 + std::abs(t[i]));
-  }
+  const Vec step_tol = step_tolerance<D>(t, box, opt);
 
   NewtonOutcome<D> out;
-  into_box(t);
+  into_box<D>(t, box);
   LocalModel<D> m = eval(t, 2);
   const double predict_tol = 10.0 * std::sqrt(opt.tol_residual);
   for (int it = 0; it < opt.max_iterations; ++it) {
     // Active set (held at a bound) and the projected-gradient (orthogonality) residual.
     bool active[D];
-    for (int i = 0; i < D; ++i)
-      active[i] = !box.wrap[i] &&
-                  ((t[i] <= box.lo[i] && m.g[i] > 0.0) || (t[i] >= box.hi[i] && m.g[i] < 0.0));
+    for (int i = 0; i < D; ++i) active[i] = held_at_bound<D>(m, t, box, i);
     const double res = projected_residual<D>(m, t, box);
     out.residual = res;
     if (res <= opt.tol_residual) {
@@ -129,58 +215,28 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
     // Newton step on the free parameters, with a positive definite (shifted) Hessian.
     Mat H = m.H;
     Vec g = m.g;
-    for (int i = 0; i < D; ++i)
-      if (active[i]) {
-        H.row(i).setZero();
-        H.col(i).setZero();
-        H(i, i) = 1.0;
-        g[i] = 0.0;
-      }
+    reduce_to_free<D>(active, H, g);
     const double hmax = H.cwiseAbs().maxCoeff();
     const Mat Hp = make_positive<D>(H, 1e-10 * hmax + 1e-300);
     Vec newton = -Hp.ldlt().solve(g);
     if (!newton.allFinite()) newton = -g / (hmax + 1e-300);
 
-    // Projected Armijo backtracking along a direction; the accepted trial's model is reused
-    // as the next iterate's, so an iteration costs one evaluation when the full step is taken.
-    Vec t_new = t, taken = Vec::Zero();
-    LocalModel<D> m_new;
-    auto line_search = [&](const Vec& dir) {
-      double alpha = 1.0;
-      for (int ls = 0; ls < 40; ++ls) {
-        t_new = t + alpha * dir;
-        into_box(t_new);
-        taken = t_new - t;
-        for (int i = 0; i < D; ++i)  // a wrapped step is the short way round
-          if (box.wrap[i]) taken[i] = alpha * dir[i];
-        const double slope = m.g.dot(taken);
-        if (slope < 0.0) {
-          m_new = eval(t_new, trial_order);
-          if (m_new.f <= m.f + 1e-4 * slope) return true;
-          // Near the solution the decrease (~ slope) drops below the round-off of f itself
-          // and Armijo cannot see it; there the projected gradient is the merit instead.
-          if (-slope <= 1e-10 * m.f &&
-              projected_residual<D>(m_new, t_new, box) < projected_residual<D>(m, t, box))
-            return true;
-        }
-        alpha *= 0.5;
-      }
-      return false;
-    };
     // Clamping can spoil the Newton direction at the bounds (coupled H); the projected
     // steepest descent direction always decreases f while the projected gradient is not zero.
-    bool accepted = line_search(newton);
-    if (!accepted) accepted = line_search(-g / (hmax + 1e-300));
+    Trial<D> trial;
+    trial.t = t;
+    bool accepted = projected_line_search<D>(eval, m, t, newton, box, trial_order, trial);
+    if (!accepted)
+      accepted =
+          projected_line_search<D>(eval, m, t, Vec(-g / (hmax + 1e-300)), box, trial_order, trial);
     if (!accepted) {
       // No decrease at this precision along either direction: a minimum to round-off.
       out.converged = true;
       break;
     }
-    t = t_new;
-    m = m_new;
-    bool small = true;
-    for (int i = 0; i < D; ++i) small = small && std::abs(taken[i]) <= step_tol[i];
-    if (small) {
+    t = trial.t;
+    m = trial.m;
+    if (step_is_small<D>(trial.taken, step_tol)) {
       out.converged = true;
       out.residual = projected_residual<D>(m, t, box);
       break;
@@ -188,8 +244,7 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
   }
   out.t = t;
   if (!out.converged) out.residual = projected_residual<D>(m, t, box);
-  for (int i = 0; i < D; ++i)
-    if (!box.wrap[i] && (t[i] <= box.lo[i] || t[i] >= box.hi[i])) ++out.at_bound;
+  out.at_bound = count_at_bound<D>(t, box);
   return out;
 }
 

@@ -253,6 +253,60 @@ double cells_along(double ext, double h) {
   return std::max(1.0, std::ceil(ext / h));
 }
 
+/// The enlarged boxes (empty ones stay empty: they match nothing), their union, the indices of
+/// the non-empty ones and the largest extent of each of those.
+void enlarge_boxes(const char* where, const std::vector<Box3>& boxes, double distance,
+                   std::vector<Box3>& enlarged_boxes, Box3& all, std::vector<int>& valid,
+                   std::vector<double>& largest) {
+  const std::size_t m = boxes.size();
+  enlarged_boxes.assign(m, Box3{});
+  for (std::size_t e = 0; e < m; ++e) {
+    Box3 b;
+    if (!enlarged(where, boxes[e], distance, e, b)) continue;
+    enlarged_boxes[e] = b;
+    all.extend(b.lo);
+    all.extend(b.hi);
+    valid.push_back(static_cast<int>(e));
+    largest.push_back((b.hi - b.lo).maxCoeff());
+  }
+}
+
+/// The starting cell size: kCellFactor times the median of `largest` (reordered), or, when
+/// all boxes are degenerate, the size giving about one cell per box over the extent ext.
+double initial_cell_size(std::vector<double>& largest, const Vector3d& ext, double n_valid) {
+  const auto mid = largest.begin() + static_cast<std::ptrdiff_t>(largest.size() / 2);
+  std::nth_element(largest.begin(), mid, largest.end());
+  double h = kCellFactor * *mid;
+  if (!(h > 0.0)) h = ext.maxCoeff() / std::cbrt(n_valid);  // all boxes degenerate
+  return h;
+}
+
+/// Calls visit(x, y, z) for the cells (z outer, x inner) of the box b, with cell(x, k) the
+/// cell index of the coordinate x along axis k.
+template <class Cell, class Visit>
+void for_each_cell(const Box3& b, const Cell& cell, Visit&& visit) {
+  const int x0 = cell(b.lo.x(), 0), x1 = cell(b.hi.x(), 0);
+  const int y0 = cell(b.lo.y(), 1), y1 = cell(b.hi.y(), 1);
+  const int z0 = cell(b.lo.z(), 2), z1 = cell(b.hi.z(), 2);
+  for (int z = z0; z <= z1; ++z)
+    for (int y = y0; y <= y1; ++y)
+      for (int x = x0; x <= x1; ++x) visit(x, y, z);
+}
+
+/// Box-cell incidences of the boxes `valid` of `boxes`, with cell(x, k) as in for_each_cell.
+template <class Cell>
+double count_registrations(const std::vector<int>& valid, const std::vector<Box3>& boxes,
+                           const Cell& cell) {
+  double registrations = 0.0;
+  for (int e : valid) {
+    const Box3& b = boxes[static_cast<std::size_t>(e)];
+    double r = 1.0;
+    for (int k = 0; k < 3; ++k) r *= cell(b.hi[k], k) - cell(b.lo[k], k) + 1;
+    registrations += r;
+  }
+  return registrations;
+}
+
 }  // namespace
 
 RigidBoxIndex::RigidBoxIndex(const std::vector<Box3>& boxes, double distance)
@@ -260,27 +314,15 @@ RigidBoxIndex::RigidBoxIndex(const std::vector<Box3>& boxes, double distance)
   constexpr const char* where = "RigidBoxIndex";
   check_distance(where, distance);
   check_count(where, "boxes", boxes.size());
-  const std::size_t m = boxes.size();
-  enlarged_.assign(m, Box3{});  // empty boxes stay empty: they match nothing
   std::vector<int> valid;
   std::vector<double> largest;
-  for (std::size_t e = 0; e < m; ++e) {
-    Box3 b;
-    if (!enlarged(where, boxes[e], distance, e, b)) continue;
-    enlarged_[e] = b;
-    all_.extend(b.lo);
-    all_.extend(b.hi);
-    valid.push_back(static_cast<int>(e));
-    largest.push_back((b.hi - b.lo).maxCoeff());
-  }
+  enlarge_boxes(where, boxes, distance, enlarged_, all_, valid, largest);
   if (valid.empty()) return;  // n_ = 0: every query is empty
 
   const Vector3d ext = all_.hi - all_.lo;
   const double n_valid = static_cast<double>(valid.size());
-  const auto mid = largest.begin() + static_cast<std::ptrdiff_t>(largest.size() / 2);
-  std::nth_element(largest.begin(), mid, largest.end());
-  double h = kCellFactor * *mid;
-  if (!(h > 0.0)) h = ext.maxCoeff() / std::cbrt(n_valid);  // all boxes degenerate
+  double h = initial_cell_size(largest, ext, n_valid);
+  const auto cell_of = [this](double x, int k) { return cell(x, k); };
 
   // Grow h until the cell and registration counts are O(m); at h >= max extent there is a
   // single cell and m registrations, so the loop ends.
@@ -297,43 +339,23 @@ RigidBoxIndex::RigidBoxIndex(const std::vector<Box3>& boxes, double distance)
       inv_h_[k] =
           ext[k] > 0.0 && std::isfinite(ext[k]) ? n[static_cast<std::size_t>(k)] / ext[k] : 0.0;
     }
-    double registrations = 0.0;
-    for (int e : valid) {
-      const Box3& b = enlarged_[static_cast<std::size_t>(e)];
-      double r = 1.0;
-      for (int k = 0; k < 3; ++k) r *= cell(b.hi[k], k) - cell(b.lo[k], k) + 1;
-      registrations += r;
-    }
-    if (registrations <= max_registrations) break;
+    if (count_registrations(valid, enlarged_, cell_of) <= max_registrations) break;
   }
 
   // Compressed rows: count, prefix sums, scatter in box order (ascending within a cell).
   const std::size_t n_cells = static_cast<std::size_t>(n_[0]) * static_cast<std::size_t>(n_[1]) *
                               static_cast<std::size_t>(n_[2]);
   start_.assign(n_cells + 1, 0);
-  for (int pass = 0; pass < 2; ++pass) {
-    std::vector<int> next;
-    if (pass == 1) {
-      for (std::size_t c = 0; c < n_cells; ++c) start_[c + 1] += start_[c];
-      items_.resize(static_cast<std::size_t>(start_[n_cells]));
-      next.assign(start_.begin(), start_.end() - 1);
-    }
-    for (int e : valid) {
-      const Box3& b = enlarged_[static_cast<std::size_t>(e)];
-      const int x0 = cell(b.lo.x(), 0), x1 = cell(b.hi.x(), 0);
-      const int y0 = cell(b.lo.y(), 1), y1 = cell(b.hi.y(), 1);
-      const int z0 = cell(b.lo.z(), 2), z1 = cell(b.hi.z(), 2);
-      for (int z = z0; z <= z1; ++z)
-        for (int y = y0; y <= y1; ++y)
-          for (int x = x0; x <= x1; ++x) {
-            const std::size_t c = cell_id(x, y, z);
-            if (pass == 0)
-              ++start_[c + 1];
-            else
-              items_[static_cast<std::size_t>(next[c]++)] = e;
-          }
-    }
-  }
+  for (int e : valid)
+    for_each_cell(enlarged_[static_cast<std::size_t>(e)], cell_of,
+                  [this](int x, int y, int z) { ++start_[cell_id(x, y, z) + 1]; });
+  for (std::size_t c = 0; c < n_cells; ++c) start_[c + 1] += start_[c];
+  items_.resize(static_cast<std::size_t>(start_[n_cells]));
+  std::vector<int> next(start_.begin(), start_.end() - 1);
+  for (int e : valid)
+    for_each_cell(enlarged_[static_cast<std::size_t>(e)], cell_of, [&](int x, int y, int z) {
+      items_[static_cast<std::size_t>(next[cell_id(x, y, z)]++)] = e;
+    });
 }
 
 std::size_t RigidBoxIndex::cell_id(int x, int y, int z) const {

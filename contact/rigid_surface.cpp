@@ -33,6 +33,28 @@ std::vector<Vector3d> side_samples(const Surface& s, int side, int n) {
   return pts;
 }
 
+/// Side `side` of the domain d (numbered as in side_samples) lies at a finite parameter value
+/// and spans a finite interval, so that it can be sampled.
+bool side_is_finite(const Domain2& d, int side) {
+  const Interval I = side < 2 ? d.u : d.v;
+  if (!std::isfinite(side % 2 == 0 ? I.lo : I.hi)) return false;
+  const Interval other = side < 2 ? d.v : d.u;
+  return std::isfinite(other.lo) && std::isfinite(other.hi);
+}
+
+/// Every sample point lies within tol of a piece with bounding box `box`, whose closest point
+/// to x is project(x) (the box rules a point out before the projection is paid for).
+template <class Project>
+bool samples_on_piece(const std::vector<Vector3d>& pts, const Box3& box, double tol,
+                      const Project& project) {
+  for (const Vector3d& x : pts) {
+    if (box_distance(box, x) > tol) return false;
+    const ProjectionResult r = project(x);
+    if (!found(r.status) || std::abs(r.distance) > tol) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 RigidSurface RigidSurface::from_geometry(const GeometryModel& g, const std::string& name) {
@@ -106,26 +128,13 @@ void RigidSurface::detect_shared_sides() {
     const Domain2 d = s.domain();
     for (int side = 0; side < 4; ++side) {
       p.shared[side] = side < 2 ? s.closed_u() : s.closed_v();
-      const Interval I = side < 2 ? d.u : d.v;
-      if (p.shared[side] || !std::isfinite(side % 2 == 0 ? I.lo : I.hi)) continue;
-      const Interval other = side < 2 ? d.v : d.u;
-      if (!std::isfinite(other.lo) || !std::isfinite(other.hi)) continue;
+      if (p.shared[side] || !side_is_finite(d, side)) continue;
       const std::vector<Vector3d> pts = side_samples(s, side, 5);
       for (std::size_t j = 0; j < pieces_.size() && !p.shared[side]; ++j) {
         if (j == i) continue;
-        bool all = true;
-        for (const Vector3d& x : pts) {
-          if (box_distance(pieces_[j].box, x) > tol) {
-            all = false;
-            break;
-          }
-          const ProjectionResult r = project_piece(static_cast<int>(j), x, kInf, {});
-          if (!found(r.status) || std::abs(r.distance) > tol) {
-            all = false;
-            break;
-          }
-        }
-        p.shared[side] = all;
+        p.shared[side] = samples_on_piece(pts, pieces_[j].box, tol, [&](const Vector3d& x) {
+          return project_piece(static_cast<int>(j), x, kInf, {});
+        });
       }
     }
   }
