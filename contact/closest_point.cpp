@@ -176,7 +176,7 @@ int PatchProjector::element_of(const Vector2d& uv) const {
 
 namespace {
 
-// The control points of a node, projected, and their box.
+// Whether uv lies in the parameter rectangle r.
 bool inside(const Domain2& r, const Vector2d& uv) {
   return uv[0] >= r.u.lo && uv[0] <= r.u.hi && uv[1] >= r.v.lo && uv[1] <= r.v.hi;
 }
@@ -187,6 +187,7 @@ bool within(const Domain2& inner, const Domain2& outer) {
          inner.v.hi <= outer.v.hi;
 }
 
+// The control points of a node, projected, and their box.
 template <class N>
 void finish_node(N& n) {
   n.box = Box3{};
@@ -194,6 +195,95 @@ void finish_node(N& n) {
     const Vector4d& q = n.net.pw[static_cast<std::size_t>(k)];
     n.points[static_cast<std::size_t>(k)] = q.head<3>() / q.w();
     n.box.extend(n.points[static_cast<std::size_t>(k)]);
+  }
+}
+
+// Whether the border at cell index I of level l (2^l cells per element and direction) joins
+// the cells on either side C1: inside an element, or an element border where the interior knot
+// multiplicity is below the degree.
+bool c1_border(const KnotVector& kv, const std::vector<double>& br, int I, int l) {
+  if (I % (1 << l) != 0) return true;  // inside an element
+  return kv.multiplicity(br[static_cast<std::size_t>(I >> l)]) < kv.degree();
+}
+
+// Regions: the cells around each node, across a border between cells that is an element
+// border only where the surface is C1 there (interior knot multiplicity below the degree).
+// grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l; cell and level, each node's.
+template <class N>
+void set_regions(std::vector<N>& tree, const NurbsSurface& s, const std::vector<double>& breaks_u,
+                 const std::vector<double>& breaks_v, const std::vector<std::vector<int>>& grid,
+                 const std::vector<std::array<int, 2>>& cell, const std::vector<int>& level) {
+  const int nu = static_cast<int>(breaks_u.size()) - 1, nv = static_cast<int>(breaks_v.size()) - 1;
+  for (std::size_t k = 0; k < tree.size(); ++k) {
+    const int l = level[k], I = cell[k][0], J = cell[k][1];
+    const int wu = nu << l, wv = nv << l;
+    const int i0 = I > 0 && c1_border(s.knots_u(), breaks_u, I, l) ? I - 1 : I;
+    const int i1 = I + 1 < wu && c1_border(s.knots_u(), breaks_u, I + 1, l) ? I + 1 : I;
+    const int j0 = J > 0 && c1_border(s.knots_v(), breaks_v, J, l) ? J - 1 : J;
+    const int j1 = J + 1 < wv && c1_border(s.knots_v(), breaks_v, J + 1, l) ? J + 1 : J;
+    N& n = tree[k];
+    n.region = n.net.range;
+    n.region_bounds = n.bounds;
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        if (i == I && j == J) continue;
+        const N& m = tree[static_cast<std::size_t>(
+            grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])];
+        detail::unite(n.region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
+        n.region.u = {std::min(n.region.u.lo, m.net.range.u.lo),
+                      std::max(n.region.u.hi, m.net.range.u.hi)};
+        n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
+                      std::max(n.region.v.hi, m.net.range.v.hi)};
+      }
+  }
+}
+
+// The squared distance between two boxes.
+double box_gap2(const Box3& a, const Box3& b) {
+  const Vector3d g = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
+  return g.squaredNorm();
+}
+
+// the distance between a's box in its frame and the box of b's points in that frame
+template <class N>
+double frame_gap2(const N& a, const N& b) {
+  Box3 in_a, own;
+  for (int k = 0; k < b.net.size(); ++k)
+    in_a.extend(a.bounds.frame * (b.points[static_cast<std::size_t>(k)] - a.bounds.centre));
+  own.lo << a.bounds.S.c[0].lo, a.bounds.S.c[1].lo, a.bounds.S.c[2].lo;
+  own.hi << a.bounds.S.c[0].hi, a.bounds.S.c[1].hi, a.bounds.S.c[2].hi;
+  const Vector3d g = (own.lo - in_a.hi).cwiseMax(in_a.lo - own.hi).cwiseMax(0.0);
+  return g.squaredNorm();
+}
+
+// Whether the parameter rectangles a and b do not overlap (they may touch).
+bool apart(const Domain2& a, const Domain2& b) {
+  return a.u.lo >= b.u.hi || a.u.hi <= b.u.lo || a.v.lo >= b.v.hi || a.v.hi <= b.v.lo;
+}
+
+// The gaps: a lower bound of the distance from a node to the surface outside its region, the
+// least over the leaves outside it of the distance between their boxes, axis-aligned or in
+// the tangent frame of either (a branch and bound down the tree). Nodes 0 .. n_el - 1 are the
+// roots.
+template <class N>
+void set_gaps(std::vector<N>& tree, std::size_t n_el) {
+  for (N& n : tree) {
+    double g2 = std::numeric_limits<double>::infinity();
+    auto descend = [&](auto&& self, const N& m) -> void {
+      if (within(m.net.range, n.region)) return;
+      if (box_gap2(n.box, m.box) >= g2) return;
+      if (m.child < 0) {
+        // a leaf overlapping the region (not split further) leaves no gap
+        g2 = apart(m.net.range, n.region)
+                 ? std::min(g2, std::max(box_gap2(n.box, m.box),
+                                         std::max(frame_gap2(n, m), frame_gap2(m, n))))
+                 : 0.0;
+        return;
+      }
+      for (int k = 0; k < 4; ++k) self(self, tree[static_cast<std::size_t>(m.child + k)]);
+    };
+    for (std::size_t e = 0; e < n_el; ++e) descend(descend, tree[e]);
+    n.gap = std::sqrt(g2) * (1.0 - 1e-12);
   }
 }
 
@@ -254,72 +344,8 @@ void PatchProjector::build_tree() {
     first = last;
     last = tree_.size();
   }
-  // Regions: the cells around each node, across a border between cells that is an element
-  // border only where the surface is C1 there (interior knot multiplicity below the degree).
-  auto c1 = [](const KnotVector& kv, const std::vector<double>& br, int I, int l) {
-    if (I % (1 << l) != 0) return true;  // inside an element
-    return kv.multiplicity(br[static_cast<std::size_t>(I >> l)]) < kv.degree();
-  };
-  for (std::size_t k = 0; k < tree_.size(); ++k) {
-    const int l = level[k], I = cell[k][0], J = cell[k][1];
-    const int wu = nu << l, wv = nv << l;
-    const int i0 = I > 0 && c1(s_.knots_u(), breaks_u_, I, l) ? I - 1 : I;
-    const int i1 = I + 1 < wu && c1(s_.knots_u(), breaks_u_, I + 1, l) ? I + 1 : I;
-    const int j0 = J > 0 && c1(s_.knots_v(), breaks_v_, J, l) ? J - 1 : J;
-    const int j1 = J + 1 < wv && c1(s_.knots_v(), breaks_v_, J + 1, l) ? J + 1 : J;
-    Node& n = tree_[k];
-    n.region = n.net.range;
-    n.region_bounds = n.bounds;
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        if (i == I && j == J) continue;
-        const Node& m = tree_[static_cast<std::size_t>(
-            grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])];
-        detail::unite(n.region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
-        n.region.u = {std::min(n.region.u.lo, m.net.range.u.lo),
-                      std::max(n.region.u.hi, m.net.range.u.hi)};
-        n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
-                      std::max(n.region.v.hi, m.net.range.v.hi)};
-      }
-  }
-  // The gaps: a lower bound of the distance from a node to the surface outside its region, the
-  // least over the leaves outside it of the distance between their boxes, axis-aligned or in
-  // the tangent frame of either (a branch and bound down the tree).
-  auto box_gap2 = [](const Box3& a, const Box3& b) {
-    const Vector3d g = (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(0.0);
-    return g.squaredNorm();
-  };
-  // the distance between a's box in its frame and the box of b's points in that frame
-  auto frame_gap2 = [](const Node& a, const Node& b) {
-    Box3 in_a, own;
-    for (int k = 0; k < b.net.size(); ++k)
-      in_a.extend(a.bounds.frame * (b.points[static_cast<std::size_t>(k)] - a.bounds.centre));
-    own.lo << a.bounds.S.c[0].lo, a.bounds.S.c[1].lo, a.bounds.S.c[2].lo;
-    own.hi << a.bounds.S.c[0].hi, a.bounds.S.c[1].hi, a.bounds.S.c[2].hi;
-    const Vector3d g = (own.lo - in_a.hi).cwiseMax(in_a.lo - own.hi).cwiseMax(0.0);
-    return g.squaredNorm();
-  };
-  auto apart = [](const Domain2& a, const Domain2& b) {
-    return a.u.lo >= b.u.hi || a.u.hi <= b.u.lo || a.v.lo >= b.v.hi || a.v.hi <= b.v.lo;
-  };
-  for (Node& n : tree_) {
-    double g2 = std::numeric_limits<double>::infinity();
-    auto descend = [&](auto&& self, const Node& m) -> void {
-      if (within(m.net.range, n.region)) return;
-      if (box_gap2(n.box, m.box) >= g2) return;
-      if (m.child < 0) {
-        // a leaf overlapping the region (not split further) leaves no gap
-        g2 = apart(m.net.range, n.region)
-                 ? std::min(g2, std::max(box_gap2(n.box, m.box),
-                                         std::max(frame_gap2(n, m), frame_gap2(m, n))))
-                 : 0.0;
-        return;
-      }
-      for (int k = 0; k < 4; ++k) self(self, tree_[static_cast<std::size_t>(m.child + k)]);
-    };
-    for (std::size_t e = 0; e < n_el; ++e) descend(descend, tree_[e]);
-    n.gap = std::sqrt(g2) * (1.0 - 1e-12);
-  }
+  set_regions(tree_, s_, breaks_u_, breaks_v_, grid, cell, level);
+  set_gaps(tree_, n_el);
 }
 
 ProjectionResult PatchProjector::project_within(const Vector3d& x, double max_distance,
@@ -368,6 +394,322 @@ double frame_box_distance2(const detail::PatchBounds& b, const Vector3d& x) {
   return d2;
 }
 
+// The answer of a search that has found nothing (yet).
+ProjectionResult far_result() {
+  ProjectionResult r;
+  r.status = ProjectionStatus::far;
+  r.distance = kInf;
+  return r;
+}
+
+// The state of one certified search (PatchProjector::search below) and its steps: the best
+// answer so far, the upper bound, the regions proven. A template on the projector's node and
+// sample types, which are private to it; `chord_region` calls its member of that name.
+template <class Node, class Sample, int MaxSamples, class ChordRegion>
+struct CertifiedSearch {
+  // The projector's
+  const NurbsSurface& surface;
+  const std::vector<BezierPatch>& elements;
+  const std::vector<std::vector<Sample>>& samples;  // per element
+  int samples_per_dir;
+  const std::vector<Node>& tree;
+  ChordRegion chord_region;
+  // The query
+  const Vector3d& x;
+  const ProjectionOptions& opt;
+  Domain2 dom;
+  bool cu, cv;
+  bool all_elements;  // every element searched, not only the ids given
+  double tol;
+  // The best answer so far
+  ProjectionResult best = far_result();
+  double best_d = kInf;
+  bool best_patch_kkt = false;  // best satisfies the optimality conditions on the whole patch
+  int best_element = -1;
+  Domain2 best_range{};  // the node that gave the best answer
+  int iterations = 0;
+  bool certified;
+  bool warm = false;  // started from a found answer
+  // An upper bound of the distance (a surface point at that distance exists, at ub_uv)
+  double ub;
+  Vector2d ub_uv = Vector2d::Zero();
+  // Regions proven to hold no point closer than the best (at most kMaxProven kept).
+  static constexpr int kMaxProven = 4;
+  const Domain2* proven[kMaxProven] = {};
+  int n_proven = 0;
+  bool everything_proven = false;
+  static constexpr int kMaxDepth = 10;
+
+  // The warm start: a found answer of the Newton on the whole patch, so one that satisfies the
+  // optimality conditions of the patch.
+  void start_from(const ProjectionResult& start) {
+    warm = true;
+    best = start;
+    best_d = (start.point - x).norm();
+    best_patch_kkt = true;
+    iterations = start.iterations;
+  }
+
+  double threshold() const { return std::min(ub, best_d - tol); }
+
+  bool is_proven(const Domain2& r) const {
+    for (int k = 0; k < n_proven; ++k)
+      if (within(r, *proven[k])) return true;
+    return false;
+  }
+
+  // When the best answer satisfies the optimality conditions of the patch: the coarsest
+  // region holding it that passes the chord test is proven.
+  void prove_region() {
+    if (!opt.certify || !best_patch_kkt || n_proven == kMaxProven) return;
+    const Node* n = chord_region(best.uv, x - best.point);
+    if (n == nullptr) return;
+    if (!is_proven(n->region)) proven[n_proven++] = &n->region;
+    // Every surface point outside the region is at least gap from the foot, so at least
+    // gap - best_d from x: the foot is the global minimum when best_d <= gap / 2.
+    if (best_d <= 0.5 * n->gap) everything_proven = true;
+  }
+
+  void consider(const ProjectionResult& r, int e, const Domain2& node_range, bool patch_kkt) {
+    iterations += r.iterations;
+    if (!found(r.status)) return;
+    // Only a clearly closer answer replaces the best: one equal to round-off would make the
+    // foot jump between two converged iterates of the same minimum.
+    const double d = (r.point - x).norm();
+    if (d < best_d - tol) {
+      best_d = d;
+      best = r;
+      best_element = e;
+      best_range = node_range;
+      // An answer off its node's bounds (but those of the patch) satisfies the optimality
+      // conditions of the whole patch, so those of every node that holds it.
+      auto off = [](double t, const Interval& n, const Interval& dm, bool closed) {
+        return (t > n.lo || (n.lo <= dm.lo && !closed)) && (t < n.hi || (n.hi >= dm.hi && !closed));
+      };
+      best_patch_kkt = patch_kkt || (off(r.uv[0], node_range.u, dom.u, cu) &&
+                                     off(r.uv[1], node_range.v, dom.v, cv));
+      prove_region();
+    }
+  }
+
+  // Whether the minimum of F over a node, lying on its bound `side` (0 lo, 1 hi) in direction
+  // `dir`, is held by another node: the bound is inside the element, or (all elements
+  // searched) an element border inside the patch or a seam.
+  bool shared_bound(const Domain2& range, int element, int dir, int side) const {
+    const Interval& r = dir == 0 ? range.u : range.v;
+    const Domain2& er = elements[static_cast<std::size_t>(element)].range;
+    const Interval& el = dir == 0 ? er.u : er.v;
+    const Interval& d = dir == 0 ? dom.u : dom.v;
+    const double b = side == 0 ? r.lo : r.hi;
+    if (b > el.lo && b < el.hi) return true;
+    if (!all_elements) return false;
+    return (b > d.lo && b < d.hi) || (dir == 0 ? cu : cv);
+  }
+
+  // Newtons in an element from the discrete local minima of the distance over its sample grid,
+  // nearest first, at most kMaxSeeds: a good answer early prunes the most.
+  void seed_newtons(int element) {
+    const Domain2& range = elements[static_cast<std::size_t>(element)].range;
+    const std::vector<Sample>& smp = samples[static_cast<std::size_t>(element)];
+    const int n = samples_per_dir;
+    double d2s[MaxSamples];
+    for (int k = 0; k < n * n; ++k) d2s[k] = (smp[static_cast<std::size_t>(k)].x - x).squaredNorm();
+    constexpr int kMaxSeeds = 3;
+    std::pair<double, int> seeds[kMaxSeeds];
+    int n_seeds = 0;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double d = d2s[i + n * j];
+        bool is_min = true;
+        for (int dj = -1; dj <= 1 && is_min; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int ii = i + di, jj = j + dj;
+            if ((di == 0 && dj == 0) || ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
+            if (d2s[ii + n * jj] < d) {
+              is_min = false;
+              break;
+            }
+          }
+        if (!is_min) continue;
+        std::pair<double, int> cand{d, i + n * j};
+        for (int q = 0; q < n_seeds; ++q)
+          if (cand < seeds[q]) std::swap(cand, seeds[q]);
+        if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
+      }
+    for (int q = 0; q < n_seeds; ++q)
+      consider(closest_point_local(surface, x, smp[static_cast<std::size_t>(seeds[q].second)].uv,
+                                   range, opt),
+               element, range, false);
+  }
+
+  // Visits a node: one of the tree (`stored`: its bounds and centre precomputed) or a piece
+  // split off below the tree's depth; `element` is its Bezier element.
+  void visit(const Node& node, bool stored, int element, int depth) {
+    const Domain2& range = node.net.range;
+    if (is_proven(range)) return;
+    if (hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()), x,
+                         best_d < kInf ? &best.point : nullptr) > threshold())
+      return;
+    if (!opt.certify) {  // the sampled search: seeded Newtons in the element, no proof
+      seed_newtons(element);
+      return;
+    }
+    // The distance to the box of the node's points in its tangent frame (thin across the
+    // surface: close to the distance to the piece where the surface curves towards x).
+    if (stored && std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
+    if (settled_by_bounds(node, stored, element)) return;
+    if (depth == 0 && !warm) {  // seeds for a good optimum early (a warm start has one)
+      seed_newtons(element);
+      if (is_proven(range) ||
+          hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()),
+                           x, &best.point) > threshold())
+        return;
+    }
+    if (depth >= kMaxDepth) {
+      const Vector2d c(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
+      consider(closest_point_local(surface, x, c, range, opt), element, range, false);
+      certified = false;
+      return;
+    }
+    visit_children(node, stored, element, depth);
+  }
+
+  // The interval bounds of F over a node, about the exact derivatives at its centre: true when
+  // they prune the node or show that F has one minimum there, which a Newton then finds.
+  bool settled_by_bounds(const Node& node, bool stored, int element) {
+    const Domain2& range = node.net.range;
+    // The exact derivatives at the node's centre: the frame of its bounds, the mean value
+    // forms, and a surface point there as an upper bound.
+    const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
+    SurfaceDerivs dc_here;
+    detail::PatchBounds pb_here;
+    if (!stored) {
+      dc_here = surface.derivs(range.u.lo + a, range.v.lo + b, 1);
+      pb_here = detail::patch_bounds(node.net, detail::tangent_frame(dc_here));
+    }
+    const SurfaceDerivs& dc = stored ? node.centre : dc_here;
+    const double dist_c = (x - dc.S).norm();
+    if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
+    const detail::PatchBounds& pb = stored ? node.bounds : pb_here;
+    // The node holding the best answer, an optimum of the patch: the chord test.
+    if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point))
+      return true;
+    detail::DistanceBounds db = detail::distance_bounds(pb, x);
+    const double f_lo = detail::refine_about_centre(db, dc, x, a, b);
+    if (f_lo > 0.0 && std::sqrt(2.0 * f_lo) > threshold()) return true;
+    // -1: F increases with the parameter (minimum on the lower bound), +1: decreases, 0: open
+    const int mono_u = db.gu.lo > 0.0 ? -1 : db.gu.hi < 0.0 ? 1 : 0;
+    const int mono_v = db.gv.lo > 0.0 ? -1 : db.gv.hi < 0.0 ? 1 : 0;
+    if (mono_u != 0 && shared_bound(range, element, 0, mono_u > 0)) return true;
+    if (mono_v != 0 && shared_bound(range, element, 1, mono_v > 0)) return true;
+    const bool solvable = detail::convex(db, pb, x) || (mono_u != 0 && mono_v != 0) ||
+                          (mono_u != 0 && db.H22.lo > 0.0) || (mono_v != 0 && db.H11.lo > 0.0);
+    return solvable && solved(range, a, b, element, db, pb, dc, mono_u, mono_v);
+  }
+
+  // A node on which F has one minimum (convex, or monotone in a parameter): the Newton from
+  // its centre, or from the bound a monotone direction points to. True when the node needs no
+  // further search. a, b: the node's half-widths.
+  bool solved(const Domain2& range, double a, double b, int element,
+              const detail::DistanceBounds& db, const detail::PatchBounds& pb,
+              const SurfaceDerivs& dc, int mono_u, int mono_v) {
+    // The best answer, a KKT point of the whole patch lying on this node, is the node's too.
+    if (best_patch_kkt && inside(range, best.uv)) return true;
+    // F convex on the node lies above its tangent plane at the centre c:
+    // F >= F(c) - |F_,1(c)| a - |F_,2(c)| b over the node.
+    if (detail::convex(db, pb, x)) {
+      const Vector3d rc = x - dc.S;
+      const double lb =
+          0.5 * rc.squaredNorm() - std::abs(dc.Su.dot(rc)) * a - std::abs(dc.Sv.dot(rc)) * b;
+      if (lb > 0.0 && std::sqrt(2.0 * lb) > threshold()) return true;
+    }
+    Vector2d s0(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
+    if (mono_u != 0) s0[0] = mono_u < 0 ? range.u.lo : range.u.hi;
+    if (mono_v != 0) s0[1] = mono_v < 0 ? range.v.lo : range.v.hi;
+    const ProjectionResult r = closest_point_local(surface, x, s0, range, opt);
+    consider(r, element, range, false);
+    return found(r.status);
+  }
+
+  // The node's four children, nearest first (by their boxes): the tree's, or the halves in u
+  // and v of a piece below the tree's depth.
+  void visit_children(const Node& node, bool stored, int element, int depth) {
+    std::pair<double, int> by_bound[4];
+    if (stored && node.child >= 0) {  // the tree's children
+      const Node* c = &tree[static_cast<std::size_t>(node.child)];
+      for (int k = 0; k < 4; ++k) by_bound[k] = {box_distance2(c[k].box, x), k};
+      std::sort(by_bound, by_bound + 4);
+      for (const auto& [lb2, k] : by_bound) visit(c[k], true, element, depth + 1);
+      return;
+    }
+    Node children[4];
+    {
+      detail::Net lo, hi;
+      detail::split_half(node.net, 0, lo, hi);
+      detail::split_half(lo, 1, children[0].net, children[1].net);
+      detail::split_half(hi, 1, children[2].net, children[3].net);
+    }
+    for (int k = 0; k < 4; ++k) {
+      finish_node(children[k]);
+      by_bound[k] = {box_distance2(children[k].box, x), k};
+    }
+    std::sort(by_bound, by_bound + 4);
+    for (const auto& [lb2, k] : by_bound) visit(children[k], false, element, depth + 1);
+  }
+
+  // The answer when the search is over: the best found, polished where it rests on a bound of
+  // its node or element that is not one of the patch; none found: a Newton from the nearest
+  // surface point seen, if it is within max_distance.
+  ProjectionResult answer(double max_distance) {
+    if (best_d == kInf) {
+      if (ub < max_distance) {  // only the sample's node held points this close: solve there
+        ProjectionResult r = closest_point_local(surface, x, ub_uv, opt);
+        r.iterations += iterations;
+        r.certified = false;
+        return r;
+      }
+      best.iterations = iterations;
+      return best;
+    }
+    best.certified = certified;
+    best.iterations = iterations;
+    if (best_patch_kkt) {
+      best.status = boundary_status(surface, best.uv);
+      return best;
+    }
+    // The node's answer is a local minimum of the patch unless it rests on an element bound
+    // inside the patch or on a seam (the bound of a closed direction); then polish on the whole
+    // patch, which also wraps across the seam.
+    const Domain2& er = elements[static_cast<std::size_t>(best_element)].range;
+    const bool inner_bound = (best.uv[0] <= er.u.lo && (er.u.lo > dom.u.lo || cu)) ||
+                             (best.uv[0] >= er.u.hi && (er.u.hi < dom.u.hi || cu)) ||
+                             (best.uv[1] <= er.v.lo && (er.v.lo > dom.v.lo || cv)) ||
+                             (best.uv[1] >= er.v.hi && (er.v.hi < dom.v.hi || cv));
+    if (!inner_bound) {
+      // A node's answer on a bound of the node inside its element: polish on the element.
+      const bool node_bound = (best.uv[0] <= best_range.u.lo && best_range.u.lo > er.u.lo) ||
+                              (best.uv[0] >= best_range.u.hi && best_range.u.hi < er.u.hi) ||
+                              (best.uv[1] <= best_range.v.lo && best_range.v.lo > er.v.lo) ||
+                              (best.uv[1] >= best_range.v.hi && best_range.v.hi < er.v.hi);
+      if (node_bound) {
+        const ProjectionResult r = closest_point_local(surface, x, best.uv, er, opt);
+        if (found(r.status) && (r.point - x).norm() <= best_d) {
+          best = r;
+          best.iterations += iterations;
+          best.certified = certified;
+        }
+      }
+      best.status = boundary_status(surface, best.uv);
+      return best;
+    }
+    ProjectionResult r = closest_point_local(surface, x, best.uv, opt);
+    r.iterations += iterations;
+    r.certified = certified;
+    if (!found(r.status) || (r.point - x).norm() > best_d * (1.0 + 1e-12) + 1e-300) return best;
+    return r;
+  }
+};
+
 }  // namespace
 
 // The certified search (issue 12, item 5). Every Bezier element (or the ids given) is a node;
@@ -395,291 +737,59 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     const double lb2 = box_distance2(boxes_[static_cast<std::size_t>(e)], x);
     if (lb2 <= limit2) order.emplace_back(lb2, e);
   }
-  ProjectionResult best;
-  best.status = ProjectionStatus::far;
-  best.distance = kInf;
-  double best_d = kInf;
-  bool best_patch_kkt = false;  // best satisfies the optimality conditions on the whole patch
-  int best_element = -1;
-  Domain2 best_range;  // the node that gave the best answer
-  int iterations = 0;
-  bool certified = opt.certify;
-  const bool warm = start && found(start->status);
-  if (warm) {
-    best = *start;
-    best_d = (start->point - x).norm();
-    best_patch_kkt = true;
-    iterations = start->iterations;
-  }
+  const auto region_of = [this](const Vector2d& uv, const Vector3d& r_star) {
+    return chord_region(uv, r_star);
+  };
+  CertifiedSearch<Node, Sample, kMaxSamples, decltype(region_of)> cs{
+      .surface = s_,
+      .elements = elements_,
+      .samples = samples_,
+      .samples_per_dir = samples_per_dir_,
+      .tree = tree_,
+      .chord_region = region_of,
+      .x = x,
+      .opt = opt,
+      .dom = s_.domain(),
+      .cu = s_.closed_u(),
+      .cv = s_.closed_v(),
+      .all_elements = ids == nullptr,
+      .tol = 1e-11 * (box_.hi - box_.lo).norm(),
+      .certified = opt.certify,
+      .ub = max_distance};
+  if (start && found(start->status)) cs.start_from(*start);
   if (order.empty()) {
-    best.certified = certified && best_d < kInf;
-    return best;
+    cs.best.certified = cs.certified && cs.best_d < kInf;
+    return cs.best;
   }
   // A first upper bound from the samples of the most promising element (a surface point at
   // that distance exists), so that far elements are pruned before any Newton.
-  double ub = max_distance;
-  Vector2d ub_uv = Vector2d::Zero();
-  if (!warm) {
+  if (!cs.warm) {
     const auto first = std::min_element(order.begin(), order.end());
     for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
       const double d = (smp.x - x).norm();
-      if (d < ub) ub = d, ub_uv = smp.uv;
+      if (d < cs.ub) cs.ub = d, cs.ub_uv = smp.uv;
     }
-    ub *= 1.0 + 1e-12;
+    cs.ub *= 1.0 + 1e-12;
   }
   std::sort(order.begin(), order.end());
-  const Domain2 dom = s_.domain();
-  const bool cu = s_.closed_u(), cv = s_.closed_v();
-  const bool all_elements = ids == nullptr;
-  const double tol = 1e-11 * (box_.hi - box_.lo).norm();
-  auto threshold = [&] { return std::min(ub, best_d - tol); };
-  // Regions proven to hold no point closer than the best (at most kMaxProven kept).
-  constexpr int kMaxProven = 4;
-  const Domain2* proven[kMaxProven];
-  int n_proven = 0;
-  auto is_proven = [&](const Domain2& r) {
-    for (int k = 0; k < n_proven; ++k)
-      if (within(r, *proven[k])) return true;
-    return false;
-  };
-  // When the best answer satisfies the optimality conditions of the patch: the coarsest
-  // region holding it that passes the chord test is proven.
-  bool everything_proven = false;
-  auto prove_region = [&] {
-    if (!opt.certify || !best_patch_kkt || n_proven == kMaxProven) return;
-    const Node* n = chord_region(best.uv, x - best.point);
-    if (n == nullptr) return;
-    if (!is_proven(n->region)) proven[n_proven++] = &n->region;
-    // Every surface point outside the region is at least gap from the foot, so at least
-    // gap - best_d from x: the foot is the global minimum when best_d <= gap / 2.
-    if (best_d <= 0.5 * n->gap) everything_proven = true;
-  };
-  auto consider = [&](const ProjectionResult& r, int e, const Domain2& node_range, bool patch_kkt) {
-    iterations += r.iterations;
-    if (!found(r.status)) return;
-    // Only a clearly closer answer replaces the best: one equal to round-off would make the
-    // foot jump between two converged iterates of the same minimum.
-    const double d = (r.point - x).norm();
-    if (d < best_d - tol) {
-      best_d = d;
-      best = r;
-      best_element = e;
-      best_range = node_range;
-      // An answer off its node's bounds (but those of the patch) satisfies the optimality
-      // conditions of the whole patch, so those of every node that holds it.
-      auto off = [](double t, const Interval& n, const Interval& dm, bool closed) {
-        return (t > n.lo || (n.lo <= dm.lo && !closed)) && (t < n.hi || (n.hi >= dm.hi && !closed));
-      };
-      best_patch_kkt = patch_kkt || (off(r.uv[0], node_range.u, dom.u, cu) &&
-                                     off(r.uv[1], node_range.v, dom.v, cv));
-      prove_region();
-    }
-  };
-  prove_region();  // the start's
-  // Whether the minimum of F over a node, lying on its bound `side` (0 lo, 1 hi) in direction
-  // `dir`, is held by another node: the bound is inside the element, or (all elements
-  // searched) an element border inside the patch or a seam.
-  auto shared_bound = [&](const Domain2& range, int element, int dir, int side) {
-    const Interval& r = dir == 0 ? range.u : range.v;
-    const Domain2& er = elements_[static_cast<std::size_t>(element)].range;
-    const Interval& el = dir == 0 ? er.u : er.v;
-    const Interval& d = dir == 0 ? dom.u : dom.v;
-    const double b = side == 0 ? r.lo : r.hi;
-    if (b > el.lo && b < el.hi) return true;
-    if (!all_elements) return false;
-    return (b > d.lo && b < d.hi) || (dir == 0 ? cu : cv);
-  };
-  // Newtons in an element from the discrete local minima of the distance over its sample grid,
-  // nearest first, at most kMaxSeeds: a good answer early prunes the most.
-  auto seed_newtons = [&](int element) {
-    const Domain2& range = elements_[static_cast<std::size_t>(element)].range;
-    const std::vector<Sample>& smp = samples_[static_cast<std::size_t>(element)];
-    const int n = samples_per_dir_;
-    double d2s[kMaxSamples];
-    for (int k = 0; k < n * n; ++k) d2s[k] = (smp[static_cast<std::size_t>(k)].x - x).squaredNorm();
-    constexpr int kMaxSeeds = 3;
-    std::pair<double, int> seeds[kMaxSeeds];
-    int n_seeds = 0;
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double d = d2s[i + n * j];
-        bool is_min = true;
-        for (int dj = -1; dj <= 1 && is_min; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int ii = i + di, jj = j + dj;
-            if ((di == 0 && dj == 0) || ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
-            if (d2s[ii + n * jj] < d) {
-              is_min = false;
-              break;
-            }
-          }
-        if (!is_min) continue;
-        std::pair<double, int> cand{d, i + n * j};
-        for (int q = 0; q < n_seeds; ++q)
-          if (cand < seeds[q]) std::swap(cand, seeds[q]);
-        if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
-      }
-    for (int q = 0; q < n_seeds; ++q)
-      consider(
-          closest_point_local(s_, x, smp[static_cast<std::size_t>(seeds[q].second)].uv, range, opt),
-          element, range, false);
-  };
-  constexpr int kMaxDepth = 10;
-  // Visits a node: one of the tree (`stored`: its bounds and centre precomputed) or a piece
-  // split off below the tree's depth; `element` is its Bezier element.
-  auto visit = [&](auto&& self, const Node& node, bool stored, int element, int depth) -> void {
-    const Domain2& range = node.net.range;
-    if (is_proven(range)) return;
-    if (hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()), x,
-                         best_d < kInf ? &best.point : nullptr) > threshold())
-      return;
-    if (!opt.certify) {  // the sampled search: seeded Newtons in the element, no proof
-      seed_newtons(element);
-      return;
-    }
-    // The distance to the box of the node's points in its tangent frame (thin across the
-    // surface: close to the distance to the piece where the surface curves towards x).
-    if (stored && std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
-    // The exact derivatives at the node's centre: the frame of its bounds, the mean value
-    // forms, and a surface point there as an upper bound.
-    const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
-    SurfaceDerivs dc_here;
-    detail::PatchBounds pb_here;
-    if (!stored) {
-      dc_here = s_.derivs(range.u.lo + a, range.v.lo + b, 1);
-      pb_here = detail::patch_bounds(node.net, detail::tangent_frame(dc_here));
-    }
-    const SurfaceDerivs& dc = stored ? node.centre : dc_here;
-    const double dist_c = (x - dc.S).norm();
-    if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
-    const detail::PatchBounds& pb = stored ? node.bounds : pb_here;
-    // The node holding the best answer, an optimum of the patch: the chord test.
-    if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point)) return;
-    detail::DistanceBounds db = detail::distance_bounds(pb, x);
-    const double f_lo = detail::refine_about_centre(db, dc, x, a, b);
-    if (f_lo > 0.0 && std::sqrt(2.0 * f_lo) > threshold()) return;
-    // -1: F increases with the parameter (minimum on the lower bound), +1: decreases, 0: open
-    const int mono_u = db.gu.lo > 0.0 ? -1 : db.gu.hi < 0.0 ? 1 : 0;
-    const int mono_v = db.gv.lo > 0.0 ? -1 : db.gv.hi < 0.0 ? 1 : 0;
-    if (mono_u != 0 && shared_bound(range, element, 0, mono_u > 0)) return;
-    if (mono_v != 0 && shared_bound(range, element, 1, mono_v > 0)) return;
-    const bool solvable = detail::convex(db, pb, x) || (mono_u != 0 && mono_v != 0) ||
-                          (mono_u != 0 && db.H22.lo > 0.0) || (mono_v != 0 && db.H11.lo > 0.0);
-    if (solvable) {
-      // The best answer, a KKT point of the whole patch lying on this node, is the node's too.
-      if (best_patch_kkt && inside(range, best.uv)) return;
-      // F convex on the node lies above its tangent plane at the centre c:
-      // F >= F(c) - |F_,1(c)| a - |F_,2(c)| b over the node.
-      if (detail::convex(db, pb, x)) {
-        const Vector3d rc = x - dc.S;
-        const double lb =
-            0.5 * rc.squaredNorm() - std::abs(dc.Su.dot(rc)) * a - std::abs(dc.Sv.dot(rc)) * b;
-        if (lb > 0.0 && std::sqrt(2.0 * lb) > threshold()) return;
-      }
-      Vector2d s0(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
-      if (mono_u != 0) s0[0] = mono_u < 0 ? range.u.lo : range.u.hi;
-      if (mono_v != 0) s0[1] = mono_v < 0 ? range.v.lo : range.v.hi;
-      const ProjectionResult r = closest_point_local(s_, x, s0, range, opt);
-      consider(r, element, range, false);
-      if (found(r.status)) return;
-    }
-    if (depth == 0 && !warm) {  // seeds for a good optimum early (a warm start has one)
-      seed_newtons(element);
-      if (is_proven(range) ||
-          hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()),
-                           x, &best.point) > threshold())
-        return;
-    }
-    if (depth >= kMaxDepth) {
-      const Vector2d c(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
-      consider(closest_point_local(s_, x, c, range, opt), element, range, false);
-      certified = false;
-      return;
-    }
-    std::pair<double, int> by_bound[4];
-    if (stored && node.child >= 0) {  // the tree's children
-      const Node* c = &tree_[static_cast<std::size_t>(node.child)];
-      for (int k = 0; k < 4; ++k) by_bound[k] = {box_distance2(c[k].box, x), k};
-      std::sort(by_bound, by_bound + 4);
-      for (const auto& [lb2, k] : by_bound) self(self, c[k], true, element, depth + 1);
-      return;
-    }
-    Node children[4];
-    {
-      detail::Net lo, hi;
-      detail::split_half(node.net, 0, lo, hi);
-      detail::split_half(lo, 1, children[0].net, children[1].net);
-      detail::split_half(hi, 1, children[2].net, children[3].net);
-    }
-    for (int k = 0; k < 4; ++k) {
-      finish_node(children[k]);
-      by_bound[k] = {box_distance2(children[k].box, x), k};
-    }
-    std::sort(by_bound, by_bound + 4);
-    for (const auto& [lb2, k] : by_bound) self(self, children[k], false, element, depth + 1);
-  };
+  cs.prove_region();  // the start's
   for (const auto& [lb2, e] : order) {
-    if (everything_proven) break;
-    const double t = threshold();
+    if (cs.everything_proven) break;
+    const double t = cs.threshold();
     if (t < 0.0 || lb2 > t * t) break;
     if (!tree_.empty()) {
-      visit(visit, tree_[static_cast<std::size_t>(e)], true, e, 0);
+      cs.visit(tree_[static_cast<std::size_t>(e)], true, e, 0);
     } else {  // degrees above the nets' capacity: the sampled search, not certified
       const std::size_t k = static_cast<std::size_t>(e);
       if (hull_lower_bound(boxes_[k], hull_.data() + hull_offset_[k],
                            hull_offset_[k + 1] - hull_offset_[k], x,
-                           best_d < kInf ? &best.point : nullptr) > threshold())
+                           cs.best_d < kInf ? &cs.best.point : nullptr) > cs.threshold())
         continue;
-      seed_newtons(e);
-      certified = false;
+      cs.seed_newtons(e);
+      cs.certified = false;
     }
   }
-  if (best_d == kInf) {
-    if (ub < max_distance) {  // only the sample's node held points this close: solve there
-      ProjectionResult r = closest_point_local(s_, x, ub_uv, opt);
-      r.iterations += iterations;
-      r.certified = false;
-      return r;
-    }
-    best.iterations = iterations;
-    return best;
-  }
-  best.certified = certified;
-  best.iterations = iterations;
-  if (best_patch_kkt) {
-    best.status = boundary_status(s_, best.uv);
-    return best;
-  }
-  // The node's answer is a local minimum of the patch unless it rests on an element bound
-  // inside the patch or on a seam (the bound of a closed direction); then polish on the whole
-  // patch, which also wraps across the seam.
-  const Domain2& er = elements_[static_cast<std::size_t>(best_element)].range;
-  const bool inner_bound = (best.uv[0] <= er.u.lo && (er.u.lo > dom.u.lo || cu)) ||
-                           (best.uv[0] >= er.u.hi && (er.u.hi < dom.u.hi || cu)) ||
-                           (best.uv[1] <= er.v.lo && (er.v.lo > dom.v.lo || cv)) ||
-                           (best.uv[1] >= er.v.hi && (er.v.hi < dom.v.hi || cv));
-  if (!inner_bound) {
-    // A node's answer on a bound of the node inside its element: polish on the element.
-    const bool node_bound = (best.uv[0] <= best_range.u.lo && best_range.u.lo > er.u.lo) ||
-                            (best.uv[0] >= best_range.u.hi && best_range.u.hi < er.u.hi) ||
-                            (best.uv[1] <= best_range.v.lo && best_range.v.lo > er.v.lo) ||
-                            (best.uv[1] >= best_range.v.hi && best_range.v.hi < er.v.hi);
-    if (node_bound) {
-      const ProjectionResult r = closest_point_local(s_, x, best.uv, er, opt);
-      if (found(r.status) && (r.point - x).norm() <= best_d) {
-        best = r;
-        best.iterations += iterations;
-        best.certified = certified;
-      }
-    }
-    best.status = boundary_status(s_, best.uv);
-    return best;
-  }
-  ProjectionResult r = closest_point_local(s_, x, best.uv, opt);
-  r.iterations += iterations;
-  r.certified = certified;
-  if (!found(r.status) || (r.point - x).norm() > best_d * (1.0 + 1e-12) + 1e-300) return best;
-  return r;
+  return cs.answer(max_distance);
 }
 
 bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r) const {
