@@ -52,17 +52,20 @@ void basis_funs(int span, double u, int p, std::span<const double> U, BasisValue
 namespace {
 
 // A2.3 (p. 72). ndu holds basis functions (upper triangle) and knot differences (lower).
-// PF = p for the common degrees (the loops unroll), 0 when p is known at run time only.
-template <int PF>
-void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const double> U,
-                          BasisDerivs& ders) {
-  const int p = PF > 0 ? PF : p_rt;
-  assert(p <= kMaxDegree && nd <= kMaxDerivOrder);
-  constexpr int M = kMaxDegree + 1;
-  double ndu[M][M];
-  double a[2][M];
-  double left[M], right[M];
+// PF = p for the common degrees (the loops unroll), 0 when p is known at run time only; the
+// helpers below take PF too, so that each of them unrolls where the kernel did. They are forced
+// inline: GCC inlines them anyway, but only after its early passes, which then no longer see
+// that nd > 2 on the general path for p = 2 (its loops stay rolled and ndu goes to the stack).
+constexpr int kM = kMaxDegree + 1;
+using Ndu = double[kM][kM];
 
+/// A2.3's triangular scheme: the basis functions of degrees 0..p at u (upper triangle of ndu,
+/// column j degree j) and the knot differences right + left (lower triangle).
+template <int PF>
+[[gnu::always_inline]] inline void basis_triangle(int span, double u, int p_rt,
+                                                  std::span<const double> U, Ndu& ndu) {
+  const int p = PF > 0 ? PF : p_rt;
+  double left[kM], right[kM];
   ndu[0][0] = 1.0;
   for (int j = 1; j <= p; ++j) {
     left[j] = u - U[span + 1 - j];
@@ -76,38 +79,45 @@ void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const 
     }
     ndu[j][j] = saved;
   }
-  for (int k = 0; k <= nd; ++k)
-    for (int j = 0; j <= p; ++j) ders[k][j] = 0.0;
-  for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
+}
 
-  if (nd <= 2 && p >= 2) {
-    // Orders 1 and 2 with A2.3's coefficients a_{k,j} written out (the hot path of surface
-    // evaluation); ndu[j][p-k] are the basis functions of degree p-k, ndu[p-k+1][.] the knot
-    // differences. Terms whose indices leave the triangle are absent (zero).
-    // Reciprocal knot differences, each computed once (divisions dominate this kernel).
-    double inv_p[kMaxDegree + 1], inv_q[kMaxDegree + 1];
-    for (int r = 0; r < p; ++r) inv_p[r] = 1.0 / ndu[p][r];
-    if (nd >= 2)
-      for (int r = 0; r < p - 1; ++r) inv_q[r] = 1.0 / ndu[p - 1][r];
-    for (int r = 0; r <= p; ++r) {
-      const double a10 = r >= 1 ? inv_p[r - 1] : 0.0;
-      const double a11 = r <= p - 1 ? -inv_p[r] : 0.0;
-      double d1 = 0.0;
-      if (r >= 1) d1 += a10 * ndu[r - 1][p - 1];
-      if (r <= p - 1) d1 += a11 * ndu[r][p - 1];
-      if (nd >= 1) ders[1][r] = p * d1;
-      if (nd >= 2) {
-        double d2 = 0.0;
-        if (r >= 2) d2 += a10 * inv_q[r - 2] * ndu[r - 2][p - 2];
-        if (r >= 1 && r <= p - 1) d2 += (a11 - a10) * inv_q[r - 1] * ndu[r - 1][p - 2];
-        if (r <= p - 2) d2 += -a11 * inv_q[r] * ndu[r][p - 2];
-        ders[2][r] = p * (p - 1) * d2;
-      }
+/// Derivatives of orders 1 and 2 (nd <= 2, p >= 2) with A2.3's coefficients a_{k,j} written
+/// out (the hot path of surface evaluation); ndu[j][p-k] are the basis functions of degree
+/// p-k, ndu[p-k+1][.] the knot differences. Terms whose indices leave the triangle are absent
+/// (zero).
+template <int PF>
+[[gnu::always_inline]] inline void low_order_ders(int p_rt, int nd, const Ndu& ndu,
+                                                  BasisDerivs& ders) {
+  const int p = PF > 0 ? PF : p_rt;
+  // Reciprocal knot differences, each computed once (divisions dominate this kernel).
+  double inv_p[kMaxDegree + 1], inv_q[kMaxDegree + 1];
+  for (int r = 0; r < p; ++r) inv_p[r] = 1.0 / ndu[p][r];
+  if (nd >= 2)
+    for (int r = 0; r < p - 1; ++r) inv_q[r] = 1.0 / ndu[p - 1][r];
+  for (int r = 0; r <= p; ++r) {
+    const double a10 = r >= 1 ? inv_p[r - 1] : 0.0;
+    const double a11 = r <= p - 1 ? -inv_p[r] : 0.0;
+    double d1 = 0.0;
+    if (r >= 1) d1 += a10 * ndu[r - 1][p - 1];
+    if (r <= p - 1) d1 += a11 * ndu[r][p - 1];
+    if (nd >= 1) ders[1][r] = p * d1;
+    if (nd >= 2) {
+      double d2 = 0.0;
+      if (r >= 2) d2 += a10 * inv_q[r - 2] * ndu[r - 2][p - 2];
+      if (r >= 1 && r <= p - 1) d2 += (a11 - a10) * inv_q[r - 1] * ndu[r - 1][p - 2];
+      if (r <= p - 2) d2 += -a11 * inv_q[r] * ndu[r][p - 2];
+      ders[2][r] = p * (p - 1) * d2;
     }
-    return;
   }
+}
 
-  const int n = std::min(nd, p);
+/// Derivatives of orders 1..n (n = min(nd, p)) by A2.3's recurrence for the coefficients
+/// a_{k,j} (two rows, alternating), then scaled by p!/(p-k)!.
+template <int PF>
+[[gnu::always_inline]] inline void general_ders(int p_rt, int n, const Ndu& ndu,
+                                                BasisDerivs& ders) {
+  const int p = PF > 0 ? PF : p_rt;
+  double a[2][kM];
   for (int r = 0; r <= p; ++r) {
     int s1 = 0, s2 = 1;
     a[0][0] = 1.0;
@@ -138,6 +148,22 @@ void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const 
     for (int j = 0; j <= p; ++j) ders[k][j] *= r;
     r *= (p - k);
   }
+}
+
+template <int PF>
+void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const double> U,
+                          BasisDerivs& ders) {
+  const int p = PF > 0 ? PF : p_rt;
+  assert(p <= kMaxDegree && nd <= kMaxDerivOrder);
+  Ndu ndu;
+  basis_triangle<PF>(span, u, p, U, ndu);
+  for (int k = 0; k <= nd; ++k)
+    for (int j = 0; j <= p; ++j) ders[k][j] = 0.0;
+  for (int j = 0; j <= p; ++j) ders[0][j] = ndu[j][p];
+  if (nd <= 2 && p >= 2)
+    low_order_ders<PF>(p, nd, ndu, ders);
+  else
+    general_ders<PF>(p, std::min(nd, p), ndu, ders);
 }
 
 }  // namespace

@@ -405,116 +405,135 @@ NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
   return s;
 }
 
+constexpr double kDeg = std::numbers::pi / 180.0;  // degrees of the model format to radians
+
+// One function per shape of a construction: each checks its keys and values (naming the key at
+// fault) and builds the exact NURBS.
+
+NurbsSurface construct_cylinder(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "center", "axis", "ref_dir", "radius", "height", "start_deg",
+                   "end_deg", "refine", "normal"});
+  const Vector3d base = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
+  const Vector3d ref = e.has("ref_dir") ? parse_direction(e["ref_dir"]) : Vector3d::UnitX();
+  const double r = parse_positive(e["radius"]), h = parse_positive(e["height"]);
+  const double a = optional_number(e, "start_deg", 0.0), b = optional_number(e, "end_deg", 360.0);
+  check_length(e["radius"]);
+  check_length(e["height"]);
+  if (!(std::abs(a) <= kMaxAngleDeg))
+    e["start_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
+  if (!(std::abs(b) <= kMaxAngleDeg))
+    e["end_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
+  if (!(b > a))
+    e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
+        "the angular range needs start_deg < end_deg (start_deg " + num(a) + ", end_deg " + num(b) +
+        ")");
+  if (b - a > 360.0 * (1.0 + 1e-12))
+    e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
+        "the angular range end_deg - start_deg must be <= 360 (start_deg " + num(a) + ", end_deg " +
+        num(b) + ")");
+  return finish_surface(e, construct(e, [&] {
+                          return make_cylinder(base, axis.normalized(), ref, r, h, a * kDeg,
+                                               b * kDeg);
+                        }));
+}
+
+NurbsSurface construct_sphere(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "center", "radius", "refine", "normal"});
+  const Vector3d c = parse_vec3(e["center"]);
+  const double r = parse_positive(e["radius"]);
+  check_length(e["radius"]);
+  check_point(e["center"]);
+  return finish_surface(e, construct(e, [&] { return make_sphere(c, r); }));
+}
+
+NurbsSurface construct_torus(const JsonCursor& e) {
+  e.expect_object(
+      {"type", "shape", "center", "axis", "major_radius", "minor_radius", "refine", "normal"});
+  const Vector3d c = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
+  const double R = parse_positive(e["major_radius"]), r = parse_positive(e["minor_radius"]);
+  check_length(e["major_radius"]);
+  check_point(e["center"]);
+  if (!(r < R)) e["minor_radius"].fail("must be < major_radius " + num(R) + " (a ring torus)");
+  return finish_surface(e, construct(e, [&] { return make_torus(c, axis.normalized(), R, r); }));
+}
+
+NurbsSurface construct_plane(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "origin", "du", "dv", "refine", "normal"});
+  const Vector3d o = parse_vec3(e["origin"]), du = parse_direction(e["du"]),
+                 dv = parse_direction(e["dv"]);
+  check_point(e["origin"]);
+  check_point(e["du"]);
+  check_point(e["dv"]);
+  if (!(du.cross(dv).norm() > 1e-12 * du.norm() * dv.norm()))
+    e["dv"].fail("must not be parallel to du (the patch would be a line)");
+  return finish_surface(e, construct(e, [&] { return make_plane_patch(o, du, dv); }));
+}
+
+NurbsSurface construct_hyperboloid(const JsonCursor& e) {  // [KS15] (11)
+  e.expect_object({"type", "shape", "a", "x_range", "y_range", "refine", "normal"});
+  const double a = e["a"].as_number();
+  const Interval x = parse_interval(e["x_range"]), y = parse_interval(e["y_range"]);
+  if (!std::isfinite(x.lo) || !std::isfinite(x.hi)) e["x_range"].fail("must be finite");
+  if (!std::isfinite(y.lo) || !std::isfinite(y.hi)) e["y_range"].fail("must be finite");
+  if (!(std::max(std::abs(x.lo), std::abs(x.hi)) <= kMaxCoordinate))
+    e["x_range"].fail("must lie within +-" + num(kMaxCoordinate));
+  if (!(std::max(std::abs(y.lo), std::abs(y.hi)) <= kMaxCoordinate))
+    e["y_range"].fail("must lie within +-" + num(kMaxCoordinate));
+  if (!(std::abs(a) <= kMaxCoordinate)) e["a"].fail("must lie within +-" + num(kMaxCoordinate));
+  return finish_surface(
+      e, construct(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
+}
+
+/// A straight rod: a degree-1 segment elevated and split into elements.
+NurbsCurve construct_line(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "start", "end", "degree", "elements"});
+  const Vector3d a = parse_vec3(e["start"]), b = parse_vec3(e["end"]);
+  check_point(e["start"]);
+  check_point(e["end"]);
+  if (!((b - a).norm() > 0.0)) e["end"].fail("must differ from start");
+  const int p = e.has("degree") ? parse_count(e["degree"], 1, kMaxDegree) : 1;
+  const int n = e.has("elements") ? parse_count(e["elements"], 1, kMaxCurveElements) : 1;
+  return construct(e, [&] {
+    NurbsCurve c = make_line(a, b);
+    if (p > 1) c = elevate_degree(c, p - 1);
+    return n > 1 ? subdivide(c, n) : c;
+  });
+}
+
+NurbsCurve construct_wrap_path(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "center", "axis", "mid_dir", "radius", "angle_deg", "pitch",
+                   "span_length", "arc_elements", "span_elements", "degree"});
+  WrapPathSpec w;
+  if (e.has("center")) w.center = parse_vec3(e["center"]);
+  if (e.has("axis")) w.axis = parse_direction(e["axis"]);
+  if (e.has("mid_dir")) w.mid_dir = parse_direction(e["mid_dir"]);
+  if (e.has("center")) check_point(e["center"]);
+  w.radius = parse_positive(e["radius"]);
+  check_length(e["radius"]);
+  const JsonCursor ac = e["angle_deg"];
+  w.angle = ac.as_number() * kDeg;
+  if (!(w.angle > 0.0 && w.angle <= 4.0 * std::numbers::pi)) ac.fail("must be in (0, 720]");
+  w.pitch = optional_number(e, "pitch", 0.0);
+  if (!std::isfinite(w.pitch) || std::abs(w.pitch) > kMaxCoordinate)
+    e["pitch"].fail("must lie within +-" + num(kMaxCoordinate));
+  w.span_length = parse_positive(e["span_length"]);
+  check_length(e["span_length"]);
+  w.arc_elements = parse_count(e["arc_elements"], 1, kMaxCurveElements);
+  w.span_elements = parse_count(e["span_elements"], 1, kMaxCurveElements);
+  if (e.has("degree")) w.degree = parse_count(e["degree"], 3, 5);
+  return construct(e, [&] { return make_wrap_path(w).curve; });
+}
+
 GeometryEntity parse_construction(const JsonCursor& e) {
-  constexpr double kDeg = std::numbers::pi / 180.0;
   const JsonCursor sc = e["shape"];
   const std::string shape = sc.as_string();
-  if (shape == "cylinder") {
-    e.expect_object({"type", "shape", "center", "axis", "ref_dir", "radius", "height", "start_deg",
-                     "end_deg", "refine", "normal"});
-    const Vector3d base = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
-    const Vector3d ref = e.has("ref_dir") ? parse_direction(e["ref_dir"]) : Vector3d::UnitX();
-    const double r = parse_positive(e["radius"]), h = parse_positive(e["height"]);
-    const double a = optional_number(e, "start_deg", 0.0), b = optional_number(e, "end_deg", 360.0);
-    check_length(e["radius"]);
-    check_length(e["height"]);
-    if (!(std::abs(a) <= kMaxAngleDeg))
-      e["start_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
-    if (!(std::abs(b) <= kMaxAngleDeg))
-      e["end_deg"].fail("must lie in [-" + num(kMaxAngleDeg) + ", " + num(kMaxAngleDeg) + "]");
-    if (!(b > a))
-      e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
-          "the angular range needs start_deg < end_deg (start_deg " + num(a) + ", end_deg " +
-          num(b) + ")");
-    if (b - a > 360.0 * (1.0 + 1e-12))
-      e[e.has("end_deg") ? "end_deg" : "start_deg"].fail(
-          "the angular range end_deg - start_deg must be <= 360 (start_deg " + num(a) +
-          ", end_deg " + num(b) + ")");
-    return finish_surface(e, construct(e, [&] {
-                            return make_cylinder(base, axis.normalized(), ref, r, h, a * kDeg,
-                                                 b * kDeg);
-                          }));
-  }
-  if (shape == "sphere") {
-    e.expect_object({"type", "shape", "center", "radius", "refine", "normal"});
-    const Vector3d c = parse_vec3(e["center"]);
-    const double r = parse_positive(e["radius"]);
-    check_length(e["radius"]);
-    check_point(e["center"]);
-    return finish_surface(e, construct(e, [&] { return make_sphere(c, r); }));
-  }
-  if (shape == "torus") {
-    e.expect_object(
-        {"type", "shape", "center", "axis", "major_radius", "minor_radius", "refine", "normal"});
-    const Vector3d c = parse_vec3(e["center"]), axis = parse_direction(e["axis"]);
-    const double R = parse_positive(e["major_radius"]), r = parse_positive(e["minor_radius"]);
-    check_length(e["major_radius"]);
-    check_point(e["center"]);
-    if (!(r < R)) e["minor_radius"].fail("must be < major_radius " + num(R) + " (a ring torus)");
-    return finish_surface(e, construct(e, [&] { return make_torus(c, axis.normalized(), R, r); }));
-  }
-  if (shape == "plane") {
-    e.expect_object({"type", "shape", "origin", "du", "dv", "refine", "normal"});
-    const Vector3d o = parse_vec3(e["origin"]), du = parse_direction(e["du"]),
-                   dv = parse_direction(e["dv"]);
-    check_point(e["origin"]);
-    check_point(e["du"]);
-    check_point(e["dv"]);
-    if (!(du.cross(dv).norm() > 1e-12 * du.norm() * dv.norm()))
-      e["dv"].fail("must not be parallel to du (the patch would be a line)");
-    return finish_surface(e, construct(e, [&] { return make_plane_patch(o, du, dv); }));
-  }
-  if (shape == "hyperboloid") {  // [KS15] (11)
-    e.expect_object({"type", "shape", "a", "x_range", "y_range", "refine", "normal"});
-    const double a = e["a"].as_number();
-    const Interval x = parse_interval(e["x_range"]), y = parse_interval(e["y_range"]);
-    if (!std::isfinite(x.lo) || !std::isfinite(x.hi)) e["x_range"].fail("must be finite");
-    if (!std::isfinite(y.lo) || !std::isfinite(y.hi)) e["y_range"].fail("must be finite");
-    if (!(std::max(std::abs(x.lo), std::abs(x.hi)) <= kMaxCoordinate))
-      e["x_range"].fail("must lie within +-" + num(kMaxCoordinate));
-    if (!(std::max(std::abs(y.lo), std::abs(y.hi)) <= kMaxCoordinate))
-      e["y_range"].fail("must lie within +-" + num(kMaxCoordinate));
-    if (!(std::abs(a) <= kMaxCoordinate)) e["a"].fail("must lie within +-" + num(kMaxCoordinate));
-    return finish_surface(
-        e, construct(e, [&] { return make_bilinear_hyperboloid(a, x.lo, x.hi, y.lo, y.hi); }));
-  }
-  if (shape == "line") {  // a straight rod: degree-1 segment elevated and split into elements
-    e.expect_object({"type", "shape", "start", "end", "degree", "elements"});
-    const Vector3d a = parse_vec3(e["start"]), b = parse_vec3(e["end"]);
-    check_point(e["start"]);
-    check_point(e["end"]);
-    if (!((b - a).norm() > 0.0)) e["end"].fail("must differ from start");
-    const int p = e.has("degree") ? parse_count(e["degree"], 1, kMaxDegree) : 1;
-    const int n = e.has("elements") ? parse_count(e["elements"], 1, kMaxCurveElements) : 1;
-    return construct(e, [&] {
-      NurbsCurve c = make_line(a, b);
-      if (p > 1) c = elevate_degree(c, p - 1);
-      return n > 1 ? subdivide(c, n) : c;
-    });
-  }
-  if (shape == "wrap_path") {
-    e.expect_object({"type", "shape", "center", "axis", "mid_dir", "radius", "angle_deg", "pitch",
-                     "span_length", "arc_elements", "span_elements", "degree"});
-    WrapPathSpec w;
-    if (e.has("center")) w.center = parse_vec3(e["center"]);
-    if (e.has("axis")) w.axis = parse_direction(e["axis"]);
-    if (e.has("mid_dir")) w.mid_dir = parse_direction(e["mid_dir"]);
-    if (e.has("center")) check_point(e["center"]);
-    w.radius = parse_positive(e["radius"]);
-    check_length(e["radius"]);
-    const JsonCursor ac = e["angle_deg"];
-    w.angle = ac.as_number() * kDeg;
-    if (!(w.angle > 0.0 && w.angle <= 4.0 * std::numbers::pi)) ac.fail("must be in (0, 720]");
-    w.pitch = optional_number(e, "pitch", 0.0);
-    if (!std::isfinite(w.pitch) || std::abs(w.pitch) > kMaxCoordinate)
-      e["pitch"].fail("must lie within +-" + num(kMaxCoordinate));
-    w.span_length = parse_positive(e["span_length"]);
-    check_length(e["span_length"]);
-    w.arc_elements = parse_count(e["arc_elements"], 1, kMaxCurveElements);
-    w.span_elements = parse_count(e["span_elements"], 1, kMaxCurveElements);
-    if (e.has("degree")) w.degree = parse_count(e["degree"], 3, 5);
-    return construct(e, [&] { return make_wrap_path(w).curve; });
-  }
+  if (shape == "cylinder") return construct_cylinder(e);
+  if (shape == "sphere") return construct_sphere(e);
+  if (shape == "torus") return construct_torus(e);
+  if (shape == "plane") return construct_plane(e);
+  if (shape == "hyperboloid") return construct_hyperboloid(e);
+  if (shape == "line") return construct_line(e);
+  if (shape == "wrap_path") return construct_wrap_path(e);
   sc.fail(
       "unknown shape (expected one of cylinder, sphere, torus, plane, hyperboloid, line, "
       "wrap_path)");

@@ -36,6 +36,62 @@ std::string index_suffix(int i, int n) {
   return buf;
 }
 
+/// The feet sorted into cubic cells of side c, the largest footprint radius (at least 0.75
+/// times the grid's spacing): key floor(x / c) per coordinate.
+struct FootCells {
+  using Cell = std::array<long long, 3>;
+  double c = 0.0;
+  std::vector<std::pair<Cell, std::size_t>> sorted;  // (cell, foot), by cell
+
+  FootCells(double spacing, const std::vector<ContactFoot>& feet) : c(0.75 * spacing) {
+    for (const ContactFoot& f : feet)
+      if (std::isfinite(f.radius)) c = std::max(c, f.radius);
+    if (c > 0.0 && std::isfinite(c))
+      for (std::size_t i = 0; i < feet.size(); ++i)
+        if (feet[i].x.allFinite()) sorted.push_back({cell_of(feet[i].x), i});
+    std::sort(sorted.begin(), sorted.end());
+  }
+
+  Cell cell_of(const Vector3d& x) const {
+    Cell k;
+    for (int i = 0; i < 3; ++i)  // clamped: a far or huge coordinate stays a valid key
+      k[static_cast<std::size_t>(i)] =
+          static_cast<long long>(std::clamp(std::floor(x[i] / c), -1e15, 1e15));
+    return k;
+  }
+};
+
+/// The sums of one grid node x over the feet within their footprint radius: the weights
+/// (their sum and largest), the weighted pressure and traction, and the state of the foot of
+/// the largest weight.
+struct NodeSums {
+  double wsum = 0.0, wmax = 0.0;
+  double& pressure;
+  Vector3d& traction;
+  double& state;
+
+  /// Adds the feet of cell `key` that reach x, weight (1 - d/h)^2.
+  void add_cell(const FootCells& cells, const FootCells::Cell& key, const Vector3d& x,
+                double spacing, const std::vector<ContactFoot>& feet) {
+    auto it =
+        std::lower_bound(cells.sorted.begin(), cells.sorted.end(), std::pair{key, std::size_t{0}});
+    for (; it != cells.sorted.end() && it->first == key; ++it) {
+      const ContactFoot& f = feet[it->second];
+      const double h = std::max(f.radius, 0.75 * spacing);
+      const double d = (x - f.x).norm();
+      if (!(d < h)) continue;
+      const double w = (1.0 - d / h) * (1.0 - d / h);
+      wsum += w;
+      pressure += w * f.pressure;
+      traction += w * f.traction;
+      if (w > wmax) {
+        wmax = w;
+        state = f.state;
+      }
+    }
+  }
+};
+
 /// The contact on a grid of a rigid piece (issue 12 item 6): every grid node takes the weighted
 /// mean of the feet within their footprint radius h of it, weight (1 - d/h)^2, and 0 where no
 /// foot reaches (the state: the foot of the largest weight). h is 1.5 times the point's share of
@@ -48,50 +104,18 @@ VtkPointData tool_fields(const std::vector<Vector3d>& grid, double spacing,
                          const std::vector<ContactFoot>& feet) {
   std::vector<double> pressure(grid.size(), 0.0), state(grid.size(), 0.0);
   std::vector<Vector3d> traction(grid.size(), Vector3d::Zero());
-  // The cells: key floor(x / c) per coordinate, c the largest footprint radius.
-  double c = 0.75 * spacing;
-  for (const ContactFoot& f : feet)
-    if (std::isfinite(f.radius)) c = std::max(c, f.radius);
-  using Cell = std::array<long long, 3>;
-  const auto cell_of = [c](const Vector3d& x) {
-    Cell k;
-    for (int i = 0; i < 3; ++i)  // clamped: a far or huge coordinate stays a valid key
-      k[static_cast<std::size_t>(i)] =
-          static_cast<long long>(std::clamp(std::floor(x[i] / c), -1e15, 1e15));
-    return k;
-  };
-  std::vector<std::pair<Cell, std::size_t>> sorted;  // (cell, foot), by cell
-  if (c > 0.0 && std::isfinite(c))
-    for (std::size_t i = 0; i < feet.size(); ++i)
-      if (feet[i].x.allFinite()) sorted.push_back({cell_of(feet[i].x), i});
-  std::sort(sorted.begin(), sorted.end());
+  const FootCells cells(spacing, feet);
   for (std::size_t g = 0; g < grid.size(); ++g) {
-    if (sorted.empty() || !grid[g].allFinite()) continue;
-    double wsum = 0.0, wmax = 0.0;
-    const Cell home = cell_of(grid[g]);
+    if (cells.sorted.empty() || !grid[g].allFinite()) continue;
+    NodeSums sums{0.0, 0.0, pressure[g], traction[g], state[g]};
+    const FootCells::Cell home = cells.cell_of(grid[g]);
     for (long long dx = -1; dx <= 1; ++dx)
       for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz) {
-          const Cell key{home[0] + dx, home[1] + dy, home[2] + dz};
-          auto it = std::lower_bound(sorted.begin(), sorted.end(), std::pair{key, std::size_t{0}});
-          for (; it != sorted.end() && it->first == key; ++it) {
-            const ContactFoot& f = feet[it->second];
-            const double h = std::max(f.radius, 0.75 * spacing);
-            const double d = (grid[g] - f.x).norm();
-            if (!(d < h)) continue;
-            const double w = (1.0 - d / h) * (1.0 - d / h);
-            wsum += w;
-            pressure[g] += w * f.pressure;
-            traction[g] += w * f.traction;
-            if (w > wmax) {
-              wmax = w;
-              state[g] = f.state;
-            }
-          }
-        }
-    if (wsum > 0.0) {  // a non-finite value (a foot's): 0 and non_finite = 1 (write_vtk_grid)
-      pressure[g] /= wsum;
-      traction[g] /= wsum;
+        for (long long dz = -1; dz <= 1; ++dz)
+          sums.add_cell(cells, {home[0] + dx, home[1] + dy, home[2] + dz}, grid[g], spacing, feet);
+    if (sums.wsum > 0.0) {  // a non-finite value (a foot's): 0 and non_finite = 1 (write_vtk_grid)
+      pressure[g] /= sums.wsum;
+      traction[g] /= sums.wsum;
     }
   }
   VtkPointData d;

@@ -111,6 +111,141 @@ struct NonlinearSolver::Workspace {
   double r0_max = 0.0;  // the largest |R_0| of the run's attempts so far (divergence scale)
 };
 
+namespace {
+
+/// R(u, t) into R and the tangent into K, timed and counted in r. Returns |R|, or -1 with
+/// `error` set when the problem threw.
+double assemble_residual(NonlinearProblem& problem, const VectorXd& u, double t, int n, VectorXd& R,
+                         SparseMatrix& K, NonlinearSolverResult& r, std::string& error) {
+  const Clock::time_point t0 = Clock::now();
+  try {
+    problem.assemble(u, t, R, &K);
+  } catch (const std::exception& e) {
+    r.time_assembly += seconds_since(t0);
+    ++r.assemblies;
+    error = e.what();
+    return -1.0;
+  }
+  r.time_assembly += seconds_since(t0);
+  ++r.assemblies;
+  if (R.size() != n || K.rows() != n || K.cols() != n)
+    throw std::logic_error("NonlinearProblem::assemble: residual of size " +
+                           std::to_string(R.size()) + " and tangent of size " +
+                           std::to_string(K.rows()) + " x " + std::to_string(K.cols()) + " for " +
+                           std::to_string(n) + " unknowns");
+  return R.norm();
+}
+
+/// The Newton correction: K du = rhs, timed in r, the factorizations counted in a by backend.
+LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, const VectorXd& rhs,
+                                   VectorXd& du, StepAttempt& a, NonlinearSolverResult& r) {
+  const Clock::time_point t0 = Clock::now();
+  LinearSolveStatus ls = linear.factorize(K);
+  if (linear.fell_back()) ++a.cholesky_fallbacks;
+  if (ls == LinearSolveStatus::success) {
+    if (linear.backend() == LinearBackend::cholmod)
+      ++a.cholmod_factorizations;
+    else
+      ++a.umfpack_factorizations;
+    ls = linear.solve(rhs, du);
+  }
+  r.time_linear_solve += seconds_since(t0);
+  return ls;
+}
+
+/// The divergence tests after iteration k: |R_k| above r_div, or |R| grew in
+/// max_residual_increases consecutive iterations (`increases` counts them). Returns why the
+/// iterations diverged, or an empty string.
+std::string divergence(const NonlinearSolverSettings& s, int k, double rk, double r_prev,
+                       double r_div, double r0_max, int& increases) {
+  if (rk > r_div)
+    return format("iteration %d: |R| = %.3e > %.3g max |R_0| (max |R_0| = %.3e)", k, rk,
+                  s.divergence_ratio, r0_max);
+  increases = rk > r_prev ? increases + 1 : 0;
+  if (s.max_residual_increases > 0 && increases >= s.max_residual_increases)
+    return format("iteration %d: |R| grew in %d consecutive iterations (|R| = %.3e)", k, increases,
+                  rk);
+  return {};
+}
+
+/// The end of the step from t with nominal size dt.
+double step_end(const NonlinearSolverSettings& s, double t, double dt, double t_eps) {
+  // The step ends at t1 if it would leave less than min_step to go.
+  double t_new = t + dt;
+  if (t_new > s.t1 - t_eps || s.t1 - t_new < s.min_step) t_new = s.t1;
+  for (double h : s.hit_times)  // land on requested times
+    if (h > t + t_eps && h < t_new - t_eps) t_new = h;
+  return t_new;
+}
+
+/// Adds a re-solve after a multiplier update (b) to the step's attempt a: its iterations,
+/// norms and factorizations.
+void append_resolve(StepAttempt& a, const StepAttempt& b) {
+  a.iterations += b.iterations;
+  a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(), b.residual_norms.end());
+  a.energy_norms.insert(a.energy_norms.end(), b.energy_norms.begin(), b.energy_norms.end());
+  a.cholmod_factorizations += b.cholmod_factorizations;
+  a.umfpack_factorizations += b.umfpack_factorizations;
+  a.cholesky_fallbacks += b.cholesky_fallbacks;
+}
+
+/// Exact enforcement after the step's converged Newton solve: update multipliers and solve
+/// again (resolve(b, r0_step): Newton at the same t into b, r0_step the step's first |R_0|)
+/// until the constraints hold, or a re-solve or augment fails (a's outcome). Returns the most
+/// iterations of one re-solve (0 without any).
+template <class Resolve>
+int augment_until_satisfied(NonlinearProblem& problem, const VectorXd& u, double t, StepAttempt& a,
+                            Resolve&& resolve) {
+  int hardest_resolve = 0;
+  while (a.outcome == NewtonOutcome::converged) {
+    const AugmentResult ar = problem.augment(u, t);
+    if (ar.status == AugmentStatus::satisfied) break;
+    if (ar.status == AugmentStatus::failed) {
+      a.outcome = NewtonOutcome::augmentation_failed;
+      a.message = ar.message;
+      break;
+    }
+    ++a.augmentations;
+    StepAttempt b;
+    resolve(b, a.residual_norms.front());
+    hardest_resolve = std::max(hardest_resolve, b.iterations);
+    append_resolve(a, b);
+    if (b.outcome != NewtonOutcome::converged) {
+      a.outcome = b.outcome;
+      a.message = format("after augmentation %d (%s): %s", a.augmentations, ar.message.c_str(),
+                         b.message.c_str());
+    }
+  }
+  return hardest_resolve;
+}
+
+/// The run's totals of an attempt, converged or not.
+void add_attempt_totals(NonlinearSolverResult& r, const StepAttempt& a) {
+  r.total_iterations += a.iterations;
+  r.augmentations += a.augmentations;
+  r.cholmod_factorizations += a.cholmod_factorizations;
+  r.umfpack_factorizations += a.umfpack_factorizations;
+  r.cholesky_fallbacks += a.cholesky_fallbacks;
+}
+
+/// The progress line of converged step r.steps, at time t, lambda the fraction of the span done.
+void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const StepAttempt& a,
+                        double t, double lambda, const NonlinearProblem& problem) {
+  const double rn = a.residual_norms.back();
+  const double en = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
+  log << format(
+      "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
+      "|R0| = %.3e  |R| = %.3e  E = %.3e",
+      r.steps, t, a.dt, lambda, a.iterations, a.residual_norms.front(), rn, en);
+  if (a.augmentations > 0) log << "  augmentations " << a.augmentations;
+  if (a.cholesky_fallbacks > 0) log << "  lu-fallbacks " << a.cholesky_fallbacks;
+  const std::string status = problem.status();
+  if (!status.empty()) log << "  " << status;
+  log << '\n';
+}
+
+}  // namespace
+
 NonlinearSolver::NonlinearSolver(const NonlinearSolverSettings& settings) : settings_(settings) {
   settings_.validate();
 }
@@ -130,25 +265,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
 
   // Returns |R|, or -1 with `error` set when the problem threw.
   std::string error;
-  const auto assemble = [&] {
-    const Clock::time_point t0 = Clock::now();
-    try {
-      problem.assemble(u, t, w.R, &w.K);
-    } catch (const std::exception& e) {
-      r.time_assembly += seconds_since(t0);
-      ++r.assemblies;
-      error = e.what();
-      return -1.0;
-    }
-    r.time_assembly += seconds_since(t0);
-    ++r.assemblies;
-    if (w.R.size() != w.n || w.K.rows() != w.n || w.K.cols() != w.n)
-      throw std::logic_error("NonlinearProblem::assemble: residual of size " +
-                             std::to_string(w.R.size()) + " and tangent of size " +
-                             std::to_string(w.K.rows()) + " x " + std::to_string(w.K.cols()) +
-                             " for " + std::to_string(w.n) + " unknowns");
-    return w.R.norm();
-  };
+  const auto assemble = [&] { return assemble_residual(problem, u, t, w.n, w.R, w.K, r, error); };
   const auto finish = [&a](NewtonOutcome outcome, std::string message) {
     a.outcome = outcome;
     a.message = std::move(message);
@@ -179,17 +296,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   for (int k = 1; k <= s.max_iterations; ++k) {
     // K du_k = -R_{k-1}
     w.rhs = -w.R;
-    const Clock::time_point t0 = Clock::now();
-    LinearSolveStatus ls = linear_.factorize(w.K);
-    if (linear_.fell_back()) ++a.cholesky_fallbacks;
-    if (ls == LinearSolveStatus::success) {
-      if (linear_.backend() == LinearBackend::cholmod)
-        ++a.cholmod_factorizations;
-      else
-        ++a.umfpack_factorizations;
-      ls = linear_.solve(w.rhs, w.du);
-    }
-    r.time_linear_solve += seconds_since(t0);
+    const LinearSolveStatus ls = solve_correction(linear_, w.K, w.rhs, w.du, a, r);
     if (ls != LinearSolveStatus::success)
       return finish(
           NewtonOutcome::linear_solve_failed,
@@ -226,15 +333,8 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
     if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
       return finish(NewtonOutcome::converged, {});
 
-    if (rk > r_div)
-      return finish(NewtonOutcome::diverged,
-                    format("iteration %d: |R| = %.3e > %.3g max |R_0| (max |R_0| = %.3e)", k, rk,
-                           s.divergence_ratio, w.r0_max));
-    increases = rk > r_prev ? increases + 1 : 0;
-    if (s.max_residual_increases > 0 && increases >= s.max_residual_increases)
-      return finish(NewtonOutcome::diverged,
-                    format("iteration %d: |R| grew in %d consecutive iterations (|R| = %.3e)", k,
-                           increases, rk));
+    if (std::string why = divergence(s, k, rk, r_prev, r_div, w.r0_max, increases); !why.empty())
+      return finish(NewtonOutcome::diverged, std::move(why));
     r_prev = rk;
   }
   const double e_last = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
@@ -276,11 +376,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       break;
     }
     ++attempted;
-    // The step ends at t1 if it would leave less than min_step to go.
-    double t_new = t + dt;
-    if (t_new > s.t1 - t_eps || s.t1 - t_new < s.min_step) t_new = s.t1;
-    for (double h : s.hit_times)  // land on requested times
-      if (h > t + t_eps && h < t_new - t_eps) t_new = h;
+    const double t_new = step_end(s, t, dt, t_eps);
 
     StepAttempt a;
     a.step = r.steps + 1;
@@ -290,43 +386,18 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     int hardest_solve = 0;  // the most iterations of one Newton solve of the step
     try {
       newton(problem, u, t_new, w, a, r);
-      hardest_solve = a.iterations;
+      const int first_solve = a.iterations;
       // Exact enforcement: update multipliers and solve again until the constraints hold.
-      while (a.outcome == NewtonOutcome::converged) {
-        const AugmentResult ar = problem.augment(u, t_new);
-        if (ar.status == AugmentStatus::satisfied) break;
-        if (ar.status == AugmentStatus::failed) {
-          a.outcome = NewtonOutcome::augmentation_failed;
-          a.message = ar.message;
-          break;
-        }
-        ++a.augmentations;
-        StepAttempt b;
-        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true, a.residual_norms.front());
-        hardest_solve = std::max(hardest_solve, b.iterations);
-        a.iterations += b.iterations;
-        a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(),
-                                b.residual_norms.end());
-        a.energy_norms.insert(a.energy_norms.end(), b.energy_norms.begin(), b.energy_norms.end());
-        a.cholmod_factorizations += b.cholmod_factorizations;
-        a.umfpack_factorizations += b.umfpack_factorizations;
-        a.cholesky_fallbacks += b.cholesky_fallbacks;
-        if (b.outcome != NewtonOutcome::converged) {
-          a.outcome = b.outcome;
-          a.message = format("after augmentation %d (%s): %s", a.augmentations, ar.message.c_str(),
-                             b.message.c_str());
-        }
-      }
+      const auto resolve = [&](StepAttempt& b, double r0_step) {
+        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true, r0_step);
+      };
+      hardest_solve = std::max(first_solve, augment_until_satisfied(problem, u, t_new, a, resolve));
     } catch (...) {
       u = u_last;
       problem.restore();
       throw;
     }
-    r.total_iterations += a.iterations;
-    r.augmentations += a.augmentations;
-    r.cholmod_factorizations += a.cholmod_factorizations;
-    r.umfpack_factorizations += a.umfpack_factorizations;
-    r.cholesky_fallbacks += a.cholesky_fallbacks;
+    add_attempt_totals(r, a);
 
     if (a.outcome == NewtonOutcome::converged) {
       t = t_new;
@@ -337,19 +408,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       const Clock::time_point t0 = Clock::now();
       problem.commit(u, t);
       r.time_callback += seconds_since(t0);
-      if (log_) {
-        const double rn = a.residual_norms.back();
-        const double en = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
-        *log_ << format(
-            "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
-            "|R0| = %.3e  |R| = %.3e  E = %.3e",
-            r.steps, t, a.dt, (t - s.t0) / span, a.iterations, a.residual_norms.front(), rn, en);
-        if (a.augmentations > 0) *log_ << "  augmentations " << a.augmentations;
-        if (a.cholesky_fallbacks > 0) *log_ << "  lu-fallbacks " << a.cholesky_fallbacks;
-        const std::string status = problem.status();
-        if (!status.empty()) *log_ << "  " << status;
-        *log_ << '\n';
-      }
+      if (log_) log_converged_step(*log_, r, a, t, (t - s.t0) / span, problem);
       bool go_on = true;
       if (on_step) {
         const Clock::time_point tc = Clock::now();
