@@ -169,19 +169,12 @@ class SurfaceContact {
   /// tangent's triplets. R must have size 3 x.size().
   void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K);
-  /// Stores the current state of every point as history (after a converged step), with the
-  /// multipliers.
+  /// History and multipliers, as CurveContact: commit() after a converged step, augment() the
+  /// Uzawa update, predict(t) the step's first multipliers, restore() after a cut-back.
   void commit();
-  /// Augmented Lagrange (parameters().enforcement): the Uzawa update of the multipliers from
-  /// the state of the last assembly (iga/contact_integrals/contact_augmentation.hpp); penalty:
-  /// satisfied.
   AugmentResult augment();
-  /// Augmented Lagrange: multipliers for the first solve of a step at time t, extrapolated
-  /// from the last two commits (NormalAugmentation::predict); no effect after an update.
   void predict(double t);
-  /// Multipliers back to the last commit (a step cut back).
   void restore();
-  /// Multiplier updates and the last largest penetration (augmented Lagrange).
   const NormalAugmentation& augmentation() const { return augmentation_; }
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }
