@@ -13,6 +13,8 @@ import csv
 import math
 import sys
 
+from plot_common import cli, save
+
 
 def panels(rows):
     """[(title, over_mu, fixed value, rows)] in the order of the file."""
@@ -72,11 +74,8 @@ def main(src, dst):
         ax.grid(True, alpha=0.3)
         ax.legend()
     fig.suptitle("Capstan (Euler-Eytelwein): Kirchhoff rod on a rigid NURBS cylinder")
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    cli(main, __doc__)

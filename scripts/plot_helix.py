@@ -11,6 +11,8 @@ import csv
 import math
 import sys
 
+from plot_common import cli, save
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -45,11 +47,8 @@ def main(src, dst):
     ax.set_title(rf"Rope as a helix: $\mu$ = {mu:g}, $\varphi$ = {math.degrees(phi):.0f}$^\circ$, R = {R:.4g}")
     ax.grid(True, alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    cli(main, __doc__)

@@ -8,7 +8,8 @@ A file with no rows (no case reached full slip, or no planar wrap path) writes n
 """
 import csv
 import math
-import sys
+
+from plot_common import cli, save
 
 
 def main(src, dst):
@@ -36,11 +37,8 @@ def main(src, dst):
     ax.grid(True, alpha=0.3)
     if len(cases) <= 12:
         ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    cli(main, __doc__)

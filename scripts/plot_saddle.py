@@ -16,7 +16,8 @@ import csv
 import json
 import math
 import os
-import sys
+
+from plot_common import cli, save
 
 import matplotlib
 
@@ -44,8 +45,7 @@ def load_deflection(rows, dst):
         ax.grid(True, alpha=0.3)
         ax.legend()
     fig.suptitle("Covering a saddle: Kirchhoff-Love plate on the rigid hyperboloid z = a x y")
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
     plt.close(fig)
 
 
@@ -82,8 +82,7 @@ def contact_zones(points, run, a, half, dst):
     for ax in list(axes.flat)[len(times):]:
         ax.axis("off")
     fig.suptitle(rf"Contact zone, $\mu$ = {mu:g}, $\varepsilon_T$ = {run['eps_T']:g} (x, y of the active contact points)")
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
     plt.close(fig)
 
 
@@ -107,8 +106,7 @@ def sticking_circle(rows, a, dst):
     ax.set_title(r"Sticking circle $r = \mu / a$ (79)-(81): a small block on z = a x y")
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(dst, dpi=120)
+    save(fig, dst)
     plt.close(fig)
 
 
@@ -133,6 +131,4 @@ def main(d):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 2:
-        sys.exit(__doc__)
-    main(sys.argv[1])
+    cli(main, __doc__, nargs=1)

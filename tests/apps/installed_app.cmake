@@ -9,7 +9,7 @@ if(NOT rc EQUAL 0)
 endif()
 set(model "${PREFIX}/share/iga-contact/data/capstan.json")
 foreach(f bin/capstan bin/helix bin/saddle bin/iga share/iga-contact/data/capstan.json
-          share/iga-contact/scripts/plot_capstan.py)
+          share/iga-contact/scripts/plot_capstan.py share/iga-contact/scripts/plot_common.py)
   if(NOT EXISTS "${PREFIX}/${f}")
     message(FATAL_ERROR "not installed: ${PREFIX}/${f}")
   endif()
