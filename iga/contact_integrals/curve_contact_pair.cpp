@@ -69,37 +69,25 @@ void CurveContactPair::add_fields(SampledMesh& body) const {
       f.B /= w;
     }
   }
-  std::vector<double> pressure, traction_T, traction_B, state;
+  PointFields c;
+  c.name({"contact_pressure", "contact_traction_T", "contact_traction_B", "contact_state"}, {});
   for (int e : body.elements) {
     const Fields f = e >= 0 && static_cast<std::size_t>(e) < per.size()
                          ? per[static_cast<std::size_t>(e)]
                          : Fields{};
-    pressure.push_back(f.pressure);
-    traction_T.push_back(f.T);
-    traction_B.push_back(f.B);
-    state.push_back(f.state);
+    c.append({f.pressure, f.T, f.B, f.state}, {});
   }
-  body.fields.scalars.push_back({"contact_pressure", pressure});
-  body.fields.scalars.push_back({"contact_traction_T", traction_T});
-  body.fields.scalars.push_back({"contact_traction_B", traction_B});
-  body.fields.scalars.push_back({"contact_state", state});
+  body.fields.add(std::move(c));
 }
 
 SampledMesh CurveContactPair::points() const {
   SampledMesh m;
-  std::vector<Vector3d> normal;
-  std::vector<double> N, T, B, slip;
+  m.fields.name({"N", "T", "B", "slip"}, {"normal"});
   for (const CurveContactPoint& cp : contact().points()) {
     if (!cp.law.active) continue;
     m.points.push_back(cp.x);
-    normal.push_back(cp.law.normal);
-    N.push_back(cp.N);
-    T.push_back(cp.T);
-    B.push_back(cp.B);
-    slip.push_back(cp.law.slip ? 1.0 : 0.0);
+    m.fields.append({cp.N, cp.T, cp.B, cp.law.slip ? 1.0 : 0.0}, {cp.law.normal});
   }
-  m.fields.scalars = {{"N", N}, {"T", T}, {"B", B}, {"slip", slip}};
-  m.fields.vectors = {{"normal", normal}};
   return m;
 }
 

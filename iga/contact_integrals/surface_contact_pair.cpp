@@ -211,40 +211,28 @@ std::string SurfaceContactPair::describe() const {
 
 void SurfaceContactPair::add_fields(SampledMesh& body) const {
   const ShellContactField field(contact(), breaks_u_, breaks_v_);
-  std::vector<double> c_pressure, c_gap, c_state, c_undefined;
-  std::vector<Vector3d> c_traction;
+  PointFields c;
+  c.name({"contact_pressure", "contact_gap", "contact_state", "contact_undefined"},
+         {"contact_traction"});
   for (const std::array<double, 2>& uv : body.params) {
     const ShellContactField::Value cv = field.at(uv[0], uv[1]);
     const bool finite =
         std::isfinite(cv.pressure) && std::isfinite(cv.gap) && cv.traction.allFinite();
-    c_pressure.push_back(finite ? cv.pressure : 0.0);
-    c_gap.push_back(finite ? cv.gap : 0.0);
-    c_traction.push_back(finite ? cv.traction : Vector3d::Zero());
-    c_state.push_back(cv.state);
-    c_undefined.push_back(finite && cv.gap_known ? 0.0 : 1.0);
+    c.append({finite ? cv.pressure : 0.0, finite ? cv.gap : 0.0, cv.state,
+              finite && cv.gap_known ? 0.0 : 1.0},
+             {finite ? cv.traction : Vector3d::Zero()});
   }
-  body.fields.scalars.push_back({"contact_pressure", c_pressure});
-  body.fields.scalars.push_back({"contact_gap", c_gap});
-  body.fields.scalars.push_back({"contact_state", c_state});
-  body.fields.scalars.push_back({"contact_undefined", c_undefined});
-  body.fields.vectors.push_back({"contact_traction", c_traction});
+  body.fields.add(std::move(c));
 }
 
 SampledMesh SurfaceContactPair::points() const {
   SampledMesh m;
-  std::vector<Vector3d> normal, ft;
-  std::vector<double> N, gap, slip;
+  m.fields.name({"N", "gap", "slip"}, {"shell_normal", "tangential_force"});
   for (const SurfaceContactPoint& cp : contact().points()) {
     if (!cp.active) continue;
     m.points.push_back(cp.x);
-    normal.push_back(cp.normal);
-    ft.push_back(cp.T_vector);
-    N.push_back(cp.N);
-    gap.push_back(cp.gap);
-    slip.push_back(contact().sticks(cp) ? 0.0 : 1.0);
+    m.fields.append({cp.N, cp.gap, contact().sticks(cp) ? 0.0 : 1.0}, {cp.normal, cp.T_vector});
   }
-  m.fields.scalars = {{"N", N}, {"gap", gap}, {"slip", slip}};
-  m.fields.vectors = {{"shell_normal", normal}, {"tangential_force", ft}};
   return m;
 }
 

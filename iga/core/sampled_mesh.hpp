@@ -7,6 +7,8 @@
 #pragma once
 
 #include <array>
+#include <initializer_list>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +21,29 @@ namespace iga {
 struct PointFields {
   std::vector<std::pair<std::string, std::vector<double>>> scalars;
   std::vector<std::pair<std::string, std::vector<Eigen::Vector3d>>> vectors;
+
+  /// Empty fields of these names, in this order (replacing any).
+  void name(std::initializer_list<const char*> scalar_names,
+            std::initializer_list<const char*> vector_names) {
+    scalars.clear();
+    vectors.clear();
+    for (const char* n : scalar_names) scalars.emplace_back(n, std::vector<double>{});
+    for (const char* n : vector_names) vectors.emplace_back(n, std::vector<Eigen::Vector3d>{});
+  }
+  /// Appends the fields of `more` (the same points) after these.
+  void add(PointFields&& more) {
+    for (auto& f : more.scalars) scalars.push_back(std::move(f));
+    for (auto& f : more.vectors) vectors.push_back(std::move(f));
+  }
+  /// One point's values, in the order of the fields (as many as there are fields).
+  void append(std::initializer_list<double> s, std::initializer_list<Eigen::Vector3d> v) {
+    if (s.size() != scalars.size() || v.size() != vectors.size())
+      throw std::logic_error("PointFields::append: one value per field expected");
+    auto sv = s.begin();
+    for (auto& f : scalars) f.second.push_back(*sv++);
+    auto vv = v.begin();
+    for (auto& f : vectors) f.second.push_back(*vv++);
+  }
 };
 
 /// Points with fields and their connectivity.
