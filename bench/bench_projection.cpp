@@ -10,7 +10,8 @@
 // orthogonality residual, with the certified search (ProjectionOptions::certify, the default:
 // also the share proven global) and with the sampled search of earlier versions; rays are cast from
 // each point towards its reference foot point (that foot is the nearest intersection), for the
-// points whose foot is interior. Usage: bench_projection [N points per set, default 100000]
+// points whose foot is interior.
+// Usage: bench_projection [N points per set, default 100000] [only: e.g. "freeform", "torus:C"]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -83,7 +84,11 @@ double rate(std::size_t n, F&& run) {  // items per second, median of 5 runs
   return median(r);
 }
 
-void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
+void run_case(const char* label, const NurbsSurface& s, std::size_t N, const std::string& only) {
+  const std::string want_surface = only.substr(0, only.find(':'));
+  const std::string want_set =
+      only.find(':') == std::string::npos ? "" : only.substr(only.find(':') + 1);
+  if (!want_surface.empty() && want_surface != label) return;
   const PatchProjector P(s);
   const Reference ref(s);
   const Box3 box = P.box();
@@ -95,6 +100,7 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
   const Domain2 dom = s.domain();
   for (char set : {'A', 'B', 'C'}) {
     std::vector<Vector3d> pts(N), near(N);
+    if (!want_set.empty() && want_set != std::string(1, set)) continue;
     for (std::size_t i = 0; i < N; ++i) {
       if (set == 'A') {
         const double u = dom.u.lo + (0.02 + 0.96 * U(g)) * (dom.u.hi - dom.u.lo);
@@ -187,15 +193,19 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Usage: bench_projection [points per set, default 100000]
+  // Usage: bench_projection [points per set, default 100000] [only: surface[:set]]
   const long n_arg = argc > 1 ? std::atol(argv[1]) : 100000;
-  if (argc > 2 || n_arg < 1) {
-    std::fprintf(stderr, "usage: %s [points per set >= 1, default 100000]\n", argv[0]);
+  const std::string only = argc > 2 ? argv[2] : "";
+  if (argc > 3 || n_arg < 1 ||
+      !(only.empty() || only.starts_with("freeform") || only.starts_with("torus"))) {
+    std::fprintf(stderr,
+                 "usage: %s [points per set >= 1, default 100000] [only: freeform|torus[:A|B|C]]\n",
+                 argv[0]);
     return 2;
   }
   const std::size_t N = static_cast<std::size_t>(n_arg);
   std::printf("closest point and ray projection, %zu points per set, one core\n", N);
-  run_case("freeform", test::data_surface("freeform_bicubic.json"), N);
-  run_case("torus", test::data_surface("torus_patch.json"), N);
+  run_case("freeform", test::data_surface("freeform_bicubic.json"), N, only);
+  run_case("torus", test::data_surface("torus_patch.json"), N, only);
   return 0;
 }

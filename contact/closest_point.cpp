@@ -287,6 +287,39 @@ void set_gaps(std::vector<N>& tree, std::size_t n_el) {
   }
 }
 
+// The near lists: for each node, the coarsest nodes apart from its region (and the leaves
+// overlapping it in part, at gap 0), by the lower bound of their distance to the node's points
+// (boxes, axis-aligned and in either's tangent frame), the nearest N::kNear kept in order.
+template <class N>
+void set_near_lists(std::vector<N>& tree, std::size_t n_el) {
+  std::vector<std::pair<double, int>> cut;
+  for (N& n : tree) {
+    cut.clear();
+    auto descend = [&](auto&& self, int k) -> void {
+      const N& m = tree[static_cast<std::size_t>(k)];
+      if (within(m.net.range, n.region)) return;
+      if (apart(m.net.range, n.region)) {
+        const double g2 =
+            std::max(box_gap2(n.box, m.box), std::max(frame_gap2(n, m), frame_gap2(m, n)));
+        cut.emplace_back(std::sqrt(g2) * (1.0 - 1e-12), k);
+        return;
+      }
+      if (m.child < 0) {
+        cut.emplace_back(0.0, k);
+        return;
+      }
+      for (int c = 0; c < 4; ++c) self(self, m.child + c);
+    };
+    for (std::size_t e = 0; e < n_el; ++e) descend(descend, static_cast<int>(e));
+    std::sort(cut.begin(), cut.end());
+    n.n_near = static_cast<int>(std::min<std::size_t>(cut.size(), N::kNear));
+    std::copy_n(cut.begin(), n.n_near, n.near.begin());
+    n.rest_gap = cut.size() > static_cast<std::size_t>(N::kNear)
+                     ? cut[static_cast<std::size_t>(N::kNear)].first
+                     : std::numeric_limits<double>::infinity();
+  }
+}
+
 }  // namespace
 
 void PatchProjector::build_tree() {
@@ -346,6 +379,7 @@ void PatchProjector::build_tree() {
   }
   set_regions(tree_, s_, breaks_u_, breaks_v_, grid, cell, level);
   set_gaps(tree_, n_el);
+  set_near_lists(tree_, n_el);
 }
 
 ProjectionResult PatchProjector::project_within(const Vector3d& x, double max_distance,
@@ -797,7 +831,31 @@ bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r)
   if (n == nullptr) return false;
   const double d = (x - r.point).norm();
   if (d <= 0.5 * n->gap) return true;
-  return ball_clear(x, d - 1e-11 * (box_.hi - box_.lo).norm(), n->region);
+  return ball_clear_near(*n, x, d, d - 1e-11 * (box_.hi - box_.lo).norm());
+}
+
+bool PatchProjector::clear_of(const Node& m, const Vector3d& x, double r2,
+                              const Domain2& region) const {
+  if (within(m.net.range, region)) return true;
+  if (box_distance2(m.box, x) >= r2 || frame_box_distance2(m.bounds, x) >= r2) return true;
+  if (m.child < 0) return false;  // a piece outside the region may hold a closer point
+  for (int k = 0; k < 4; ++k)
+    if (!clear_of(tree_[static_cast<std::size_t>(m.child + k)], x, r2, region)) return false;
+  return true;
+}
+
+bool PatchProjector::ball_clear_near(const Node& n, const Vector3d& x, double d,
+                                     double radius) const {
+  if (!(radius > 0.0)) return false;
+  // A piece at least g from the points of n is at least g - d from x.
+  if (n.rest_gap < d + radius) return ball_clear(x, radius, n.region);
+  const double r2 = radius * radius;
+  for (int k = 0; k < n.n_near; ++k) {
+    const auto& [g, m] = n.near[static_cast<std::size_t>(k)];
+    if (g >= d + radius) break;
+    if (!clear_of(tree_[static_cast<std::size_t>(m)], x, r2, n.region)) return false;
+  }
+  return true;
 }
 
 const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
@@ -816,16 +874,8 @@ const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
 bool PatchProjector::ball_clear(const Vector3d& x, double radius, const Domain2& region) const {
   if (!(radius > 0.0)) return false;
   const double r2 = radius * radius;
-  auto clear = [&](auto&& self, const Node& m) -> bool {
-    if (within(m.net.range, region)) return true;
-    if (box_distance2(m.box, x) >= r2 || frame_box_distance2(m.bounds, x) >= r2) return true;
-    if (m.child < 0) return false;  // a piece outside the region may hold a closer point
-    for (int k = 0; k < 4; ++k)
-      if (!self(self, tree_[static_cast<std::size_t>(m.child + k)])) return false;
-    return true;
-  };
   for (std::size_t e = 0; e < elements_.size(); ++e)
-    if (!clear(clear, tree_[e])) return false;
+    if (!clear_of(tree_[e], x, r2, region)) return false;
   return true;
 }
 

@@ -97,6 +97,13 @@ class PatchProjector {
     detail::PatchBounds region_bounds;
     double gap =
         0.0;  // lower bound of the distance from the node's points to those outside its region
+    // The pieces of the tree outside the region nearest to the node: the coarsest nodes apart
+    // from it, by a lower bound of their distance to the node's points, nearest first
+    // (kNear at most); every piece not listed is at least rest_gap from the node's points.
+    static constexpr int kNear = 32;
+    std::array<std::pair<double, int>, kNear> near{};
+    int n_near = 0;
+    double rest_gap = 0.0;
   };
   static constexpr std::size_t kTreeNodes = 4096;
   std::vector<Node> tree_;
@@ -112,6 +119,11 @@ class PatchProjector {
   // Whether every piece of the tree outside `region` is at least `radius` from x (boxes,
   // axis-aligned and in the pieces' tangent frames).
   bool ball_clear(const Vector3d& x, double radius, const Domain2& region) const;
+  // The same for the region of node n when x is within d of a point of n: only the pieces of
+  // n's near list closer than d + radius to n are examined (all of them when the list ends
+  // before that distance).
+  bool ball_clear_near(const Node& n, const Vector3d& x, double d, double radius) const;
+  bool clear_of(const Node& m, const Vector3d& x, double r2, const Domain2& region) const;
   int element_of(const Vector2d& uv) const;
 };
 
