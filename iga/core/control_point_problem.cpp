@@ -2,6 +2,7 @@
 #include "iga/core/control_point_problem.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace iga {
 
@@ -67,7 +68,21 @@ std::string ControlPointProblem::status() const {
 
 SampledMesh ControlPointProblem::sample(const VectorXd& u, double t, int samples) const {
   SampledMesh m = sample_model(u, t, samples);
-  for (const auto& p : pairs_) p->add_fields(m);
+  if (pairs_.size() == 1) pairs_.front()->add_fields(m);
+  if (pairs_.size() <= 1) return m;
+  // Several pairs: each one's fields under its own names, <field>_<k> for pair k.
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    SampledMesh own;
+    own.params = m.params;
+    own.elements = m.elements;
+    own.points = m.points;
+    pairs_[k]->add_fields(own);
+    char suffix[24];  // (not "_" + std::to_string(k): a false -Wrestrict of GCC 12)
+    std::snprintf(suffix, sizeof suffix, "_%zu", k);
+    for (auto& f : own.fields.scalars) f.first += suffix;
+    for (auto& f : own.fields.vectors) f.first += suffix;
+    m.fields.add(std::move(own.fields));
+  }
   return m;
 }
 

@@ -34,6 +34,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   if (!root.has("bodies")) root.fail_plain("missing required key \"bodies\" (nothing to analyse)");
 
   Context ctx;
+  std::map<std::string, std::shared_ptr<const RigidSurface>> rigids;
+  ctx.rigids = &rigids;
   if (root.has("load_curves")) {
     const JsonCursor lc = root["load_curves"];
     if (!lc.json().is_object()) lc.fail_type("an object of named load curves");
@@ -54,44 +56,69 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
       parse_rod_material(m);
   }
 
-  // The bodies: one rod or one shell in this version.
+  // The bodies, rods and shells, each with the conditions, loads and contact pairs that name
+  // it; every such entry must name one of them.
   const JsonCursor bodies = root["bodies"];
-  if (!bodies.json().is_object() || bodies.size() != 1)
-    bodies.fail_type("an object with exactly one named body (one deformable body per model)");
-  if (root.has("contact")) {  // at most one pair, the body against a rigid surface
-    const JsonCursor cl = root["contact"];
-    cl.expect_array();
-    if (cl.size() > 1)
-      cl.fail_plain("one contact pair per model in this version, got " + std::to_string(cl.size()));
-  }
+  if (!bodies.json().is_object() || bodies.size() == 0)
+    bodies.fail_type("an object of named bodies (at least one)");
+  ctx.bodies = bodies.keys();
+  check_entry_bodies(root, ctx);
   a.system_ = std::make_unique<BodySystem>();
+  std::vector<Context> read;  // each body's context, for the output section
   for (const std::string& name : bodies.keys()) {
-    ctx.body = name;
-    ctx.body_index = static_cast<int>(a.bodies_.size());
+    Context bc = ctx;
+    bc.body = name;
+    bc.body_index = static_cast<int>(a.bodies_.size());
     const JsonCursor b = bodies[name];
     if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
-    ctx.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
+    bc.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
     std::unique_ptr<Body> body;
-    if (ctx.kind == BodyKind::kRod)
-      body = build_rod(root, b, ctx, a.geometry_, materials);
+    if (bc.kind == BodyKind::kRod)
+      body = build_rod(root, b, bc, a.geometry_, materials);
     else
-      body = build_shell(root, b, ctx, a.geometry_, materials);
-    for (int k = 0; k < body->num_pairs(); ++k)
-      a.pairs_.push_back({&body->pair(k), ctx.body_index});
+      body = build_shell(root, b, bc, a.geometry_, materials);
     a.body_names_.push_back(name);
     a.bodies_.push_back(std::move(body));
     a.system_->add(*a.bodies_.back());
+    read.push_back(std::move(bc));
   }
+  a.collect_pairs(root);
   if (root.has("solver"))
     a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_, a.full_slip_steps_);
   // Every load curve, used or not (steps.csv has a column for each), must stay finite over the
   // run's pseudo-time.
   for (const auto& [name, curve] : a.curves_)
     check_finite_curve(root["load_curves"][name], curve, a.settings_);
-  if (root.has("output")) a.output_ = parse_output(root["output"], ctx);
+  if (root.has("output")) a.output_ = parse_output(root["output"], read);
   if (a.system_->num_dofs() == 0)
     root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
+}
+
+void Analysis::collect_pairs(const JsonCursor& root) {
+  // The pairs in the file's order: each body attached its own in that order.
+  if (!root.has("contact")) return;
+  const JsonCursor list = root["contact"];
+  std::vector<int> next(bodies_.size(), 0);
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const JsonCursor c = list[k];
+    const auto it = std::find(body_names_.begin(), body_names_.end(), c["body"].as_string());
+    const int b = static_cast<int>(it - body_names_.begin());
+    PairRef p;
+    p.pair = &bodies_[static_cast<std::size_t>(b)]->pair(next[static_cast<std::size_t>(b)]++);
+    p.body = b;
+    p.rigid = c["rigid"].as_string();
+    p.name = c.has("name") ? c["name"].as_string()
+                           : (list.size() > 1 ? "contact_" + std::to_string(k) : "contact");
+    if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
+      c["name"].fail("must be a non-empty name without commas, quotes or line breaks");
+    for (const PairRef& q : pairs_)
+      if (q.name == p.name)
+        (c.has("name") ? c["name"] : c)
+            .fail_plain("a second contact pair named \"" + p.name +
+                        "\" (pair names are the columns of steps.csv)");
+    pairs_.push_back(std::move(p));
+  }
 }
 
 Analysis Analysis::load(const std::string& path) {
@@ -129,7 +156,11 @@ std::string Analysis::describe() const {
     s << (num_bodies() > 1 ? body_name(b) + ": " : "") << body(b).describe();
   }
   s << ", " << system_->num_dofs() << " unknowns";
-  for (const PairRef& p : pairs_) s << ", " << p.pair->describe();
+  for (const PairRef& p : pairs_) {
+    s << ", ";
+    if (num_pairs() > 1) s << p.name << " (" << body_name(p.body) << " on " << p.rigid << "): ";
+    s << p.pair->describe();
+  }
   s << ", t in [" << settings_.t0 << ", " << settings_.t1 << "]";
   return s.str();
 }
@@ -191,6 +222,7 @@ AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) 
   st.t = t;
   st.iterations = iterations;
   st.contact = contact_counts();
+  for (const PairRef& p : pairs_) st.pairs.push_back(p.pair->counts());
   if (!output_.reactions.empty()) st.reactions = reactions(u, t);
   for (const AnalysisMonitor& m : output_.monitors)
     st.displacements.push_back(displacement(m, u, t));
@@ -199,6 +231,9 @@ AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) 
 
 void Analysis::write_csv_header(std::ostream& csv) const {
   csv << "step,t,iterations,active,stick,slip";
+  if (num_pairs() > 1)  // the counts of each pair
+    for (const PairRef& p : pairs_)
+      for (const char* c : {"active", "stick", "slip"}) csv << "," << p.name << "_" << c;
   for (const AnalysisReaction& q : output_.reactions)
     for (const char* c : {"x", "y", "z", "norm"})
       csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
@@ -212,6 +247,9 @@ void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& s
   // csv_number: a non-finite value is an empty cell, never nan or inf.
   csv << index << "," << csv_number(st.t) << "," << st.iterations << "," << st.contact.active << ","
       << st.contact.stick << "," << st.contact.slip;
+  if (num_pairs() > 1)
+    for (const ContactCounts& c : st.pairs)
+      csv << "," << c.active << "," << c.stick << "," << c.slip;
   for (const Vector3d& r : st.reactions)
     csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z()) << ","
         << csv_number(r.norm());
@@ -235,6 +273,19 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
   s["newton_iterations"] = res.solver.total_iterations;
   s["dofs"] = system_->num_dofs();
   s["full_slip"] = res.full_slip;
+  Json pairs = Json::array();  // each pair at the last converged step
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    Json p = Json::object();
+    p["name"] = pairs_[k].name;
+    p["body"] = body_name(pairs_[k].body);
+    p["rigid"] = pairs_[k].rigid;
+    const ContactCounts c = res.steps.empty() ? ContactCounts{} : res.steps.back().pairs[k];
+    p["active"] = c.active;
+    p["stick"] = c.stick;
+    p["slip"] = c.slip;
+    pairs.push_back(p);
+  }
+  s["pairs"] = pairs;
   s["time_total_s"] = json_number(res.solver.time_total);
   s["time_assembly_s"] = json_number(res.solver.time_assembly);
   s["time_contact_s"] = json_number(res.contact_time);

@@ -4,8 +4,8 @@
 // body with a rigid surface of the geometry section (CTRS for rods, [KS15] Sects. 4-5; STAS for
 // shells, Sects. 2-3; ContactPair), solver settings and output requests; run() drives the
 // nonlinear solver over all bodies (BodySystem) and writes the results (CSV per step, ParaView
-// files, a JSON summary). The driver sees bodies and pairs only through their interfaces; this
-// version's model files hold one body and at most one pair.
+// files, a JSON summary). The driver sees bodies and pairs only through their interfaces; a
+// model holds any number of bodies and pairs (pairs naming one rigid surface share it).
 //
 // Notation: u the unknowns of all bodies, u_b the block of body b (BodySystem); t pseudo-time.
 // Every input error is a ModelError naming the file, the JSON path and the value.
@@ -58,6 +58,7 @@ struct AnalysisStep {
   double t = 0.0;
   int iterations = 0;
   ContactCounts contact;                ///< summed over the pairs (drag_ratio: the largest)
+  std::vector<ContactCounts> pairs;     ///< each pair's, in the model's order
   std::vector<Vector3d> reactions;      ///< at AnalysisOutput::reactions, Cartesian
   std::vector<Vector3d> displacements;  ///< at AnalysisOutput::monitors
 };
@@ -96,6 +97,9 @@ class Analysis {
   const ContactPair& pair(int k) const { return *pairs_.at(static_cast<std::size_t>(k)).pair; }
   /// The body of pair k.
   int pair_body(int k) const { return pairs_.at(static_cast<std::size_t>(k)).body; }
+  /// The name of pair k ("name" in the model; default "contact", or "contact_<k>" with several):
+  /// its columns in steps.csv are <name>_active, _stick, _slip (with several pairs).
+  const std::string& pair_name(int k) const { return pairs_.at(static_cast<std::size_t>(k)).name; }
   /// All bodies as one problem (the solver's).
   BodySystem& problem() { return *system_; }
 
@@ -162,9 +166,10 @@ class Analysis {
   std::vector<std::string> write_vtk(const std::string& dir, const std::string& stem,
                                      const VectorXd& u, double t);
 
-  /// The rigid surface of each contact pair sampled as quadrilaterals (<dir>/<stem>.vtk, or
-  /// <stem>_<i>.vtk per piece, <stem>_<k>... per pair with several; pieces with an unbounded
-  /// domain are left out); false (nothing written) without contact.
+  /// Each rigid tool (a rigid surface some pair names; pairs naming one tool share it) sampled
+  /// as quadrilaterals (<dir>/<stem>.vtk, or <stem>_<i>.vtk per piece, <stem>_<j>... per tool
+  /// with several, in the order the pairs name them; pieces with an unbounded domain are left
+  /// out); false (nothing written) without contact.
   bool write_rigid_vtk(const std::string& dir, const std::string& stem) const;
 
   /// Reactions (f_int - f_ext + contact, Cartesian) at the output's reaction points.
@@ -187,9 +192,13 @@ class Analysis {
   void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;
   /// summary.json of a run.
   void write_summary(const std::string& out_dir, const AnalysisResult& res) const;
+  /// The pairs of the "contact" section in the file's order, with their names (after the bodies
+  /// are built, each holding its own pairs).
+  void collect_pairs(const JsonCursor& root);
   struct PairRef {
-    ContactPair* pair;  ///< owned by its body
-    int body;
+    ContactPair* pair = nullptr;  ///< owned by its body
+    int body = 0;
+    std::string name, rigid;  ///< the pair's and its rigid surface's name in the model
   };
   std::string name_;
   GeometryModel geometry_;

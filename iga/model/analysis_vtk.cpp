@@ -213,17 +213,29 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
 
 bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) const {
   // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk;
-  // with several pairs <stem>_<k> in place of <stem>.
-  int written = 0;
+  // with several tools (the distinct rigid surfaces the pairs name, in that order) <stem>_<j>
+  // in place of <stem>. Pairs that name one tool share it: it is written once.
+  std::vector<std::string> tools;
+  std::vector<const RigidSurface*> surfaces;
   for (int k = 0; k < num_pairs(); ++k) {
-    const RigidSurface& rigid = pair(k).rigid();
-    const std::string ps = stem + index_suffix(k, num_pairs());
+    const std::string& t = pairs_[static_cast<std::size_t>(k)].rigid;
+    if (std::find(tools.begin(), tools.end(), t) != tools.end()) continue;
+    tools.push_back(t);
+    surfaces.push_back(&pair(k).rigid());
+  }
+  const int n_tools = static_cast<int>(tools.size());
+  int written = 0;
+  for (int j = 0; j < n_tools; ++j) {
+    const RigidSurface& rigid = *surfaces[static_cast<std::size_t>(j)];
+    const std::string ps = stem + index_suffix(j, n_tools);
     for (int i = 0; i < rigid.num_patches(); ++i) {
       const std::vector<Vector3d> pts = tool_grid(rigid.patch(i)).first;
       if (pts.empty()) continue;
       constexpr int n = kToolGrid;
       const std::string file = ps + index_suffix(i, rigid.num_patches()) + ".vtk";
-      write_vtk_grid((fs::path(dir) / file).string(), pts, n, n, {}, name_ + " rigid surface");
+      write_vtk_grid(
+          (fs::path(dir) / file).string(), pts, n, n, {},
+          name_ + " rigid surface" + (n_tools > 1 ? " " + tools[static_cast<std::size_t>(j)] : ""));
       ++written;
     }
   }

@@ -157,7 +157,26 @@ LoadCurve curve_of(const JsonCursor& o, const Context& ctx) {
 
 void check_body(const JsonCursor& o, const Context& ctx) {
   const JsonCursor b = o["body"];
-  if (b.as_string() != ctx.body) b.fail("names no body (the model's body is \"" + ctx.body + "\")");
+  const std::string name = b.as_string();
+  if (std::find(ctx.bodies.begin(), ctx.bodies.end(), name) != ctx.bodies.end()) return;
+  if (ctx.bodies.size() == 1)
+    b.fail("names no body (the model's body is \"" + ctx.bodies[0] + "\")");
+  std::string list;
+  for (const std::string& n : ctx.bodies) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+  b.fail("names no body (the model's bodies are " + list + ")");
+}
+
+void check_entry_bodies(const JsonCursor& root, const Context& ctx) {
+  for (const char* key : {"boundary_conditions", "loads", "contact"}) {
+    if (!root.has(key)) continue;
+    const JsonCursor list = root[key];
+    list.expect_array();
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const JsonCursor o = list[k];
+      if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
+      check_body(o, ctx);
+    }
+  }
 }
 
 /// A control point: rod "start", "end" or an index; shell [i, j] (i along u) or an index
@@ -311,12 +330,22 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   }
 }
 
-std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const GeometryModel& g) {
+/// The rigid surface named at rc, shared by every pair that names it (ctx.rigids).
+std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const GeometryModel& g,
+                                                  const Context& ctx) {
+  const std::string name = rc.as_string();
+  if (ctx.rigids) {
+    const auto it = ctx.rigids->find(name);
+    if (it != ctx.rigids->end()) return it->second;
+  }
+  std::shared_ptr<const RigidSurface> r;
   try {
-    return std::make_shared<RigidSurface>(RigidSurface::from_geometry(g, rc.as_string()));
+    r = std::make_shared<RigidSurface>(RigidSurface::from_geometry(g, name));
   } catch (const std::invalid_argument& e) {
     rc.fail(std::string("not a rigid surface: ") + e.what());
   }
+  if (ctx.rigids) ctx.rigids->emplace(name, r);
+  return r;
 }
 
 // ---- shell bodies -----------------------------------------------------------------------------
@@ -512,7 +541,21 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
   return n;
 }
 
-AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
+/// The body an output entry names ({"body": name, ...}); without "body" the model's only body
+/// (with several: an error at the entry).
+const Context& body_of_entry(const JsonCursor& e, const std::vector<Context>& bodies) {
+  if (!e.json().is_object() || !e.has("body")) {
+    if (bodies.size() > 1) e.fail_plain("the model has several bodies: name the entry's \"body\"");
+    return bodies.front();
+  }
+  const JsonCursor b = e["body"];
+  for (const Context& c : bodies)
+    if (c.body == b.as_string()) return c;
+  check_body(e, bodies.front());  // fails, listing the bodies
+  return bodies.front();
+}
+
+AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies) {
   o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "description"});
   AnalysisOutput out;
   if (o.has("vtk")) {
@@ -524,15 +567,24 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
   if (o.has("reactions")) {
     const JsonCursor r = o["reactions"];
     r.expect_array();
-    for (std::size_t k = 0; k < r.size(); ++k)
-      out.reactions.push_back({point_index(r[k], ctx), ctx.body_index});
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      // a control point of the only body, or {"body": name, "point": ...}
+      const Context& ctx = body_of_entry(r[k], bodies);
+      if (r[k].json().is_object()) {
+        r[k].expect_object({"body", "point", "description"});
+        out.reactions.push_back({point_index(r[k]["point"], ctx), ctx.body_index});
+      } else {
+        out.reactions.push_back({point_index(r[k], ctx), ctx.body_index});
+      }
+    }
   }
   if (o.has("monitors")) {  // [{"name": "centre", "at": xi or [u, v]}]
     const JsonCursor ml = o["monitors"];
     ml.expect_array();
     for (std::size_t k = 0; k < ml.size(); ++k) {
       const JsonCursor m = ml[k];
-      m.expect_object({"name", "at", "description"});
+      m.expect_object({"name", "at", "body", "description"});
+      const Context& ctx = body_of_entry(m, bodies);
       AnalysisMonitor mon;
       mon.body = ctx.body_index;
       mon.name = m["name"].as_string();
@@ -556,13 +608,15 @@ AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx) {
   return out;
 }
 
-/// Calls f on every entry of the array root[key] (if present).
+/// Calls f on every entry of the array root[key] (if present) that belongs to the body
+/// ctx.body (check_entry_bodies has checked that each names a body).
 template <class F>
-void for_each_entry(const JsonCursor& root, const char* key, F f) {
+void for_each_entry(const JsonCursor& root, const char* key, const Context& ctx, F f) {
   if (!root.has(key)) return;
   const JsonCursor list = root[key];
   list.expect_array();
-  for (std::size_t k = 0; k < list.size(); ++k) f(list[k]);
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (list[k]["body"].as_string() == ctx.body) f(list[k]);
 }
 
 /// The rod body, its contact pair, boundary conditions and loads.
@@ -602,8 +656,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
   ctx.n_points = rod->num_control_points();
 
   auto problem = std::make_unique<RodProblem>(std::move(*rod));
-  if (root.has("contact") && root["contact"].size() == 1) {
-    const JsonCursor c = root["contact"][0];
+  for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
     // The type first: a shell's contact keys would otherwise be reported as unknown keys.
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
@@ -611,7 +664,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
                      "slip_tol", "description"});
     check_body(c, ctx);
-    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry);
+    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     ContactParameters cp;
     penalty_and_friction(c, cp);
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
@@ -620,10 +673,11 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), rigid, cp, ppe);
     pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
     problem->attach(std::move(pair));
-  }
-  for_each_entry(root, "boundary_conditions",
+  });
+  for_each_entry(root, "boundary_conditions", ctx,
                  [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
-  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
+  for_each_entry(root, "loads", ctx,
+                 [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
   return problem;
 }
 
@@ -659,15 +713,14 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
   ctx.n_points = ctx.nu * ctx.nv;
 
   auto problem = std::make_unique<ShellProblem>(std::move(*shell));
-  if (root.has("contact") && root["contact"].size() == 1) {
-    const JsonCursor c = root["contact"][0];
+  for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
       c["type"].fail("a shell's contact is \"surface_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
                      "points_per_direction", "search_distance", "enforcement", "penetration_tol",
                      "slip_tol", "max_augmentations", "description"});
     check_body(c, ctx);
-    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry);
+    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
       if (piece == ctx.surface)
         c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
@@ -696,10 +749,11 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
     } catch (const std::invalid_argument& e) {
       c.fail_plain(e.what());
     }
-  }
-  for_each_entry(root, "boundary_conditions",
+  });
+  for_each_entry(root, "boundary_conditions", ctx,
                  [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
-  for_each_entry(root, "loads", [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
+  for_each_entry(root, "loads", ctx,
+                 [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
   return problem;
 }
 

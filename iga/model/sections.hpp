@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "iga/model/analysis.hpp"
 
@@ -17,8 +18,11 @@ namespace iga::model_detail {
 /// What later sections need of earlier ones while a model is read.
 struct Context {
   std::map<std::string, LoadCurve> curves;
-  std::string body;    // the one body's name
-  int body_index = 0;  // its index in the model
+  // The rigid surfaces of the contact pairs, one per name: pairs that name one tool share it.
+  std::map<std::string, std::shared_ptr<const RigidSurface>>* rigids = nullptr;
+  std::vector<std::string> bodies;  // every body's name, in the file's order
+  std::string body;                 // the body being read
+  int body_index = 0;               // its index in the model
   BodyKind kind = BodyKind::kRod;
   const NurbsCurve* curve = nullptr;      // rod
   const NurbsSurface* surface = nullptr;  // shell
@@ -39,15 +43,18 @@ void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const Nonlinear
 /// Materials ("materials" entries).
 ShellMaterial parse_shell_material(const JsonCursor& m);
 RodSection parse_rod_material(const JsonCursor& m);
-/// The rod (shell) body b of the model root with its contact pair attached, its boundary
-/// conditions and loads.
+/// Every entry of the arrays "boundary_conditions", "loads" and "contact" is an object whose
+/// "body" names one of ctx.bodies (ModelError at the first that does not).
+void check_entry_bodies(const JsonCursor& root, const Context& ctx);
+/// The rod (shell) body b of the model root with its contact pairs attached (in the file's
+/// order), its boundary conditions and loads: the entries whose "body" is ctx.body.
 std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                       const GeometryModel& geometry, const JsonCursor& materials);
 std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                           const GeometryModel& geometry,
                                           const JsonCursor& materials);
-/// The "solver" and "output" sections.
+/// The "solver" and "output" sections; `bodies` holds the context of every body as it was read.
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps);
-AnalysisOutput parse_output(const JsonCursor& o, const Context& ctx);
+AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies);
 
 }  // namespace iga::model_detail

@@ -41,9 +41,7 @@ Result run(const std::string& exe, const std::string& args) {
 }
 
 fs::path fresh(const std::string& name) {
-  const fs::path d = fs::path(IGA_BINARY_DIR) / "test_out" / "run_apps" / name;
-  fs::remove_all(d);
-  return d;
+  return iga::test::fresh_out_dir("run_apps", name);
 }
 
 bool has_non_finite_text(const std::string& s) {

@@ -1,4 +1,5 @@
-// Shared helpers of the tests: a whole file as a string, the cells of a CSV text.
+// Shared helpers of the tests: a fresh output folder, a whole file as a string, the cells of a
+// CSV text.
 #pragma once
 
 #include <cctype>
@@ -9,6 +10,13 @@
 #include <vector>
 
 namespace iga::test {
+
+/// A fresh (emptied) output folder <build>/test_out/<group>/<name> for a test's files.
+inline std::string fresh_out_dir(const std::string& group, const std::string& name) {
+  const std::filesystem::path d = std::filesystem::path(IGA_BINARY_DIR) / "test_out" / group / name;
+  std::filesystem::remove_all(d);
+  return d.string();
+}
 
 inline std::string slurp(const std::filesystem::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -23,11 +23,8 @@ namespace fs = std::filesystem;
 
 const std::string kData = std::string(IGA_SOURCE_DIR) + "/data/";
 
-/// A fresh output folder under the build tree.
 std::string out_dir(const std::string& name) {
-  const fs::path d = fs::path(IGA_BINARY_DIR) / "test_out" / "analysis_run" / name;
-  fs::remove_all(d);
-  return d.string();
+  return test::fresh_out_dir("analysis_run", name);
 }
 
 /// A planar cubic cantilever of 4 elements along x whose first two control points coincide:
