@@ -44,7 +44,7 @@ std::string CurveContactPair::describe() const {
          " piece(s), " + std::to_string(contact().points().size()) + " contact points";
 }
 
-void CurveContactPair::add_fields(SampledMesh& body) const {
+void CurveContactPair::add_tool_fields(SampledMesh& body) const {
   struct Fields {
     double pressure = 0.0, T = 0.0, B = 0.0, state = 0.0;
   };
@@ -80,7 +80,7 @@ void CurveContactPair::add_fields(SampledMesh& body) const {
   body.fields.add(std::move(c));
 }
 
-SampledMesh CurveContactPair::points() const {
+SampledMesh CurveContactPair::tool_points() const {
   SampledMesh m;
   m.fields.name({"N", "T", "B", "slip"}, {"normal"});
   for (const CurveContactPoint& cp : contact().points()) {
@@ -91,7 +91,7 @@ SampledMesh CurveContactPair::points() const {
   return m;
 }
 
-std::vector<ContactFoot> CurveContactPair::feet() const {
+std::vector<ContactFoot> CurveContactPair::tool_feet() const {
   std::vector<ContactFoot> f;
   for (const CurveContactPoint& cp : contact().points()) {
     if (!cp.law.active) continue;

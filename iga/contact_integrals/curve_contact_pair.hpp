@@ -30,10 +30,10 @@ class CurveContactPair final : public RigidContactPair<CurveContact> {
   /// points weighted as in the contact integral (what the penalty resolves: point by point the
   /// values oscillate about it within an element), and contact_state 0 apart, 1 stick, 2 slip
   /// (2 if any point of the element slides, 1 if one sticks).
-  void add_fields(SampledMesh& body) const override;
+  void add_tool_fields(SampledMesh& body) const override;
   /// Active points with N, T, B, slip (0/1) and the surface normal.
-  SampledMesh points() const override;
-  std::vector<ContactFoot> feet() const override;
+  SampledMesh tool_points() const override;
+  std::vector<ContactFoot> tool_feet() const override;
 
  private:
   std::vector<Interval> elements_;  ///< the rod's element ranges

@@ -1,7 +1,8 @@
 // The part common to the contact pairs of a body with one rigid surface (CurveContactPair:
 // CTRS, SurfaceContactPair: STAS; [KS15]): the contact integral added to the body's residual and
 // tangent (timed), its friction history committed only at converged load steps ((35)-(36)),
-// exact enforcement by augmentation, the status line.
+// exact enforcement by augmentation, the status line; a moving tool (the integral evaluated in
+// the tool's frame, turned forward).
 //
 // Notation: x the body's control points, g its Cartesian residual (3 n, g = f_int - f_ext), K
 // the triplets of dg/dx; t the pseudo-time.
@@ -28,11 +29,32 @@ class RigidContactPair : public ContactPair {
   const Integral& contact() const { return contact_; }
   Integral& contact() { return contact_; }
 
+  /// The contact integral in the tool's frame at the pose of t: the control points mapped
+  /// back, X_a = c0 + Q^T (x_a - c) (a rigid map: the body's geometry, tangents and normals
+  /// move with it), the integral's residual g_a and tangent blocks K_ab turned forward,
+  /// Q g_a and Q K_ab Q^T (the map's derivative dX/dx = Q^T is constant at fixed t). The
+  /// friction history the integral keeps is thus in the tool's frame and moves with it.
   void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
-    x_.assign(x.begin(), x.end());  // no reallocation after the first call
-    contact_.predict(t);            // augmented Lagrange: the step's first multipliers
-    contact_.assemble(x_, g, K);    // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
+    pose_ = pose(t);
+    x_.resize(x.size());  // no reallocation after the first call
+    for (std::size_t a = 0; a < x.size(); ++a) x_[a] = pose_.to_tool(x[a]);
+    g_.setZero(g.size());
+    K_.clear();
+    contact_.predict(t);  // augmented Lagrange: the step's first multipliers
+    contact_.assemble(x_, g_,
+                      K ? &K_ : nullptr);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
+    const bool turn = pose_.turns();
+    force_.setZero();
+    moment_.setZero();
+    for (std::size_t a = 0; a < x.size(); ++a) {
+      const auto i = static_cast<Eigen::Index>(3 * a);
+      const Vector3d ga = turn ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
+      g.segment<3>(i) += ga;
+      force_ += ga;  // g_a = -f_a: the force on the tool
+      moment_ += x[a].cross(ga);
+    }
+    if (K) append_turned(K_, turn, *K);
     time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   void commit() override { contact_.commit(); }
@@ -63,8 +85,30 @@ class RigidContactPair : public ContactPair {
       : ContactPair(std::move(rigid)), contact_(std::move(contact)) {}
 
  private:
+  /// K += Q K_t Q^T block by block (entry (3a+i, 3b+j) of K_t gives Q(k, i) v Q(l, j) at
+  /// (3a+k, 3b+l)); without turning the triplets as they are.
+  static void append_turned(const std::vector<Triplet>& Kt, bool turn, std::vector<Triplet>& K,
+                            const Matrix3d& Q) {
+    if (!turn) {
+      K.insert(K.end(), Kt.begin(), Kt.end());
+      return;
+    }
+    K.reserve(K.size() + 9 * Kt.size());
+    for (const Triplet& e : Kt) {
+      const int r = e.row(), c = e.col(), i = r % 3, j = c % 3;
+      for (int k = 0; k < 3; ++k)
+        for (int l = 0; l < 3; ++l)
+          K.emplace_back(r - i + k, c - j + l, Q(k, i) * e.value() * Q(l, j));
+    }
+  }
+  void append_turned(const std::vector<Triplet>& Kt, bool turn, std::vector<Triplet>& K) const {
+    append_turned(Kt, turn, K, pose_.Q);
+  }
+
   Integral contact_;
-  std::vector<Vector3d> x_;  ///< work copy of the control points (the integrals take a vector)
+  std::vector<Vector3d> x_;  ///< the control points in the tool's frame
+  VectorXd g_;               ///< the integral's residual in the tool's frame
+  std::vector<Triplet> K_;   ///< its tangent triplets
   double time_ = 0.0;
 };
 

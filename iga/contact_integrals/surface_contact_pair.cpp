@@ -209,7 +209,7 @@ std::string SurfaceContactPair::describe() const {
   return s.str();
 }
 
-void SurfaceContactPair::add_fields(SampledMesh& body) const {
+void SurfaceContactPair::add_tool_fields(SampledMesh& body) const {
   const ShellContactField field(contact(), breaks_u_, breaks_v_);
   PointFields c;
   c.name({"contact_pressure", "contact_gap", "contact_state", "contact_undefined"},
@@ -225,7 +225,7 @@ void SurfaceContactPair::add_fields(SampledMesh& body) const {
   body.fields.add(std::move(c));
 }
 
-SampledMesh SurfaceContactPair::points() const {
+SampledMesh SurfaceContactPair::tool_points() const {
   SampledMesh m;
   m.fields.name({"N", "gap", "slip"}, {"shell_normal", "tangential_force"});
   for (const SurfaceContactPoint& cp : contact().points()) {
@@ -236,7 +236,7 @@ SampledMesh SurfaceContactPair::points() const {
   return m;
 }
 
-std::vector<ContactFoot> SurfaceContactPair::feet() const {
+std::vector<ContactFoot> SurfaceContactPair::tool_feet() const {
   std::vector<ContactFoot> f;
   for (const SurfaceContactPoint& cp : contact().points()) {
     if (!cp.active) continue;

@@ -33,10 +33,10 @@ class SurfaceContactPair final : public RigidContactPair<SurfaceContact> {
   /// no point near has a foot, or a value is not finite; such values are written as 0) and
   /// contact_traction at the samples' parameters: the element's contact points interpolated
   /// (surface_contact_pair.cpp, ShellContactField).
-  void add_fields(SampledMesh& body) const override;
+  void add_tool_fields(SampledMesh& body) const override;
   /// Active points with N, gap, slip (0/1), the shell normal and the tangential force.
-  SampledMesh points() const override;
-  std::vector<ContactFoot> feet() const override;
+  SampledMesh tool_points() const override;
+  std::vector<ContactFoot> tool_feet() const override;
 
  private:
   std::vector<double> breaks_u_, breaks_v_;  ///< the shell's element borders

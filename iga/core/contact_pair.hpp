@@ -3,8 +3,13 @@
 // tangent at every assembly; the pair keeps its own history (friction (35)-(36), multipliers of
 // exact enforcement) and reports counts, a status and output fields.
 //
+// A tool may move as a rigid body (RigidMotion, contact/rigid_motion.hpp): the pair then
+// works in the tool's own frame and turns its results forward (RigidContactPair::add); the
+// output (points, feet, fields) is in the world frame at the pose of the last assembly.
+//
 // Notation: x the body's current control points; g the Cartesian residual (3 n, DOF 3 a + c,
-// g = f_int - f_ext), K its tangent dg/dx as triplets; t the pseudo-time.
+// g = f_int - f_ext), K its tangent dg/dx as triplets; t the pseudo-time; x = c + Q (X - c0)
+// the tool's pose (RigidPose).
 #pragma once
 
 #include <memory>
@@ -12,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/rigid_motion.hpp"
 #include "contact/rigid_surface.hpp"
 #include "iga/core/dof_map.hpp"
 #include "iga/core/nonlinear_problem.hpp"
@@ -64,24 +70,48 @@ class ContactPair {
   /// One phrase for a model's description, e.g. "CTRS contact with a rigid surface of 1
   /// piece(s), 80 contact points".
   virtual std::string describe() const = 0;
+  /// The rigid surface in its own frame (as given in the model).
   const RigidSurface& rigid() const { return *rigid_; }
   const std::shared_ptr<const RigidSurface>& rigid_ptr() const { return rigid_; }
 
-  // ---- output ----------------------------------------------------------------------------------
+  // ---- a moving tool ---------------------------------------------------------------------------
+  /// The tool's prescribed motion (null: it stands still); shared by the pairs of one tool.
+  void set_motion(std::shared_ptr<const RigidMotion> motion) { motion_ = std::move(motion); }
+  const RigidMotion* motion() const { return motion_.get(); }
+  /// The tool's pose at t (the identity without motion).
+  RigidPose pose(double t) const { return motion_ ? motion_->pose(t) : RigidPose{}; }
+  /// The pose of the last assembly.
+  const RigidPose& pose() const { return pose_; }
+  /// The force the body exerts on the tool at the last assembly (world frame; minus the
+  /// contact forces on the body), and its moment about the point p.
+  const Vector3d& tool_force() const { return force_; }
+  Vector3d tool_moment(const Vector3d& p) const { return moment_ - p.cross(force_); }
+
+  // ---- output (world frame, the pose of the last assembly) -------------------------------------
   /// Adds the contact fields at the samples of the body's mesh (its params and elements).
-  virtual void add_fields(SampledMesh& body) const = 0;
+  void add_fields(SampledMesh& body) const;
   /// The active contact points with their fields (shape kPoints).
-  virtual SampledMesh points() const = 0;
+  SampledMesh points() const;
   /// The active contact points seen from the tool.
-  virtual std::vector<ContactFoot> feet() const = 0;
+  std::vector<ContactFoot> feet() const;
 
  protected:
   explicit ContactPair(std::shared_ptr<const RigidSurface> rigid) : rigid_(std::move(rigid)) {}
   ContactPair(const ContactPair&) = default;
   ContactPair& operator=(const ContactPair&) = default;
 
+  /// The output above in the tool's frame, as the contact integral holds it.
+  virtual void add_tool_fields(SampledMesh& body) const = 0;
+  virtual SampledMesh tool_points() const = 0;
+  virtual std::vector<ContactFoot> tool_feet() const = 0;
+
+  /// Set by add(): the pose, and the force on the tool and its moment about the origin.
+  RigidPose pose_;
+  Vector3d force_ = Vector3d::Zero(), moment_ = Vector3d::Zero();
+
  private:
   std::shared_ptr<const RigidSurface> rigid_;  ///< shared: the pair may outlive its maker
+  std::shared_ptr<const RigidMotion> motion_;
 };
 
 }  // namespace iga

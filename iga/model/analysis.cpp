@@ -63,6 +63,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     bodies.fail_type("an object of named bodies (at least one)");
   ctx.bodies = bodies.keys();
   check_entry_bodies(root, ctx);
+  if (root.has("rigid_motions"))
+    ctx.motions = parse_rigid_motions(root["rigid_motions"], ctx, a.geometry_);
   a.system_ = std::make_unique<BodySystem>();
   std::vector<Context> read;  // each body's context, for the output section
   for (const std::string& name : bodies.keys()) {
@@ -83,6 +85,12 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     read.push_back(std::move(bc));
   }
   a.collect_pairs(root);
+  if (root.has("rigid_motions"))  // a motion of a tool no pair touches is a typo
+    for (const std::string& tool : root["rigid_motions"].keys())
+      if (std::none_of(a.pairs_.begin(), a.pairs_.end(),
+                       [&](const PairRef& p) { return p.rigid == tool; }))
+        root["rigid_motions"][tool].fail_plain("no contact pair names the rigid surface \"" + tool +
+                                               "\"");
   if (root.has("solver"))
     a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_, a.full_slip_steps_);
   // Every load curve, used or not (steps.csv has a column for each), must stay finite over the
@@ -112,6 +120,11 @@ void Analysis::collect_pairs(const JsonCursor& root) {
                            : (list.size() > 1 ? "contact_" + std::to_string(k) : "contact");
     if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
       c["name"].fail("must be a non-empty name without commas, quotes or line breaks");
+    if (c.has("moment_about")) {
+      p.moment_about = vec3(c["moment_about"]);
+    } else if (const RigidMotion* m = p.pair->motion(); m && m->rotates()) {
+      p.moment_about = m->point();
+    }
     for (const PairRef& q : pairs_)
       if (q.name == p.name)
         (c.has("name") ? c["name"] : c)
@@ -119,6 +132,12 @@ void Analysis::collect_pairs(const JsonCursor& root) {
                         "\" (pair names are the columns of steps.csv)");
     pairs_.push_back(std::move(p));
   }
+}
+
+std::pair<Vector3d, Vector3d> Analysis::tool_load(int k) const {
+  const PairRef& p = pairs_.at(static_cast<std::size_t>(k));
+  const ContactPair& P = *p.pair;
+  return {P.tool_force(), P.tool_moment(P.pose().to_world(p.moment_about))};
 }
 
 Analysis Analysis::load(const std::string& path) {
@@ -222,7 +241,10 @@ AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) 
   st.t = t;
   st.iterations = iterations;
   st.contact = contact_counts();
-  for (const PairRef& p : pairs_) st.pairs.push_back(p.pair->counts());
+  for (int k = 0; k < num_pairs(); ++k) {
+    st.pairs.push_back(pair(k).counts());
+    st.tool_loads.push_back(tool_load(k));
+  }
   if (!output_.reactions.empty()) st.reactions = reactions(u, t);
   for (const AnalysisMonitor& m : output_.monitors)
     st.displacements.push_back(displacement(m, u, t));
@@ -234,6 +256,8 @@ void Analysis::write_csv_header(std::ostream& csv) const {
   if (num_pairs() > 1)  // the counts of each pair
     for (const PairRef& p : pairs_)
       for (const char* c : {"active", "stick", "slip"}) csv << "," << p.name << "_" << c;
+  for (const PairRef& p : pairs_)  // the force and moment on each pair's tool
+    for (const char* c : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) csv << "," << p.name << "_" << c;
   for (const AnalysisReaction& q : output_.reactions)
     for (const char* c : {"x", "y", "z", "norm"})
       csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
@@ -250,6 +274,8 @@ void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& s
   if (num_pairs() > 1)
     for (const ContactCounts& c : st.pairs)
       csv << "," << c.active << "," << c.stick << "," << c.slip;
+  for (const auto& [F, M] : st.tool_loads)
+    for (int i = 0; i < 6; ++i) csv << "," << csv_number(i < 3 ? F[i] : M[i - 3]);
   for (const Vector3d& r : st.reactions)
     csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z()) << ","
         << csv_number(r.norm());

@@ -59,6 +59,8 @@ struct AnalysisStep {
   int iterations = 0;
   ContactCounts contact;                ///< summed over the pairs (drag_ratio: the largest)
   std::vector<ContactCounts> pairs;     ///< each pair's, in the model's order
+  /// Each pair's force on its tool and the moment about the pair's moment point (world frame).
+  std::vector<std::pair<Vector3d, Vector3d>> tool_loads;
   std::vector<Vector3d> reactions;      ///< at AnalysisOutput::reactions, Cartesian
   std::vector<Vector3d> displacements;  ///< at AnalysisOutput::monitors
 };
@@ -97,6 +99,9 @@ class Analysis {
   const ContactPair& pair(int k) const { return *pairs_.at(static_cast<std::size_t>(k)).pair; }
   /// The body of pair k.
   int pair_body(int k) const { return pairs_.at(static_cast<std::size_t>(k)).body; }
+  /// The force pair k exerts on its tool and its moment about the pair's moment point, at the
+  /// last assembly (world frame; steps.csv: <name>_Fx .. _Mz).
+  std::pair<Vector3d, Vector3d> tool_load(int k) const;
   /// The name of pair k ("name" in the model; default "contact", or "contact_<k>" with several):
   /// its columns in steps.csv are <name>_active, _stick, _slip (with several pairs).
   const std::string& pair_name(int k) const { return pairs_.at(static_cast<std::size_t>(k)).name; }
@@ -172,6 +177,14 @@ class Analysis {
   /// out); false (nothing written) without contact.
   bool write_rigid_vtk(const std::string& dir, const std::string& stem) const;
 
+  /// A rigid tool: a rigid surface named by pairs (the first of them given).
+  struct Tool {
+    std::string name;
+    const ContactPair* pair;
+  };
+  /// The distinct tools of the pairs, in the order the pairs name them.
+  std::vector<Tool> tools() const;
+
   /// Reactions (f_int - f_ext + contact, Cartesian) at the output's reaction points.
   std::vector<Vector3d> reactions(const VectorXd& u, double t);
 
@@ -192,6 +205,10 @@ class Analysis {
   void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;
   /// summary.json of a run.
   void write_summary(const std::string& out_dir, const AnalysisResult& res) const;
+  /// Each tool (moving_only: each moving tool) at its pose at t, as write_rigid_vtk; the files
+  /// and their series "rigid[_j][_i]".
+  std::vector<OutputFile> write_tools(const std::string& dir, const std::string& stem, double t,
+                                      bool moving_only) const;
   /// The pairs of the "contact" section in the file's order, with their names (after the bodies
   /// are built, each holding its own pairs).
   void collect_pairs(const JsonCursor& root);
@@ -199,6 +216,9 @@ class Analysis {
     ContactPair* pair = nullptr;  ///< owned by its body
     int body = 0;
     std::string name, rigid;  ///< the pair's and its rigid surface's name in the model
+    /// The point of the tool (in its own frame) about which the moment on it is reported
+    /// ("moment_about"; default the rotation point of a rotating tool, else the origin).
+    Vector3d moment_about = Vector3d::Zero();
   };
   std::string name_;
   GeometryModel geometry_;

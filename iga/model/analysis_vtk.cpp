@@ -192,8 +192,9 @@ std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
     // ... and as fields on a grid of each bounded piece of the tool (tool_fields).
     const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {
-      const auto [grid, spacing] = tool_grid(rigid.patch(i));
+      auto [grid, spacing] = tool_grid(rigid.patch(i));
       if (grid.empty()) continue;
+      for (Vector3d& x : grid) x = P.pose().to_world(x);  // where the tool is (feet: world)
       const std::string series = "tool" + ps + index_suffix(i, rigid.num_patches());
       files.push_back({series, stem + "_" + series + ".vtk"});
       write_vtk_grid(path(files.back().file), grid, kToolGrid, kToolGrid,
@@ -201,6 +202,8 @@ std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
                      name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t));
     }
   }
+  // Moving tools where they are at t (a .pvd series per tool and piece).
+  for (OutputFile& f : write_tools(dir, stem + "_rigid", t, true)) files.push_back(std::move(f));
   return files;
 }
 
@@ -211,35 +214,50 @@ std::vector<std::string> Analysis::write_vtk(const std::string& dir, const std::
   return names;
 }
 
-bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) const {
-  // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk;
-  // with several tools (the distinct rigid surfaces the pairs name, in that order) <stem>_<j>
-  // in place of <stem>. Pairs that name one tool share it: it is written once.
-  std::vector<std::string> tools;
-  std::vector<const RigidSurface*> surfaces;
+std::vector<Analysis::Tool> Analysis::tools() const {
+  std::vector<Tool> tools;
   for (int k = 0; k < num_pairs(); ++k) {
-    const std::string& t = pairs_[static_cast<std::size_t>(k)].rigid;
-    if (std::find(tools.begin(), tools.end(), t) != tools.end()) continue;
-    tools.push_back(t);
-    surfaces.push_back(&pair(k).rigid());
+    const std::string& name = pairs_[static_cast<std::size_t>(k)].rigid;
+    const auto same = [&](const Tool& t) { return t.name == name; };
+    if (std::find_if(tools.begin(), tools.end(), same) != tools.end()) continue;
+    tools.push_back({name, &pair(k)});
   }
-  const int n_tools = static_cast<int>(tools.size());
-  int written = 0;
+  return tools;
+}
+
+std::vector<Analysis::OutputFile> Analysis::write_tools(const std::string& dir,
+                                                        const std::string& stem, double t,
+                                                        bool moving_only) const {
+  // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk;
+  // with several tools <stem>_<j> in place of <stem>; each at its pose at t.
+  const std::vector<Tool> all = tools();
+  const int n_tools = static_cast<int>(all.size());
+  std::vector<OutputFile> files;
   for (int j = 0; j < n_tools; ++j) {
-    const RigidSurface& rigid = *surfaces[static_cast<std::size_t>(j)];
-    const std::string ps = stem + index_suffix(j, n_tools);
+    const ContactPair& P = *all[static_cast<std::size_t>(j)].pair;
+    if (moving_only && P.motion() == nullptr) continue;
+    const RigidPose pose = P.pose(t);
+    const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {
-      const std::vector<Vector3d> pts = tool_grid(rigid.patch(i)).first;
+      std::vector<Vector3d> pts = tool_grid(rigid.patch(i)).first;
       if (pts.empty()) continue;
+      for (Vector3d& x : pts) x = pose.to_world(x);
       constexpr int n = kToolGrid;
-      const std::string file = ps + index_suffix(i, rigid.num_patches()) + ".vtk";
-      write_vtk_grid(
-          (fs::path(dir) / file).string(), pts, n, n, {},
-          name_ + " rigid surface" + (n_tools > 1 ? " " + tools[static_cast<std::size_t>(j)] : ""));
-      ++written;
+      const std::string series =
+          "rigid" + index_suffix(j, n_tools) + index_suffix(i, rigid.num_patches());
+      files.push_back({series, stem + index_suffix(j, n_tools) +
+                                   index_suffix(i, rigid.num_patches()) + ".vtk"});
+      write_vtk_grid((fs::path(dir) / files.back().file).string(), pts, n, n, {},
+                     name_ + " rigid surface" +
+                         (n_tools > 1 ? " " + all[static_cast<std::size_t>(j)].name : "") +
+                         (P.motion() ? ", t = " + fmt(t) : std::string()));
     }
   }
-  return written > 0;
+  return files;
+}
+
+bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) const {
+  return !write_tools(dir, stem, settings_.t0, false).empty();
 }
 
 }  // namespace iga

@@ -13,8 +13,8 @@ Model parse_model(const Json& j, const std::string& file) {
   const JsonCursor root(j, file);
   if (!j.is_object()) root.fail_type("an object (the model)");
   root.expect_object({"format", "version", "name", "description", "geometry", "materials", "bodies",
-                      "load_curves", "boundary_conditions", "loads", "contact", "solver", "output",
-                      "app"});
+                      "load_curves", "boundary_conditions", "loads", "contact", "rigid_motions",
+                      "solver", "output", "app"});
 
   if (root.has("format")) {
     const JsonCursor c = root["format"];

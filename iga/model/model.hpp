@@ -18,8 +18,9 @@ inline constexpr int kModelFormatVersion = 1;
 /// "app" is free-form input of the example programs (capstan, helix, saddle): ignored by the
 /// generic loader.
 inline constexpr const char* kAnalysisSections[] = {
-    "materials", "bodies", "load_curves", "boundary_conditions", "loads", "contact",
-    "solver",    "output", "app"};
+    "materials", "bodies",  "load_curves",   "boundary_conditions",
+    "loads",     "contact", "rigid_motions", "solver",
+    "output",    "app"};
 
 /// A whole model: the geometry, parsed, and the analysis sections as written (Analysis
 /// validates and builds them).

@@ -348,6 +348,40 @@ std::shared_ptr<const RigidSurface> rigid_surface(const JsonCursor& rc, const Ge
   return r;
 }
 
+std::map<std::string, std::shared_ptr<const RigidMotion>> parse_rigid_motions(
+    const JsonCursor& section, const Context& ctx, const GeometryModel& geometry) {
+  if (!section.json().is_object()) section.fail_type("an object of rigid tools by name");
+  std::map<std::string, std::shared_ptr<const RigidMotion>> motions;
+  for (const std::string& name : section.keys()) {
+    const JsonCursor m = section[name];
+    m.expect_object({"rotation", "translation", "description"});
+    bool surface = false;
+    try {
+      surface = !geometry.surfaces_of(name).empty();
+    } catch (const std::out_of_range&) {  // a curve, or no entity of that name
+    }
+    if (!surface)
+      m.fail_plain("\"" + name + "\" is no surface or patch group of the geometry section");
+    if (!m.has("rotation") && !m.has("translation"))
+      m.fail_plain("give a \"rotation\", a \"translation\" or both");
+    auto motion = std::make_shared<RigidMotion>();
+    if (m.has("rotation")) {  // about `axis` through `point` by angle * curve(t)
+      const JsonCursor r = m["rotation"];
+      r.expect_object({"point", "axis", "angle", "curve", "description"});
+      const Vector3d axis = vec3(r["axis"]);
+      if (!(axis.norm() > 0.0)) r["axis"].fail("must be a non-zero vector");
+      motion->set_rotation(vec3(r["point"]), axis, r["angle"].as_number(), curve_of(r, ctx));
+    }
+    if (m.has("translation")) {  // by vector * curve(t), after the rotation
+      const JsonCursor tr = m["translation"];
+      tr.expect_object({"vector", "curve", "description"});
+      motion->set_translation(vec3(tr["vector"]), curve_of(tr, ctx));
+    }
+    motions.emplace(name, std::move(motion));
+  }
+  return motions;
+}
+
 // ---- shell bodies -----------------------------------------------------------------------------
 
 SurfaceEdge parse_edge(const JsonCursor& c) {
@@ -662,7 +696,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
-                     "slip_tol", "description"});
+                     "slip_tol", "moment_about", "description"});
     check_body(c, ctx);
     const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     ContactParameters cp;
@@ -672,6 +706,8 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
     auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), rigid, cp, ppe);
     pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+    if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
+      pair->set_motion(m->second);
     problem->attach(std::move(pair));
   });
   for_each_entry(root, "boundary_conditions", ctx,
@@ -718,7 +754,7 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
       c["type"].fail("a shell's contact is \"surface_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
                      "points_per_direction", "search_distance", "enforcement", "penetration_tol",
-                     "slip_tol", "max_augmentations", "description"});
+                     "slip_tol", "max_augmentations", "moment_about", "description"});
     check_body(c, ctx);
     const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
@@ -745,6 +781,8 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
     try {
       auto pair = std::make_unique<SurfaceContactPair>(problem->shell().reference(), rigid, cp);
       pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
+        pair->set_motion(m->second);
       problem->attach(std::move(pair));
     } catch (const std::invalid_argument& e) {
       c.fail_plain(e.what());

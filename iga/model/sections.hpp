@@ -20,6 +20,8 @@ struct Context {
   std::map<std::string, LoadCurve> curves;
   // The rigid surfaces of the contact pairs, one per name: pairs that name one tool share it.
   std::map<std::string, std::shared_ptr<const RigidSurface>>* rigids = nullptr;
+  // The prescribed motions of rigid tools by the tool's name ("rigid_motions").
+  std::map<std::string, std::shared_ptr<const RigidMotion>> motions;
   std::vector<std::string> bodies;  // every body's name, in the file's order
   std::string body;                 // the body being read
   int body_index = 0;               // its index in the model
@@ -30,6 +32,8 @@ struct Context {
   int nu = 0, nv = 0;  // shell: control points in u and v
 };
 
+/// The vector [x, y, z] at c.
+Vector3d vec3(const JsonCursor& c);
 /// A number with 10 significant digits (messages, titles).
 std::string fmt(double v);
 /// The number at c, > 0 (>= 0 with allow_zero); ModelError otherwise.
@@ -43,6 +47,10 @@ void check_finite_curve(const JsonCursor& c, const LoadCurve& f, const Nonlinear
 /// Materials ("materials" entries).
 ShellMaterial parse_shell_material(const JsonCursor& m);
 RodSection parse_rod_material(const JsonCursor& m);
+/// The "rigid_motions" section: each entry a rigid surface or patch group of the geometry
+/// with a "rotation" and/or a "translation" along load curves (ctx.curves).
+std::map<std::string, std::shared_ptr<const RigidMotion>> parse_rigid_motions(
+    const JsonCursor& section, const Context& ctx, const GeometryModel& geometry);
 /// Every entry of the arrays "boundary_conditions", "loads" and "contact" is an object whose
 /// "body" names one of ctx.bodies (ModelError at the first that does not).
 void check_entry_bodies(const JsonCursor& root, const Context& ctx);
