@@ -45,6 +45,8 @@ class ControlPointProblem : public Body {
   bool constrained(int point, int component) const { return dofs_.constrained(point, component); }
   int dof(int point, int component) const { return dofs_.dof(point, component); }
   const DofMap& dof_map() const { return dofs_; }
+  /// Reference position X_i of control point i.
+  const Vector3d& reference_point(int i) const { return X_.at(static_cast<std::size_t>(i)); }
 
   // ---- NonlinearProblem ----------------------------------------------------------------------
   int num_dofs() const override { return dofs_.num_free(); }

@@ -280,6 +280,38 @@ int end_of(const JsonCursor& c) {
   return c.as_string() == "start" ? 0 : c.as_string() == "end" ? 1 : -1;
 }
 
+/// The moving tool an entry follows ("motion": a key of "rigid_motions"); null without the key.
+std::shared_ptr<const RigidMotion> motion_of(const JsonCursor& o, const Context& ctx) {
+  if (!o.has("motion")) return nullptr;
+  const JsonCursor m = o["motion"];
+  const auto it = ctx.motions.find(m.as_string());
+  if (it == ctx.motions.end()) m.fail("names no entry of \"rigid_motions\"");
+  return it->second;
+}
+
+/// A displacement given in the frame of a moving tool: the point is carried by the tool's
+/// motion, x(t) = c(t) + Q(t) (X + d curve(t) - c0) (an anchor on a turning drum; d = 0: the
+/// point is fixed to the tool). Each component is prescribed along its own curve.
+void prescribe_following(const JsonCursor& o, ControlPointProblem& p, int i, const Vector3d& d,
+                         const LoadCurve& curve, const std::shared_ptr<const RigidMotion>& m) {
+  if (!p.local_basis(i).isIdentity(0.0))
+    o.fail_plain("a point with a local basis (a symmetry or clamp condition) cannot follow a tool");
+  const Vector3d X = p.reference_point(i);
+  for (int c = 0; c < 3; ++c)
+    p.prescribe(i, c, 1.0, [m, X, d, curve, c](double t) {
+      return (m->pose(t).to_world(X + d * curve(t)) - X)[c];
+    });
+}
+
+/// A force that turns with a moving tool, F(t) = Q(t) F curve(t): three loads along the axes,
+/// each along its own curve; add(direction, curve) adds one.
+template <class Add>
+void turning_force(const Vector3d& F, const LoadCurve& curve,
+                   const std::shared_ptr<const RigidMotion>& m, Add add) {
+  for (int k = 0; k < 3; ++k)
+    add(Vector3d::Unit(k), [m, F, curve, k](double t) { return (m->pose(t).Q * F)[k] * curve(t); });
+}
+
 /// {"type": "fix", "points": ..., "components": [...]} (rods and shells).
 void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p) {
   o.expect_object({"type", "body", "points", "components", "description"});
@@ -301,11 +333,14 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodPr
       const std::string e = one_of(o["end"], {"start", "end"});
       p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
     } else {
-      o.expect_object(
-          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
+      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
+                       "motion", "description"});
       const int i = point_index(o["point"], ctx);
       const Vector3d d = vector_value(o, "value", ctx, end_of(o["point"]));
-      p.prescribe(i, d, curve_of(o, ctx));
+      if (const auto m = motion_of(o, ctx))
+        prescribe_following(o, p, i, d, curve_of(o, ctx), m);
+      else
+        p.prescribe(i, d, curve_of(o, ctx));
     }
   } catch (const RodError& e) {
     o.fail_plain(e.what());
@@ -318,9 +353,15 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   check_body(o, ctx);
   auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
   if (type == "point_force") {
-    o.expect_object(
-        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
-    p.add_point_load(at(o["at"]), vector_value(o, "force", ctx, end_of(o["at"])), curve_of(o, ctx));
+    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
+                     "motion", "description"});
+    const double xi = at(o["at"]);
+    const Vector3d F = vector_value(o, "force", ctx, end_of(o["at"]));
+    if (const auto m = motion_of(o, ctx))
+      turning_force(F, curve_of(o, ctx), m,
+                    [&](const Vector3d& e, LoadCurve c) { p.add_point_load(xi, e, std::move(c)); });
+    else
+      p.add_point_load(xi, F, curve_of(o, ctx));
   } else if (type == "line_load") {
     o.expect_object({"type", "name", "body", "q", "curve", "description"});
     p.add_line_load(vec3(o["q"]), curve_of(o, ctx));
@@ -415,10 +456,14 @@ void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, She
     if (type == "fix") {
       fix_points(o, ctx, p);
     } else if (type == "displacement") {
-      o.expect_object(
-          {"type", "body", "point", "value", "magnitude", "direction", "curve", "description"});
-      p.prescribe(point_index(o["point"], ctx), vector_value(o, "value", ctx, -1),
-                  curve_of(o, ctx));
+      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
+                       "motion", "description"});
+      const int i = point_index(o["point"], ctx);
+      const Vector3d d = vector_value(o, "value", ctx, -1);
+      if (const auto m = motion_of(o, ctx))
+        prescribe_following(o, p, i, d, curve_of(o, ctx), m);
+      else
+        p.prescribe(i, d, curve_of(o, ctx));
     } else if (type == "simply_supported") {
       o.expect_object({"type", "body", "edge", "components", "description"});
       const std::vector<int> c = components(o);
@@ -465,10 +510,16 @@ void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) 
     o.expect_object({"type", "name", "body", "edge", "q", "curve", "description"});
     p.add_edge_load(parse_edge(o["edge"]), vec3(o["q"]), curve_of(o, ctx));
   } else {
-    o.expect_object(
-        {"type", "name", "body", "at", "force", "magnitude", "direction", "curve", "description"});
+    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
+                     "motion", "description"});
     const Vector2d uv = surface_parameters(o["at"], *ctx.surface);
-    p.add_point_load(uv[0], uv[1], vector_value(o, "force", ctx, -1), curve_of(o, ctx));
+    const Vector3d F = vector_value(o, "force", ctx, -1);
+    if (const auto m = motion_of(o, ctx))
+      turning_force(F, curve_of(o, ctx), m, [&](const Vector3d& e, LoadCurve c) {
+        p.add_point_load(uv[0], uv[1], e, std::move(c));
+      });
+    else
+      p.add_point_load(uv[0], uv[1], F, curve_of(o, ctx));
   }
 }
 
@@ -504,11 +555,26 @@ RodSection parse_rod_material(const JsonCursor& m) {
 }
 
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
-  s.expect_object({"t_end", "initial_step", "max_step", "min_step", "max_steps", "max_iterations",
-                   "tol_residual_rel", "tol_residual_abs", "tol_residual_scaled", "tol_energy_rel",
-                   "divergence_ratio", "max_residual_increases", "stop_at_full_slip_after",
-                   "full_slip_steps", "hit_times", "easy_iterations", "growth_factor",
-                   "cutback_factor", "description"});
+  s.expect_object({"t_end",
+                   "initial_step",
+                   "max_step",
+                   "min_step",
+                   "max_steps",
+                   "max_iterations",
+                   "tol_residual_rel",
+                   "tol_residual_abs",
+                   "tol_residual_scaled",
+                   "tol_energy_rel",
+                   "divergence_ratio",
+                   "max_residual_increases",
+                   "stop_at_full_slip_after",
+                   "full_slip_steps",
+                   "hit_times",
+                   "easy_iterations",
+                   "growth_factor",
+                   "cutback_factor",
+                   "predictor",
+                   "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
   if (s.has("t_end")) {
@@ -558,6 +624,8 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
     if (n.easy_iterations < 0) c.fail("must be >= 0");
   }
   if (s.has("growth_factor")) n.growth_factor = positive(s["growth_factor"]);
+  if (s.has("predictor"))
+    n.secant_predictor = one_of(s["predictor"], {"none", "secant"}) == "secant";
   if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);
   if (s.has("hit_times")) {  // times the steps land on (snapshots)
     const JsonCursor h = s["hit_times"];

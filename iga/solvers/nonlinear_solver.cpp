@@ -361,6 +361,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
   w.rhs.resize(n);
   w.du.resize(n);
   VectorXd u_last = u;  // the last converged state
+  VectorXd u_prev;      // the one before it (secant predictor), at t_prev
+  double t_prev = s.t0;
 
   const double span = s.t1 - s.t0;
   const double t_eps = 1e-12 * span;  // times closer than this to t1 are t1
@@ -384,6 +386,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     a.t = t_new;
     a.dt = t_new - t;
     int hardest_solve = 0;  // the most iterations of one Newton solve of the step
+    if (s.secant_predictor && u_prev.size() == n && t > t_prev)
+      u = u_last + (a.dt / (t - t_prev)) * (u_last - u_prev);
     try {
       newton(problem, u, t_new, w, a, r);
       const int first_solve = a.iterations;
@@ -400,6 +404,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     add_attempt_totals(r, a);
 
     if (a.outcome == NewtonOutcome::converged) {
+      u_prev = u_last;
+      t_prev = t;
       t = t_new;
       u_last = u;
       ++r.steps;

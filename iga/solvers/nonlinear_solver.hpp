@@ -60,6 +60,11 @@ struct NonlinearSolverSettings {
   /// the snapshots of a load history): a step that would pass one ends there instead; the
   /// step size itself is kept for the step after. Any order; must be finite.
   std::vector<double> hit_times;
+  /// Start of a step's Newton iteration: false, the last converged u (the prescribed values
+  /// jump, the rest follows in the first iteration); true, the secant extrapolation of the
+  /// last two converged states, u_n + (dt / dt_prev) (u_n - u_prev) (from the second step on):
+  /// a body carried by a moving tool or anchor then starts where its motion takes it.
+  bool secant_predictor = false;
 
   /// Throws std::invalid_argument naming the field, e.g. "NonlinearSolverSettings.min_step:
   /// must be > 0, got 0".
@@ -141,7 +146,8 @@ using StepCallback = std::function<bool(const VectorXd& u, double t, const StepA
 /// Load stepping with Newton-Raphson. One instance keeps its LinearSolver (and thus the
 /// symbolic analysis) across steps and runs.
 ///
-/// Each step tries t = t_start + dt from the converged u (no extrapolation): R_0 = R(u, t);
+/// Each step tries t = t_start + dt from the converged u (or its secant extrapolation,
+/// NonlinearSolverSettings::secant_predictor): R_0 = R(u, t);
 /// Newton corrections K du = -R until the residual and energy tests hold. Then
 /// NonlinearProblem::augment: while it updates multipliers, Newton runs again at the same t
 /// from the converged u (its iterations count for the step; a failure of such a re-solve, or

@@ -3,9 +3,12 @@
 // drum's torque balances the tensions; the contact of a pair whose tool and body are moved
 // together by a large rigid motion is the same, turned (residual, states, force on the tool);
 // its tangent for a moving, rotating tool equals central differences of its residual in stick
-// and in slip; the "rigid_motions" section is checked like every other.
+// and in slip; the capstan carried by a large rigid motion as a whole (drum, anchor and load
+// following it) gives the T/T0 of the still one; the "rigid_motions" section is checked like
+// every other.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -143,6 +146,50 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "moving tools: the capstan moved and turned as a whole during the run gives the T/T0 of the "
+    "still one",
+    "[iga][analysis][moving_tools]") {
+  // Drum, the anchor B (pulled along its tangent, in the drum's frame) and the dead load T0 at
+  // A (turning with the drum) carried by a large rigid motion from t = 0.5 on (T0 half applied):
+  // a quarter turn over t in [0.5, 2] about the z axis through (3, 1, 0) and a shift by
+  // (-2, 4, 0) (in the rope's plane: its z components stay fixed). Both runs go to t = 1.3 (the
+  // arc slides from t ~ 1.05) with the secant predictor, which lets the moving one start each
+  // step where the motion takes the rope; their step sizes differ (the moving one's are ~10
+  // times smaller), so they agree to the solver's and the augmentation's tolerances.
+  Json still = read_json_file(kData + "capstan.json");
+  still["solver"].erase("stop_at_full_slip_after");
+  still["solver"]["t_end"] = 1.3;
+  still["solver"]["predictor"] = "secant";
+  Json moved = still;
+  moved["load_curves"]["carry"] =
+      Json::parse(R"({"type": "piecewise_linear", "points": [[0.5, 0], [2, 1]]})");
+  moved["rigid_motions"] = Json::parse(R"({"cylinder": {
+      "rotation": {"point": [3, 1, 0], "axis": [0, 0, 1], "angle": 1.5707963267948966,
+                   "curve": "carry"},
+      "translation": {"vector": [-2, 4, 0], "curve": "carry"}}})");
+  moved["boundary_conditions"][1]["motion"] = "cylinder";
+  moved["loads"][0]["motion"] = "cylinder";
+  Analysis a = Analysis::from_json(still, "capstan.json");
+  Analysis b = Analysis::from_json(moved, "moved.json");
+  const AnalysisResult ra = a.run(), rb = b.run();
+  REQUIRE(ra.solver.status == NonlinearSolverStatus::converged);
+  REQUIRE(rb.solver.status == NonlinearSolverStatus::converged);
+  const double ta = ra.steps.back().reactions.at(0).norm() / kT0;
+  const double tb = rb.steps.back().reactions.at(0).norm() / kT0;
+  INFO("T/T0 at t = 1.3: still " << ta << " (" << ra.steps.size() << " steps), moved " << tb << " ("
+                                 << rb.steps.size() << " steps)");
+  CHECK(ra.steps.back().contact.slip == ra.steps.back().contact.active);  // sliding
+  CHECK(rb.steps.back().contact.slip == rb.steps.back().contact.active);
+  CHECK(std::abs(tb / ta - 1.0) < 2e-5);
+  // The drum has moved: the force on it is the still one turned by the quarter turn so far.
+  const Vector3d Fa = ra.steps.back().tool_loads.at(0).first;
+  const Vector3d Fb = rb.steps.back().tool_loads.at(0).first;
+  const double angle = 1.5707963267948966 * (1.3 - 0.5) / 1.5;
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(angle, Vector3d::UnitZ()).matrix();
+  CHECK((Fb - Q * Fa).norm() < 1e-4 * Fa.norm());
+}
+
 TEST_CASE("moving tools: the rigid_motions section is checked with file, path and value",
           "[iga][analysis][moving_tools][errors]") {
   const Json base = read_json_file(kData + "driven_drum.json");
@@ -176,6 +223,9 @@ TEST_CASE("moving tools: the rigid_motions section is checked with file, path an
                d["rigid_motions"]["cylinder"]["translation"] = Json::parse(R"({"vector": [0, 0]})");
              }),
              Catch::Contains("m.json: /rigid_motions/cylinder/translation/vector"));
+  CHECK_THAT(error([](Json& d) { d["loads"][0]["motion"] = "drum"; }),
+             Catch::Contains("m.json: /loads/0/motion: names no entry of \"rigid_motions\", got "
+                             "\"drum\""));
   CHECK(error([](Json& d) {
           d["rigid_motions"]["cylinder"]["translation"] =
               Json::parse(R"({"vector": [0, 0, 0.1], "curve": "turn"})");
