@@ -82,6 +82,7 @@ int RigidSurface::add(const NurbsSurface& s) {
   box_.extend(pieces_.back().box.lo);
   box_.extend(pieces_.back().box.hi);
   detect_shared_sides();
+  reset_index();
   return num_patches() - 1;
 }
 
@@ -114,6 +115,7 @@ int RigidSurface::add(const AnalyticSurface& s) {
   box_.extend(pieces_.back().box.lo);
   box_.extend(pieces_.back().box.hi);
   detect_shared_sides();
+  reset_index();
   return num_patches() - 1;
 }
 
@@ -258,21 +260,42 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
   return g;
 }
 
+void RigidSurface::reset_index() {
+  // A new index object: copies made before keep theirs (of their pieces).
+  index_ = std::make_shared<ElementIndex>();
+  for (int i = 0; i < num_patches(); ++i)
+    if (const PatchProjector* P = nurbs(i))
+      for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
+        index_->boxes.push_back(P->element_boxes()[e]);
+        index_->tags.emplace_back(i, static_cast<int>(e));
+      }
+}
+
+const RigidBoxIndex& RigidSurface::element_index(double distance) const {
+  ElementIndex& x = *index_;
+  const std::lock_guard<std::mutex> lock(x.mutex);
+  for (const auto& [d, index] : x.by_distance)
+    if (d == distance) return *index;
+  x.by_distance.emplace_back(distance, std::make_unique<RigidBoxIndex>(x.boxes, distance));
+  return *x.by_distance.back().second;
+}
+
+const std::pair<int, int>& RigidSurface::element_tag(int box) const {
+  return index_->tags.at(static_cast<std::size_t>(box));
+}
+
+const std::vector<Box3>& RigidSurface::element_boxes() const {
+  return index_->boxes;
+}
+
 std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vector3d>& points,
                                                            double search_distance, bool use_cgal,
                                                            const ProjectionOptions& opt) const {
   // Broad phase: every Bezier element of every NURBS piece, tagged (piece, element).
-  std::vector<Box3> boxes;
-  std::vector<std::pair<int, int>> tag;
-  for (int i = 0; i < num_patches(); ++i)
-    if (const PatchProjector* P = nurbs(i))
-      for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
-        boxes.push_back(P->element_boxes()[e]);
-        tag.emplace_back(i, static_cast<int>(e));
-      }
+  const std::vector<std::pair<int, int>>& tag = index_->tags;
   const std::vector<SearchPair> pairs = use_cgal
-                                            ? broad_phase(points, boxes, search_distance)
-                                            : RigidBoxIndex(boxes, search_distance).query(points);
+                                            ? broad_phase(points, index_->boxes, search_distance)
+                                            : element_index(search_distance).query(points);
   // Narrow phase: per point, per piece, the projection among the candidate elements.
   std::vector<ProjectionResult> out(points.size());
   std::vector<int> ids;

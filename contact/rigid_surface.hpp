@@ -6,10 +6,12 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
 #include "contact/closest_point.hpp"
+#include "contact/contact_search.hpp"
 #include "contact/projection.hpp"
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/geometry_io.hpp"
@@ -46,12 +48,22 @@ class RigidSurface {
   ProjectionResult closest_point(const Vector3d& x, const ProjectionResult& previous,
                                  const ProjectionOptions& opt = {}) const;
   /// Closest points of many query points within `search_distance` (status far beyond it):
-  /// a broad phase over all Bezier elements of all patches (RigidBoxIndex, the uniform grid
-  /// of contact_search.hpp, or CGAL's box_intersection_d with use_cgal), then the projection
-  /// among each point's candidate elements only. Analytic pieces are always candidates.
+  /// a broad phase over all Bezier elements of all patches (element_index: the uniform grid of
+  /// contact_search.hpp, built once per distance; or CGAL's box_intersection_d with use_cgal,
+  /// which rebuilds its tree on every call), then the projection among each point's candidate
+  /// elements only. Analytic pieces are always candidates.
   std::vector<ProjectionResult> closest_points(const std::vector<Vector3d>& points,
                                                double search_distance, bool use_cgal = false,
                                                const ProjectionOptions& opt = {}) const;
+  /// The Bezier elements of all NURBS pieces indexed for the broad phase with boxes enlarged
+  /// by `distance`: built at the first call for that distance and kept (a rigid tool never
+  /// deforms; a moving one is queried in its own frame), shared by copies, safe to call from
+  /// several threads. Box b of the index is element tag(b).second of piece tag(b).first.
+  const RigidBoxIndex& element_index(double distance) const;
+  const std::pair<int, int>& element_tag(int box) const;
+  /// The element boxes of the NURBS pieces, in the index's order.
+  const std::vector<Box3>& element_boxes() const;
+
   /// Ray x + xi3 N: the hit with the smallest |xi3| over all pieces (miss / tangent if none).
   ProjectionResult ray(const Vector3d& x, const Vector3d& N,
                        const ProjectionOptions& opt = {}) const;
@@ -73,8 +85,18 @@ class RigidSurface {
   void union_status(ProjectionResult& r) const;
   void detect_shared_sides();
 
+  // The element boxes and their indices per search distance (element_index).
+  struct ElementIndex {
+    std::vector<Box3> boxes;
+    std::vector<std::pair<int, int>> tags;  // (piece, element)
+    std::mutex mutex;
+    std::vector<std::pair<double, std::unique_ptr<const RigidBoxIndex>>> by_distance;
+  };
+  void reset_index();
+
   std::vector<Piece> pieces_;
   Box3 box_;
+  std::shared_ptr<ElementIndex> index_ = std::make_shared<ElementIndex>();
 };
 
 }  // namespace iga

@@ -67,8 +67,7 @@ void set_position(const RationalBasis& basis, int p, const std::vector<Vector3d>
 void project_cold(const RigidSurface& rigid, const std::vector<int>& cold,
                   const std::vector<Vector3d>& cold_x, double search_distance,
                   std::vector<CurveContactPoint>& points) {
-  const std::vector<ProjectionResult> feet =
-      rigid.closest_points(cold_x, search_distance, /*use_cgal=*/true);
+  const std::vector<ProjectionResult> feet = rigid.closest_points(cold_x, search_distance);
   for (std::size_t k = 0; k < cold.size(); ++k) {
     CurveContactPoint& cp = points[static_cast<std::size_t>(cold[k])];
     cp.foot = feet[k];
@@ -109,14 +108,15 @@ void add_point_residual(const CurveContactPoint& cp, const RationalBasis& basis,
 
 // K_ab -= int R_a R_b df/dr ds at an active point.
 void add_point_tangent(const CurveContactPoint& cp, const RationalBasis& basis, int p,
-                       std::vector<Eigen::Triplet<double>>& K) {
+                       const Matrix3d& turn, std::vector<Eigen::Triplet<double>>& K) {
   const BasisValues& Rb = basis.N;
   const int first = basis.first;
+  const Matrix3d kt = turn * cp.law.stiffness * turn.transpose();
   for (int a = 0; a <= p; ++a) {
     const int A = first + a;
     for (int b = 0; b <= p; ++b) {
       const int B = first + b;
-      const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * cp.law.stiffness;
+      const Matrix3d k = -cp.weight * Rb[a] * Rb[b] * kt;
       for (int r = 0; r < 3; ++r)
         for (int j = 0; j < 3; ++j) K.emplace_back(3 * A + r, 3 * B + j, k(r, j));
     }
@@ -141,10 +141,12 @@ void set_frame_forces(const RationalBasis& basis, int p, const std::vector<Vecto
 // The normal penalty stiffness eps_N n n^T of a point near contact, in the tangent only (see
 // assemble).
 void add_near_stiffness(const CurveContactPoint& cp, const RationalBasis& basis, int p,
-                        double eps_n, std::vector<Eigen::Triplet<double>>& K) {
+                        double eps_n, const Matrix3d& turn,
+                        std::vector<Eigen::Triplet<double>>& K) {
   const BasisValues& Rb = basis.N;
   const int first = basis.first;
-  const Matrix3d kn = eps_n * cp.law.normal * cp.law.normal.transpose();
+  const Vector3d n = turn * cp.law.normal;
+  const Matrix3d kn = eps_n * n * n.transpose();
   for (int a = 0; a <= p; ++a)
     for (int b = 0; b <= p; ++b) {
       const Matrix3d k = cp.weight * Rb[a] * Rb[b] * kn;
@@ -199,7 +201,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     any_active = true;
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
     add_point_residual(cp, basis_[i], p, R);
-    if (K) add_point_tangent(cp, basis_[i], p, *K);
+    if (K) add_point_tangent(cp, basis_[i], p, turn_, *K);
     set_frame_forces(basis_[i], p, x, cp);
   }
   // No point in contact, some a hair above the surface: the tangent gets their normal penalty
@@ -210,7 +212,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   if (K && !any_active)
     for (int i : near_)
       add_near_stiffness(points_[static_cast<std::size_t>(i)], basis_[static_cast<std::size_t>(i)],
-                         p, params_.eps_n, *K);
+                         p, params_.eps_n, turn_, *K);
 }
 
 void CurveContact::commit() {

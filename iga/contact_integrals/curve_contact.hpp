@@ -103,9 +103,9 @@ class CurveContact {
   const ContactEnforcement& enforcement() const { return enforcement_; }
   void set_enforcement(const ContactEnforcement& e);
   /// Points without a warm start (first assembly, or no foot last time) are projected in one
-  /// batch: a CGAL box-intersection broad phase (RigidSurface::closest_points) between the
-  /// points and the Bezier elements of the rigid patches, inflated by this distance, then the
-  /// projection among each point's candidates; farther points are inactive (status far).
+  /// batch: a broad phase (RigidSurface::closest_points: the tool's grid index, built once)
+  /// between the points and the Bezier elements of the rigid patches, inflated by this distance,
+  /// then the projection among each point's candidates; farther points are inactive (status far).
   /// Default: rope radius + the longest reference element chord.
   double search_distance() const { return search_distance_; }
   void set_search_distance(double d) { search_distance_ = d; }
@@ -116,6 +116,10 @@ class CurveContact {
   double near_distance() const { return 1e-3 * search_distance_; }
   /// Points projected through the broad phase in the last assembly (the others warm-started).
   int broad_phase_points() const { return broad_phase_points_; }
+  /// The tangent's 3 x 3 blocks are emitted turned, Q K_ab Q^T (a moving tool: the integral
+  /// works in the tool's frame, RigidContactPair turns its results forward); identity: as they
+  /// are.
+  void set_turn(const Matrix3d& Q) { turn_ = Q; }
 
  private:
   NurbsCurve ref_;
@@ -128,6 +132,7 @@ class CurveContact {
   /// The rational basis at each point's eta (geometry/rational_basis.hpp), parallel to points_.
   std::vector<RationalBasis> basis_;
   double search_distance_ = 0.0;
+  Matrix3d turn_ = Matrix3d::Identity();
   int broad_phase_points_ = 0;
   bool anchored_start_ = false;  ///< the first assembly anchored the points at rest
   std::vector<int> cold_;        ///< work: points without a warm start

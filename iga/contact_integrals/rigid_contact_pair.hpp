@@ -32,7 +32,8 @@ class RigidContactPair : public ContactPair {
   /// The contact integral in the tool's frame at the pose of t: the control points mapped
   /// back, X_a = c0 + Q^T (x_a - c) (a rigid map: the body's geometry, tangents and normals
   /// move with it), the integral's residual g_a and tangent blocks K_ab turned forward,
-  /// Q g_a and Q K_ab Q^T (the map's derivative dX/dx = Q^T is constant at fixed t). The
+  /// Q g_a and Q K_ab Q^T (the map's derivative dX/dx = Q^T is constant at fixed t; the
+  /// integral turns the blocks as it emits them, set_turn). The
   /// friction history the integral keeps is thus in the tool's frame and moves with it.
   void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
@@ -40,11 +41,10 @@ class RigidContactPair : public ContactPair {
     x_.resize(x.size());  // no reallocation after the first call
     for (std::size_t a = 0; a < x.size(); ++a) x_[a] = pose_.to_tool(x[a]);
     g_.setZero(g.size());
-    K_.clear();
-    contact_.predict(t);  // augmented Lagrange: the step's first multipliers
-    contact_.assemble(x_, g_,
-                      K ? &K_ : nullptr);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
     const bool turn = pose_.turns();
+    contact_.set_turn(pose_.Q);    // the tangent's blocks emitted turned forward, Q K_ab Q^T
+    contact_.predict(t);           // augmented Lagrange: the step's first multipliers
+    contact_.assemble(x_, g_, K);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
     force_.setZero();
     moment_.setZero();
     for (std::size_t a = 0; a < x.size(); ++a) {
@@ -54,7 +54,6 @@ class RigidContactPair : public ContactPair {
       force_ += ga;  // g_a = -f_a: the force on the tool
       moment_ += x[a].cross(ga);
     }
-    if (K) append_turned(K_, turn, *K);
     time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   void commit() override { contact_.commit(); }
@@ -85,30 +84,9 @@ class RigidContactPair : public ContactPair {
       : ContactPair(std::move(rigid)), contact_(std::move(contact)) {}
 
  private:
-  /// K += Q K_t Q^T block by block (entry (3a+i, 3b+j) of K_t gives Q(k, i) v Q(l, j) at
-  /// (3a+k, 3b+l)); without turning the triplets as they are.
-  static void append_turned(const std::vector<Triplet>& Kt, bool turn, std::vector<Triplet>& K,
-                            const Matrix3d& Q) {
-    if (!turn) {
-      K.insert(K.end(), Kt.begin(), Kt.end());
-      return;
-    }
-    K.reserve(K.size() + 9 * Kt.size());
-    for (const Triplet& e : Kt) {
-      const int r = e.row(), c = e.col(), i = r % 3, j = c % 3;
-      for (int k = 0; k < 3; ++k)
-        for (int l = 0; l < 3; ++l)
-          K.emplace_back(r - i + k, c - j + l, Q(k, i) * e.value() * Q(l, j));
-    }
-  }
-  void append_turned(const std::vector<Triplet>& Kt, bool turn, std::vector<Triplet>& K) const {
-    append_turned(Kt, turn, K, pose_.Q);
-  }
-
   Integral contact_;
   std::vector<Vector3d> x_;  ///< the control points in the tool's frame
   VectorXd g_;               ///< the integral's residual in the tool's frame
-  std::vector<Triplet> K_;   ///< its tangent triplets
   double time_ = 0.0;
 };
 

@@ -273,9 +273,20 @@ void collect_point_tangent(const double* B, int nen, const PointGeometry& g, con
 
 // K_e = Z Nall^T over the element's n_active points, emitted as triplets.
 void add_element_tangent(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Nall, int n_active,
-                         int nen, const std::vector<int>& dofs, Eigen::MatrixXd& Ke,
-                         std::vector<Eigen::Triplet<double>>& K) {
+                         int nen, const std::vector<int>& dofs, const Matrix3d& turn,
+                         Eigen::MatrixXd& Ke, std::vector<Eigen::Triplet<double>>& K) {
   Ke.noalias() = Z.leftCols(3 * n_active) * Nall.leftCols(3 * n_active).transpose();
+  if (!turn.isIdentity(
+          0.0))  // each 3 x 3 block (aa, bb), entry (k, l) at Ke(nen (3k + l) + aa, bb)
+    for (int bb = 0; bb < nen; ++bb)
+      for (int aa = 0; aa < nen; ++aa) {
+        Matrix3d B;
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) B(k, l) = Ke(nen * (3 * k + l) + aa, bb);
+        const Matrix3d T = turn * B * turn.transpose();
+        for (int k = 0; k < 3; ++k)
+          for (int l = 0; l < 3; ++l) Ke(nen * (3 * k + l) + aa, bb) = T(k, l);
+      }
   for (int k = 0; k < 3; ++k)
     for (int l = 0; l < 3; ++l) {
       const int row0 = nen * (3 * k + l);
@@ -337,12 +348,6 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
         }
       elements_.push_back(el);
     }
-  for (int i = 0; i < rigid.num_patches(); ++i)
-    if (const PatchProjector* P = rigid.nurbs(i))
-      for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
-        rigid_boxes_.push_back(P->element_boxes()[e]);
-        rigid_tags_.emplace_back(i, static_cast<int>(e));
-      }
   Ke_.setZero(9 * nen_, nen_);
   Z_.setZero(9 * nen_, 3 * np * np);
   Nall_.setZero(nen_, 3 * np * np);
@@ -450,16 +455,18 @@ void SurfaceContact::cold_project() {
   if (cold_.empty()) return;
   const double d = params_.search_distance;
   if (params_.strategy == SurfaceContactStrategy::kRigidMaster) {
-    // CGAL broad phase over all rigid Bezier elements, closest point among the candidates.
-    const std::vector<ProjectionResult> r = rigid_->closest_points(cold_x_, d, /*use_cgal=*/true);
+    // Broad phase over all rigid Bezier elements (the tool's index, built once), closest point
+    // among the candidates.
+    const std::vector<ProjectionResult> r = rigid_->closest_points(cold_x_, d);
     for (std::size_t k = 0; k < cold_.size(); ++k)
       points_[static_cast<std::size_t>(cold_[k])].foot = r[k];
     return;
   }
   // Slave: the same broad phase gives the candidate patches; a ray hit within distance d lies
   // in an element box enlarged by d around the point, so no hit is missed.
-  const std::vector<SearchPair> pairs =
-      rigid_boxes_.empty() ? std::vector<SearchPair>{} : broad_phase(cold_x_, rigid_boxes_, d);
+  const std::vector<SearchPair> pairs = rigid_->element_boxes().empty()
+                                            ? std::vector<SearchPair>{}
+                                            : rigid_->element_index(d).query(cold_x_);
   std::size_t k = 0;
   for (std::size_t q = 0; q < cold_.size(); ++q) {
     SurfaceContactPoint& cp = points_[static_cast<std::size_t>(cold_[q])];
@@ -475,7 +482,7 @@ void SurfaceContact::cold_project() {
     };
     int last_piece = -1;
     for (; k < pairs.size() && pairs[k].query == static_cast<int>(q); ++k) {
-      const int piece = rigid_tags_[static_cast<std::size_t>(pairs[k].box)].first;
+      const int piece = rigid_->element_tag(pairs[k].box).first;
       if (piece == last_piece) continue;  // pairs are sorted: one ray projection per piece
       last_piece = piece;
       consider(ray_project(*rigid_->nurbs(piece), cp.x, cp.normal), piece);
@@ -564,7 +571,7 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
       collect_point_tangent(B, nen_, g, f, df, c, cp.weight, n_active, Nall_, Z_);
       ++n_active;
     }
-    if (K && n_active > 0) add_element_tangent(Z_, Nall_, n_active, nen_, dofs_, Ke_, *K);
+    if (K && n_active > 0) add_element_tangent(Z_, Nall_, n_active, nen_, dofs_, turn_, Ke_, *K);
   }
 }
 

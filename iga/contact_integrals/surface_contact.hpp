@@ -75,10 +75,11 @@
 // Contact search. Every contact point keeps its last foot (warm start). Per assemble, points
 // with a foot are projected locally on the foot's patch (closest point Newton (18) or ray Newton
 // (5)); those without a foot, or whose local result leaves the patch interior (edge, vertex,
-// miss, not converged), are collected and searched together: one CGAL box_intersection_d
-// broad phase (contact/contact_search.hpp) of these points against the Bezier element boxes of
-// all rigid NURBS patches enlarged by the search distance, then the narrow phase among each
-// point's candidates only (RigidSurface::closest_points with use_cgal for the master strategy;
+// miss, not converged), are collected and searched together: one broad phase
+// (RigidSurface::element_index: the uniform grid of contact/contact_search.hpp over the Bezier
+// element boxes of all rigid NURBS patches enlarged by the search distance, built once for the
+// tool) of these points, then the narrow phase among each point's candidates only
+// (RigidSurface::closest_points for the master strategy;
 // ray projection on the candidate patches for the slave strategy). Analytic pieces are always
 // candidates. Points with no foot within the search distance (far), a missing ray (miss,
 // tangent) or a failed projection are inactive and counted as failed. A foot in the interior
@@ -194,6 +195,10 @@ class SurfaceContact {
   /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
   const ContactEnforcement& enforcement() const { return enforcement_; }
   void set_enforcement(const ContactEnforcement& e);
+  /// The tangent's 3 x 3 blocks are emitted turned, Q K_ab Q^T (a moving tool: the integral
+  /// works in the tool's frame, RigidContactPair turns its results forward); identity: as they
+  /// are.
+  void set_turn(const Matrix3d& Q) { turn_ = Q; }
 
  private:
   struct Element {
@@ -218,12 +223,11 @@ class SurfaceContact {
   /// Per point, nen_ rows (R_a, R_a,1, R_a,2), row-major: basis_[(point * nen_ + a) * 3 + k].
   std::vector<double> basis_;
   // Rigid element boxes of all NURBS pieces, and their (piece, element) tags (broad phase).
-  std::vector<Box3> rigid_boxes_;
-  std::vector<std::pair<int, int>> rigid_tags_;
   // Workspace (allocated once).
   std::vector<int> cold_;        ///< points needing a search in this assemble
   bool anchored_start_ = false;  ///< the first assembly anchored the points at rest (master)
   std::vector<Vector3d> cold_x_;
+  Matrix3d turn_ = Matrix3d::Identity();
   Eigen::MatrixXd Ke_;  ///< element tangent: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
   Eigen::MatrixXd Z_;   ///< per element: rows nen (3 k + l) + a: [.. N_p M_p^kl ..], 3 n^2 columns
   Eigen::MatrixXd Nall_;  ///< per element: [.. N_p ..], N_p = (R, R_,1, R_,2)

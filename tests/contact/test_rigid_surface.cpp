@@ -134,4 +134,17 @@ TEST_CASE("RigidSurface::closest_points: broad phase + narrow phase equals the f
     }
     CHECK(near > 300);  // the test has teeth: many points are within the search distance
   }
+  // The grid index is built once per distance and kept (the same object), equals the CGAL
+  // broad phase pair for pair, and a copy that gets another patch has an index of its own.
+  const RigidBoxIndex& index = rs.element_index(d);
+  CHECK(&rs.element_index(d) == &index);
+  CHECK(&rs.element_index(2 * d) != &index);
+  CHECK(index.query(pts) == broad_phase(pts, rs.element_boxes(), d));
+  RigidSurface more = rs;
+  CHECK(&more.element_index(d) == &index);
+  more.add(make_torus(Vector3d(0, 0, -5), Vector3d::UnitZ(), 2.0, 0.5));
+  CHECK(more.element_boxes().size() > rs.element_boxes().size());
+  CHECK(&more.element_index(d) != &index);
+  CHECK(rs.element_tag(static_cast<int>(rs.element_boxes().size()) - 1).first ==
+        rs.num_patches() - 1);
 }

@@ -2,22 +2,27 @@
 // Sects. 2-3): its tangent against central finite differences of its residual for both
 // strategies, frictionless / stick / slip, the three faces, on a plane, a hyperboloid (bilinear
 // NURBS patch and analytic) and a sphere; a multi-patch rigid surface against the single patch;
-// resultants of a uniformly pressed and of a sheared plate; master against slave.
+// resultants of a uniformly pressed and of a sheared plate; master against slave; the pair of a
+// moving, rotating tool (residual turned with the motion, tangent against differences).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <memory>
 #include <random>
 #include <string>
+#include <utility>
 
+#include <Eigen/Geometry>
 #include <Eigen/SparseCore>
 
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/contact_integrals/surface_contact.hpp"
+#include "iga/contact_integrals/surface_contact_pair.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
 using namespace iga;
@@ -49,6 +54,19 @@ Vector3d resultant(const Eigen::VectorXd& R) {
   Vector3d s = Vector3d::Zero();
   for (Eigen::Index a = 0; a < R.size() / 3; ++a) s += R.segment<3>(3 * a);
   return s;
+}
+
+/// The plate's control points perturbed randomly (x), and the same shifted tangentially by
+/// `shift` (x0: where the friction history is committed).
+std::pair<std::vector<Vector3d>, std::vector<Vector3d>> perturbed_states(const NurbsSurface& ref,
+                                                                         double shift) {
+  std::mt19937 g(7);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  std::vector<Vector3d> x = ref.control_points();
+  for (Vector3d& q : x) q += 0.003 * Vector3d(U(g), U(g), U(g));
+  std::vector<Vector3d> x0 = x;
+  for (Vector3d& q : x0) q += shift * Vector3d(1.0, 0.5, 0.0);
+  return {x, x0};
 }
 
 const char* name(Strategy s) {
@@ -104,14 +122,8 @@ TEST_CASE("SurfaceContact: tangent = d(residual)/dx for both strategies, frictio
           prm.points_per_direction = 3;
           prm.search_distance = 0.5;
           SurfaceContact sc(ref, body.rigid, prm);
-          std::mt19937 g(7);
-          std::uniform_real_distribution<double> U(-1.0, 1.0);
-          std::vector<Vector3d> x = ref.control_points();
-          for (Vector3d& q : x) q += 0.003 * Vector3d(U(g), U(g), U(g));
-          // history: committed at a tangentially shifted state
-          const double shift = friction == 1 ? 0.002 : 0.01;
-          std::vector<Vector3d> x0 = x;
-          for (Vector3d& q : x0) q += shift * Vector3d(1.0, 0.5, 0.0);
+          // history: committed at a tangentially shifted state x0
+          const auto [x, x0] = perturbed_states(ref, friction == 1 ? 0.002 : 0.01);
           residual(sc, x0);
           sc.commit();
           const double err = tangent_error(sc, x, step);
@@ -137,6 +149,73 @@ TEST_CASE("SurfaceContact: tangent = d(residual)/dx for both strategies, frictio
         }
   if (print)
     std::printf("FD worst relative error %.2e (central differences, step %.0e)\n", worst, step);
+}
+
+TEST_CASE(
+    "SurfaceContactPair: a moving, rotating tool gives the still contact turned, and its tangent "
+    "equals central differences (master and slave, stick and slip)",
+    "[iga][contact][surface_contact][tangent][moving_tools]") {
+  // The plate of the test above on the NURBS hyperboloid, its history committed at a shifted
+  // state; the same with tool and plate carried by a rigid motion G (a turn by 0.9 about a
+  // skew axis through (1, -1, 2), then a shift): the tool's pose is G, the plate's points G x.
+  const double a = 0.2, h_shell = 0.1, delta = 0.02;
+  auto rigid = std::make_shared<RigidSurface>();
+  rigid->add(make_bilinear_hyperboloid(a, -2.0, 2.0, -2.0, 2.0));
+  auto motion = std::make_shared<RigidMotion>();
+  motion->set_rotation(Vector3d(1, -1, 2), Vector3d(1, 2, 2), 0.9, [](double) { return 1.0; });
+  motion->set_translation(Vector3d(0.3, 2.0, -1.0), [](double) { return 1.0; });
+  const RigidPose G = motion->pose(1.0);
+  struct AtTime {  // a pair as test::tangent_error's Contact
+    ContactPair& pair;
+    void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+                  std::vector<Eigen::Triplet<double>>* K) {
+      pair.add(x, 1.0, R, K);
+    }
+  };
+  for (const Strategy strategy : {Strategy::kRigidMaster, Strategy::kRigidSlave})
+    for (int friction = 1; friction < 3; ++friction) {
+      const NurbsSurface ref = plate(0.2, 1.2, 0.2, 1.2, 2, false, [&](double x, double y) {
+        return a * x * y - delta + 0.5 * h_shell;
+      });
+      SurfaceContactParameters prm;
+      prm.eps_n = 1e3;
+      prm.eps_t = 1e3;
+      prm.mu = friction == 1 ? 0.5 : 0.1;
+      prm.strategy = strategy;
+      prm.face = ShellFace::kLower;
+      prm.thickness = h_shell;
+      prm.points_per_direction = 3;
+      prm.search_distance = 0.5;
+      SurfaceContactPair still(ref, rigid, prm), moved(ref, rigid, prm);
+      moved.set_motion(motion);
+      const auto [x, x0] = perturbed_states(ref, friction == 1 ? 0.002 : 0.01);
+      std::vector<Vector3d> xm = x, x0m = x0;
+      for (Vector3d& q : xm) q = G.to_world(q);
+      for (Vector3d& q : x0m) q = G.to_world(q);
+      AtTime ps{still}, pm{moved};
+      residual(ps, x0);
+      still.commit();
+      residual(pm, x0m);
+      moved.commit();
+      const Eigen::VectorXd r = residual(ps, x), rm = residual(pm, xm);
+      Eigen::VectorXd turned = r;
+      for (Eigen::Index i = 0; i < r.size(); i += 3) turned.segment<3>(i) = G.Q * r.segment<3>(i);
+      INFO(name(strategy) << (friction == 1 ? " stick: " : " slip: ") << still.status()
+                          << " / moved: " << moved.status());
+      REQUIRE(r.norm() > 0.0);
+      CHECK((rm - turned).norm() <= 1e-9 * r.norm());
+      const ContactCounts n = still.counts(), nm = moved.counts();
+      CHECK(n.active == static_cast<int>(still.contact().points().size()));
+      CHECK(nm.active == n.active);
+      CHECK(nm.stick == n.stick);
+      CHECK((friction == 1 ? n.stick : n.slip) == n.active);
+      // Output in the world frame: the moved pair's contact points are the still ones carried.
+      const SampledMesh a_pts = still.points(), b_pts = moved.points();
+      REQUIRE(a_pts.points.size() == b_pts.points.size());
+      for (std::size_t k = 0; k < a_pts.points.size(); ++k)
+        CHECK((b_pts.points[k] - G.to_world(a_pts.points[k])).norm() < 1e-9);
+      CHECK(tangent_error(pm, xm, 1e-7) <= 1e-6);
+    }
 }
 
 TEST_CASE("SurfaceContact: a 2 x 2 split hyperboloid gives the residual of the single patch",
