@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "apps/common/app_common.hpp"
+#include "apps/common/resources.hpp"
 #include "apps/iga_commands.hpp"
 #include "iga/model/analysis.hpp"
 
@@ -36,6 +37,14 @@ int run_model(const RunOptions& o) {
     for (int b = 0; b < a.num_bodies(); ++b)
       std::cout << ", " << (a.num_bodies() == 1 ? a.body(b).type() : a.body_name(b)) << ".pvd";
   std::cout << ")\n";
+  for (const AnalysisOutput::Plot& p : a.output().plots) {  // figures of steps.csv columns
+    const std::string png = (std::filesystem::path(out) / p.file).string();
+    if (run_python(resource("scripts/plot_steps.py"),
+                   {(std::filesystem::path(out) / "steps.csv").string(), p.x, p.y, png, p.title}))
+      std::cout << "iga run: plot " << png << "\n";
+    else
+      std::cout << "iga run: warning: the plot " << png << " failed (python3 with matplotlib?)\n";
+  }
   const bool ok =
       r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
   if (!ok) std::cout << "iga run: the run ended early: " << r.solver.message << "\n";

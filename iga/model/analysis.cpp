@@ -98,6 +98,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   for (const auto& [name, curve] : a.curves_)
     check_finite_curve(root["load_curves"][name], curve, a.settings_);
   if (root.has("output")) a.output_ = parse_output(root["output"], read);
+  if (root.has("output"))  // the plots' terms must name columns of steps.csv
+    check_plot_columns(root["output"], a.output_, a.csv_columns());
   if (a.system_->num_dofs() == 0)
     root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
@@ -265,6 +267,16 @@ void Analysis::write_csv_header(std::ostream& csv) const {
     for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
   for (const auto& [name, curve] : curves_) csv << "," << name;
   csv << "\n";
+}
+
+std::vector<std::string> Analysis::csv_columns() const {
+  std::ostringstream header;
+  write_csv_header(header);
+  std::vector<std::string> columns;
+  std::string line = header.str(), column;
+  std::istringstream in(line.substr(0, line.find('\n')));
+  while (std::getline(in, column, ',')) columns.push_back(column);
+  return columns;
 }
 
 void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {

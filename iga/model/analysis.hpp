@@ -51,14 +51,20 @@ struct AnalysisOutput {
   /// Points per element (per direction for shells) in the VTK files; 0: each body's default
   /// (16 for rods, 4 for shells).
   int samples_per_element = 0;
+  /// Figures of steps.csv columns that `iga run` draws after the run (scripts/plot_steps.py):
+  /// x and y are terms "[factor*]column" (y: several separated by ';'), file a PNG name.
+  struct Plot {
+    std::string x, y, file, title;
+  };
+  std::vector<Plot> plots;
 };
 
 /// One converged step as recorded by Analysis::run.
 struct AnalysisStep {
   double t = 0.0;
   int iterations = 0;
-  ContactCounts contact;                ///< summed over the pairs (drag_ratio: the largest)
-  std::vector<ContactCounts> pairs;     ///< each pair's, in the model's order
+  ContactCounts contact;             ///< summed over the pairs (drag_ratio: the largest)
+  std::vector<ContactCounts> pairs;  ///< each pair's, in the model's order
   /// Each pair's force on its tool and the moment about the pair's moment point (world frame).
   std::vector<std::pair<Vector3d, Vector3d>> tool_loads;
   std::vector<Vector3d> reactions;      ///< at AnalysisOutput::reactions, Cartesian
@@ -200,6 +206,8 @@ class Analysis {
   /// Creates out_dir, opens steps.csv (csv) with its header (failure: std::runtime_error) and
   /// writes the rigid surface's ParaView file; returns the error of that file, empty if none.
   std::string open_output(const std::string& out_dir, std::ofstream& csv) const;
+  /// The columns of steps.csv, in order.
+  std::vector<std::string> csv_columns() const;
   /// steps.csv: the header, and the row of the step with 1-based `index`.
   void write_csv_header(std::ostream& csv) const;
   void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -323,7 +324,7 @@ void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p)
 
 void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = one_of(o["type"], {"fix", "clamp", "displacement"});
+  const std::string type = one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
   check_body(o, ctx);
   try {
     if (type == "fix") {
@@ -332,6 +333,12 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodPr
       o.expect_object({"type", "body", "end", "description"});
       const std::string e = one_of(o["end"], {"start", "end"});
       p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
+    } else if (type == "symmetry") {  // the end crosses a symmetry plane of normal n
+      o.expect_object({"type", "body", "end", "normal", "description"});
+      const std::string e = one_of(o["end"], {"start", "end"});
+      const Vector3d n = vec3(o["normal"]);
+      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
+      p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
     } else {
       o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
                        "motion", "description"});
@@ -658,8 +665,23 @@ const Context& body_of_entry(const JsonCursor& e, const std::vector<Context>& bo
 }
 
 AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies) {
-  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "description"});
+  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "plots", "description"});
   AnalysisOutput out;
+  if (o.has("plots")) {  // [{"x", "y", "file", ["title"]}], drawn by iga run
+    const JsonCursor pl = o["plots"];
+    pl.expect_array();
+    for (std::size_t k = 0; k < pl.size(); ++k) {
+      const JsonCursor p = pl[k];
+      p.expect_object({"x", "y", "file", "title", "description"});
+      AnalysisOutput::Plot plot{p["x"].as_string(), p["y"].as_string(), p["file"].as_string(),
+                                p.has("title") ? p["title"].as_string() : std::string()};
+      const std::string& f = plot.file;
+      if (f.size() < 5 || f.substr(f.size() - 4) != ".png" ||
+          f.find_first_of("/\\\"") != std::string::npos)
+        p["file"].fail("must be a file name ending in .png, without a folder");
+      out.plots.push_back(plot);
+    }
+  }
   if (o.has("vtk")) {
     const std::string v = one_of(o["vtk"], {"none", "last", "all"});
     out.vtk = v == "none"  ? AnalysisOutput::Vtk::kNone
@@ -708,6 +730,41 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
     if (out.samples_per_element < 1 || out.samples_per_element > 1000) c.fail("must be in 1..1000");
   }
   return out;
+}
+
+void check_plot_columns(const JsonCursor& o, const AnalysisOutput& out,
+                        const std::vector<std::string>& columns) {
+  for (std::size_t k = 0; k < out.plots.size(); ++k)
+    for (const char* axis : {"x", "y"}) {
+      const JsonCursor c = o["plots"][k][axis];
+      std::istringstream terms(c.as_string());
+      std::string t;
+      int n = 0;
+      while (std::getline(terms, t, ';')) {  // "[factor*]column" or "-column"
+        ++n;
+        std::string column = t;
+        if (const auto star = t.find('*'); star != std::string::npos) {
+          const std::string factor = t.substr(0, star);
+          char* end = nullptr;
+          const double f = std::strtod(factor.c_str(), &end);
+          if (factor.empty() || end != factor.c_str() + factor.size() || !std::isfinite(f))
+            c.fail("a term is [factor*]column with a number as factor");
+          column = t.substr(star + 1);
+        } else if (!t.empty() && t[0] == '-') {
+          column = t.substr(1);
+        }
+        column.erase(0, column.find_first_not_of(' '));
+        column.erase(column.find_last_not_of(' ') + 1);
+        if (std::find(columns.begin(), columns.end(), column) == columns.end()) {
+          std::string list;
+          for (const std::string& name : columns) list += (list.empty() ? "" : ", ") + name;
+          c.fail("\"" + column + "\" is no column of steps.csv (" + list + ")");
+        }
+      }
+      if (n == 0 || (std::string(axis) == "x" && n > 1))
+        c.fail(std::string(axis) == "x" ? "expected one term [factor*]column"
+                                        : "expected terms [factor*]column separated by ';'");
+    }
 }
 
 /// Calls f on every entry of the array root[key] (if present) that belongs to the body

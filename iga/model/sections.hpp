@@ -64,5 +64,8 @@ std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCurs
 /// The "solver" and "output" sections; `bodies` holds the context of every body as it was read.
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps);
 AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies);
+/// Every term of the output's plots names one of `columns` (ModelError at the term).
+void check_plot_columns(const JsonCursor& o, const AnalysisOutput& out,
+                        const std::vector<std::string>& columns);
 
 }  // namespace iga::model_detail

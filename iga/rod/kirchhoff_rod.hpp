@@ -258,6 +258,14 @@ class RodProblem : public ControlPointProblem {
   /// tangent (sets the neighbour's local basis: axis 0 along the tangent). Throws RodError if the
   /// neighbour already has a local basis or constraints.
   void clamp(RodEnd end);
+  /// A symmetry plane through the end, normal n, that the rod crosses at right angles (its
+  /// reference end tangent along n, else RodError): the end control point stays in the plane
+  /// and the neighbour moves with it in the plane's directions, so the end tangent stays along
+  /// n (open knots: r'(end) is along x_1 - x_0). For n along a coordinate axis k: x_0's
+  /// component k fixed, x_1's other two tied to x_0's (other constraints of the points stay);
+  /// else both points get the local basis (e1, e2, n) (RodError if they have constraints).
+  /// A quarter of a ring between two plates, a half of a symmetric rope.
+  void symmetry(RodEnd end, const Vector3d& n);
 
   // ---- loads (all scaled by their load curve) ----------------------------------------------
   /// Dead force F at parameter xi, distributed by the basis functions: f_i = R_i(xi) F.

@@ -68,6 +68,21 @@ TEST_CASE("iga run: a failure while writing the results exits 2 with summary.jso
   CHECK(csv_rows(slurp(out / "steps.csv")).size() >= 11);  // header and every converged step
 }
 
+TEST_CASE("iga run: the model's plots of steps.csv columns are drawn (ring between plates)",
+          "[apps][iga][run][moving_tools]") {
+  const fs::path out = fresh("iga_ring_plots");
+  const Result r = run(IGA_EXE, "run \"" + kModel + "ring_between_plates.json\" --quiet --out \"" +
+                                    out.string() + "\" --set /output/vtk='\"last\"'");
+  INFO(r.out);
+  CHECK(r.status == 0);
+  for (const char* f : {"force_travel.png", "diameters.png", "last_rod.vtk", "last_rigid.vtk",
+                        "rigid.pvd", "steps.csv"})
+    CHECK(fs::exists(out / f));
+  CHECK_THAT(r.out, Catch::Contains("iga run: plot "));
+  // The moving plate is written where it is: its last position 0.4 below the first.
+  CHECK(slurp(out / "last_rigid.vtk") != slurp(out / "rigid.vtk"));
+}
+
 #ifdef CAPSTAN_EXE
 TEST_CASE("capstan: --mu/--phi-deg lists name each case in the CSV and keep failed cases",
           "[apps][capstan]") {

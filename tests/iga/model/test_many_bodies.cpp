@@ -48,6 +48,7 @@ Json only_rope(Json doc, const std::string& keep) {
   for (const Json& e : doc["output"]["reactions"])
     if (e["body"] != drop) reactions.push_back(e);
   doc["output"]["reactions"] = reactions;
+  doc["output"].erase("plots");  // of both ropes' columns
   return doc;
 }
 
@@ -179,6 +180,15 @@ TEST_CASE("many bodies: references between bodies, conditions, pairs and output 
           "m.json: /output/monitors/0: the model has several bodies: name the entry's \"body\""));
   CHECK_THAT(error([](Json& d) { d["bodies"] = Json::object(); }),
              Catch::Contains("m.json: /bodies: expected an object of named bodies (at least one)"));
+  CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["y"] = "0.1*Rrope_c_52_norm"; }),
+             Catch::Contains("m.json: /output/plots/0/y: \"Rrope_c_52_norm\" is no column of "
+                             "steps.csv (step, t, iterations"));
+  CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["x"] = "x*t"; }),
+             Catch::Contains("m.json: /output/plots/0/x: a term is [factor*]column"));
+  CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["x"] = "t;t"; }),
+             Catch::Contains("m.json: /output/plots/0/x: expected one term"));
+  CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["file"] = "../a.png"; }),
+             Catch::Contains("m.json: /output/plots/0/file: must be a file name ending in .png"));
   CHECK(error([](Json& d) {
           d["output"]["monitors"] =
               Json::parse(R"([{"name": "mid", "at": 0.5, "body": "rope_b"}])");

@@ -13,6 +13,8 @@
 #include <filesystem>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -190,6 +192,107 @@ TEST_CASE(
   CHECK((Fb - Q * Fa).norm() < 1e-4 * Fa.norm());
 }
 
+TEST_CASE(
+    "moving tools: a plate indented by a sphere that moves down has the point-load slope of "
+    "Timoshenko, master and slave agree into large deflection",
+    "[iga][analysis][moving_tools]") {
+  // data/indented_plate.json: simply supported square plate a = 1, h = 0.01, E = 1e7,
+  // nu = 0.3; central point load: w = alpha P a^2 / D, alpha = 0.01160 (Timoshenko &
+  // Woinowsky-Krieger 1959, Table 23). The first step (travel 6e-4, w = 0.04 h) is linear.
+  const double E = 1e7, h = 0.01, nu = 0.3, D = E * h * h * h / (12.0 * (1.0 - nu * nu));
+  Json doc = read_json_file(kData + "indented_plate.json");
+  doc["solver"]["t_end"] = 0.3;
+  doc["solver"]["max_step"] = 0.1;
+  doc["output"]["vtk"] = "none";
+  std::vector<std::vector<std::pair<double, double>>> paths;  // (t, P) per strategy
+  for (const char* strategy : {"master", "slave"}) {
+    doc["contact"][0]["strategy"] = strategy;
+    Analysis a = Analysis::from_json(doc, "indented_plate.json");
+    const AnalysisResult r = a.run();
+    REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
+    const AnalysisStep& first = r.steps.front();
+    REQUIRE(first.t == Approx(0.02));
+    const double P = first.tool_loads.at(0).first.z(), w = -first.displacements.at(0).z();
+    INFO(strategy << ": P = " << P << ", w = " << w << ", w D / (P a^2) = " << w * D / P);
+    CHECK(w < 0.05 * h);                                // linear range
+    CHECK(w * D / P == Approx(0.01160).epsilon(0.01));  // the issue's bound: 1 %
+    std::vector<std::pair<double, double>> path;
+    for (const AnalysisStep& st : r.steps) path.emplace_back(st.t, st.tool_loads.at(0).first.z());
+    paths.push_back(path);
+    // Large deflection at the end: w ~ h, the plate stiffer than linear (membrane forces).
+    const AnalysisStep& last = r.steps.back();
+    const double wl = -last.displacements.at(0).z(), Pl = last.tool_loads.at(0).first.z();
+    CHECK(wl > 0.5 * h);
+    CHECK(wl * D / Pl < 0.95 * 0.01160);
+  }
+  REQUIRE(paths[0].size() == paths[1].size());
+  for (std::size_t k = 0; k < paths[0].size(); ++k) {
+    INFO("t = " << paths[0][k].first << ": master P " << paths[0][k].second << ", slave "
+                << paths[1][k].second);
+    CHECK(paths[1][k].first == Approx(paths[0][k].first));
+    CHECK(std::abs(paths[1][k].second / paths[0][k].second - 1.0) < 5e-3);
+  }
+}
+
+TEST_CASE(
+    "moving tools: a ring crushed between two plates has delta = (pi/4 - 2/pi) P R^3 / EI, then "
+    "a contact zone that grows to a flat",
+    "[iga][analysis][moving_tools]") {
+  // data/ring_between_plates.json: a quarter ring (R = 1, EI = 1, EA = 1e6, quartic elements)
+  // with symmetry at both ends; the upper plate moves down by 0.4. Diametral point loads P on a
+  // thin ring (Timoshenko; Roark): the loaded diameter shortens by (pi/4 - 2/pi) P R^3 / EI,
+  // the other lengthens by (4 - pi) / (2 pi) P R^3 / EI. P: twice the quarter's plate force.
+  Json doc = read_json_file(kData + "ring_between_plates.json");
+  doc["output"]["vtk"] = "none";
+  Analysis a = Analysis::from_json(doc, "ring_between_plates.json");
+  const AnalysisResult r = a.run();
+  REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
+  const double pi = std::numbers::pi;
+  const AnalysisStep& first = r.steps.front();
+  REQUIRE(first.t == Approx(0.005));
+  const double P = 2.0 * first.tool_loads.at(0).first.y();
+  const double dv = -2.0 * first.displacements.at(0).y(), dh = 2.0 * first.displacements.at(1).x();
+  INFO("P = " << P << ", shortening " << dv << ", lengthening " << dh);
+  CHECK(dv < 0.01);  // small deflection
+  CHECK(dv / P == Approx(pi / 4 - 2 / pi).epsilon(0.01));
+  CHECK(dh / P == Approx((4 - pi) / (2 * pi)).epsilon(0.01));
+  // Large deflection: the contact zone grows from a point to a flat (many active points), the
+  // ring softens first (the secant compliance grows) and the plate's force keeps rising.
+  const AnalysisStep& last = r.steps.back();
+  CHECK(first.contact.active <= 2);
+  CHECK(last.contact.active >= 8);
+  CHECK(-2.0 * last.displacements.at(0).y() == Approx(0.8).epsilon(0.01));  // plate travel 0.4
+  double previous = 0.0;
+  for (const AnalysisStep& st : r.steps) {
+    CHECK(st.tool_loads.at(0).first.y() > previous);
+    previous = st.tool_loads.at(0).first.y();
+  }
+  // The same model turned by 30 degrees about z (symmetry planes no longer normal to a
+  // coordinate axis: the conditions take the local-basis path) gives the same first step.
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(pi / 6, Vector3d::UnitZ()).matrix();
+  auto turn = [&](Json& v) {
+    const Vector3d w = Q * Vector3d(v[0].get<double>(), v[1].get<double>(), v[2].get<double>());
+    v = {w.x(), w.y(), w.z()};
+  };
+  Json turned = doc;
+  for (Json& q : turned["geometry"]["ring"]["control_points"]) turn(q);
+  turn(turned["geometry"]["plate"]["center"]);
+  turn(turned["geometry"]["plate"]["axis"]);
+  turned["geometry"]["plate"]["ref_dir"] = {1, 0, 0};
+  turn(turned["geometry"]["plate"]["ref_dir"]);
+  for (int k : {0, 1}) turn(turned["boundary_conditions"][k]["normal"]);
+  turn(turned["rigid_motions"]["plate"]["translation"]["vector"]);
+  turned["solver"]["t_end"] = 0.005;
+  turned["solver"].erase("hit_times");
+  Analysis b = Analysis::from_json(turned, "turned.json");
+  const AnalysisResult rb = b.run();
+  REQUIRE(rb.solver.status == NonlinearSolverStatus::converged);
+  const Vector3d Fb = rb.steps.front().tool_loads.at(0).first;
+  CHECK((Fb - Q * first.tool_loads.at(0).first).norm() < 1e-6 * Fb.norm());
+  CHECK((rb.steps.front().displacements.at(0) - Q * first.displacements.at(0)).norm() <
+        1e-6 * first.displacements.at(0).norm());
+}
+
 TEST_CASE("moving tools: the rigid_motions section is checked with file, path and value",
           "[iga][analysis][moving_tools][errors]") {
   const Json base = read_json_file(kData + "driven_drum.json");
@@ -223,6 +326,13 @@ TEST_CASE("moving tools: the rigid_motions section is checked with file, path an
                d["rigid_motions"]["cylinder"]["translation"] = Json::parse(R"({"vector": [0, 0]})");
              }),
              Catch::Contains("m.json: /rigid_motions/cylinder/translation/vector"));
+  const Json ring = read_json_file(kData + "ring_between_plates.json");
+  CHECK_THAT(test::analysis_error(ring,
+                                  [](Json& d) {
+                                    d["boundary_conditions"][0]["normal"] = {0, 1, 0};
+                                  }),
+             Catch::Contains("m.json: /boundary_conditions/0: RodProblem::symmetry: the rod's end "
+                             "tangent is not along the plane's normal"));
   CHECK_THAT(error([](Json& d) { d["loads"][0]["motion"] = "drum"; }),
              Catch::Contains("m.json: /loads/0/motion: names no entry of \"rigid_motions\", got "
                              "\"drum\""));
