@@ -732,38 +732,45 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
   return out;
 }
 
+/// The column of a plot's term "[factor*]column" or "-column" (spaces around it dropped);
+/// ModelError at c when the factor is not a number.
+std::string plot_term_column(const JsonCursor& c, const std::string& term) {
+  std::string column = term;
+  if (const auto star = term.find('*'); star != std::string::npos) {
+    const std::string factor = term.substr(0, star);
+    char* end = nullptr;
+    const double f = std::strtod(factor.c_str(), &end);
+    if (factor.empty() || end != factor.c_str() + factor.size() || !std::isfinite(f))
+      c.fail("a term is [factor*]column with a number as factor");
+    column = term.substr(star + 1);
+  } else if (!term.empty() && term[0] == '-') {
+    column = term.substr(1);
+  }
+  column.erase(0, column.find_first_not_of(' '));
+  column.erase(column.find_last_not_of(' ') + 1);
+  return column;
+}
+
 void check_plot_columns(const JsonCursor& o, const AnalysisOutput& out,
                         const std::vector<std::string>& columns) {
+  std::string list;  // for the message
+  for (const std::string& name : columns) list += (list.empty() ? "" : ", ") + name;
   for (std::size_t k = 0; k < out.plots.size(); ++k)
     for (const char* axis : {"x", "y"}) {
       const JsonCursor c = o["plots"][k][axis];
       std::istringstream terms(c.as_string());
       std::string t;
       int n = 0;
-      while (std::getline(terms, t, ';')) {  // "[factor*]column" or "-column"
+      while (std::getline(terms, t, ';')) {
         ++n;
-        std::string column = t;
-        if (const auto star = t.find('*'); star != std::string::npos) {
-          const std::string factor = t.substr(0, star);
-          char* end = nullptr;
-          const double f = std::strtod(factor.c_str(), &end);
-          if (factor.empty() || end != factor.c_str() + factor.size() || !std::isfinite(f))
-            c.fail("a term is [factor*]column with a number as factor");
-          column = t.substr(star + 1);
-        } else if (!t.empty() && t[0] == '-') {
-          column = t.substr(1);
-        }
-        column.erase(0, column.find_first_not_of(' '));
-        column.erase(column.find_last_not_of(' ') + 1);
-        if (std::find(columns.begin(), columns.end(), column) == columns.end()) {
-          std::string list;
-          for (const std::string& name : columns) list += (list.empty() ? "" : ", ") + name;
+        const std::string column = plot_term_column(c, t);
+        if (std::find(columns.begin(), columns.end(), column) == columns.end())
           c.fail("\"" + column + "\" is no column of steps.csv (" + list + ")");
-        }
       }
-      if (n == 0 || (std::string(axis) == "x" && n > 1))
-        c.fail(std::string(axis) == "x" ? "expected one term [factor*]column"
-                                        : "expected terms [factor*]column separated by ';'");
+      const bool x = std::string(axis) == "x";
+      if (n == 0 || (x && n > 1))
+        c.fail(x ? "expected one term [factor*]column"
+                 : "expected terms [factor*]column separated by ';'");
     }
 }
 
