@@ -828,7 +828,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
-                     "slip_tol", "moment_about", "description"});
+                     "slip_tol", "moment_about", "search_distance", "description"});
     check_body(c, ctx);
     const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     ContactParameters cp;
@@ -838,6 +838,8 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
     auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), rigid, cp, ppe);
     pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+    if (c.has("search_distance"))  // default: rope radius + the longest element chord
+      pair->contact().set_search_distance(positive(c["search_distance"]));
     if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
       pair->set_motion(m->second);
     problem->attach(std::move(pair));

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "iga/contact_integrals/curve_contact_pair.hpp"
 #include "iga/model/analysis.hpp"
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/files.hpp"
@@ -163,6 +164,17 @@ TEST_CASE("many bodies: references between bodies, conditions, pairs and output 
   CHECK_THAT(error([](Json& d) { d["contact"][1]["name"] = "rope_a_on_drum"; }),
              Catch::Contains("m.json: /contact/1/name: a second contact pair named "
                              "\"rope_a_on_drum\""));
+  CHECK_THAT(error([](Json& d) { d["contact"][1]["search_distance"] = -1; }),
+             Catch::Contains("m.json: /contact/1/search_distance: must be > 0, got -1"));
+  {  // each pair its own search distance
+    Json doc = base;
+    doc["contact"][1]["search_distance"] = 0.25;
+    const Analysis a = Analysis::from_json(doc, "m.json");
+    const auto& b = dynamic_cast<const CurveContactPair&>(a.pair(1));
+    const auto& f = dynamic_cast<const CurveContactPair&>(a.pair(0));
+    CHECK(b.contact().search_distance() == 0.25);
+    CHECK(f.contact().search_distance() != 0.25);
+  }
   CHECK_THAT(error([](Json& d) { d["contact"][0]["name"] = "a,b"; }),
              Catch::Contains("m.json: /contact/0/name: must be a non-empty name without commas"));
   CHECK_THAT(error([](Json& d) { d["output"]["reactions"] = Json::array({"end"}); }),
