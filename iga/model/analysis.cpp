@@ -264,7 +264,8 @@ void Analysis::write_csv_header(std::ostream& csv) const {
     for (const char* c : {"x", "y", "z", "norm"})
       csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
   for (const AnalysisMonitor& m : output_.monitors)
-    for (const char* c : {"ux", "uy", "uz"}) csv << "," << m.name << "_" << c;
+    for (const char* c : {"ux", "uy", "uz"})  // with several bodies <body>_<name>_u*
+      csv << "," << (num_bodies() > 1 ? body_name(m.body) + "_" : "") << m.name << "_" << c;
   for (const auto& [name, curve] : curves_) csv << "," << name;
   csv << "\n";
 }

@@ -140,6 +140,8 @@ class Analysis {
   const NonlinearSolverSettings& solver_settings() const { return settings_; }
   NonlinearSolverSettings& solver_settings() { return settings_; }
   const AnalysisOutput& output() const { return output_; }
+  /// The columns of steps.csv, in order.
+  std::vector<std::string> csv_columns() const;
   /// Pseudo-time after which the run stops once `full_slip_steps` consecutive steps slide
   /// steadily (steady_sliding, curve_contact.hpp: every active point slips, all pulling one
   /// way, friction along the rope) (< 0: off). "solver": {"stop_at_full_slip_after": t,
@@ -206,8 +208,6 @@ class Analysis {
   /// Creates out_dir, opens steps.csv (csv) with its header (failure: std::runtime_error) and
   /// writes the rigid surface's ParaView file; returns the error of that file, empty if none.
   std::string open_output(const std::string& out_dir, std::ofstream& csv) const;
-  /// The columns of steps.csv, in order.
-  std::vector<std::string> csv_columns() const;
   /// steps.csv: the header, and the row of the step with 1-based `index`.
   void write_csv_header(std::ostream& csv) const;
   void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;

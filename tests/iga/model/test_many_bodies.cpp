@@ -4,6 +4,7 @@
 // ParaView output is per body; bad references between the sections are located errors.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -151,7 +152,46 @@ TEST_CASE("many bodies: a rod and a shell in one model each give their result al
   const Vector3d d_both = r.steps.back().displacements.at(0);
   const Vector3d d_alone = sr.steps.back().displacements.at(0);
   INFO("roof monitor: together " << d_both.transpose() << ", alone " << d_alone.transpose());
+  CHECK(a.csv_columns().end() !=
+        std::find(a.csv_columns().begin(), a.csv_columns().end(), "roof_free_edge_mid_uz"));
   CHECK((d_both - d_alone).norm() < 1e-6 * d_alone.norm());
+}
+
+TEST_CASE(
+    "many bodies: a body against two tools, each pair half the penalty, is the body against one",
+    "[iga][analysis][many_bodies]") {
+  // The capstan's rope (penalty) against the NURBS cylinder and, as a second tool, the analytic
+  // cylinder in the same place, each pair with half of eps_N and eps_T: the penalty forces add
+  // up to those of one pair (the friction limit mu N too), so T/T0 is that of the one pair.
+  const Json one = test::cubic_penalty_capstan(read_json_file(kData + "capstan.json"));
+  Json two = one;
+  two["contact"][0]["eps_N"] = 0.5 * one["contact"][0]["eps_N"].get<double>();
+  two["contact"][0]["eps_T"] = 0.5 * one["contact"][0]["eps_T"].get<double>();
+  two["contact"].push_back(two["contact"][0]);
+  two["contact"][1]["name"] = "rope_on_analytic";
+  two["contact"][1]["rigid"] = "cylinder_analytic";
+  two["output"]["monitors"] = Json::parse(R"([{"name": "mid", "at": 2.6}])");
+  Analysis a = Analysis::from_json(one, "one.json"), b = Analysis::from_json(two, "two.json");
+  REQUIRE(b.num_pairs() == 2);
+  REQUIRE(b.pair_body(0) == b.pair_body(1));
+  const std::string dir = out_dir("two_tools");
+  const AnalysisResult ra = a.run(), rb = b.run(nullptr, dir);
+  REQUIRE(ra.full_slip);
+  REQUIRE(rb.full_slip);
+  const double ta = ratio(ra, 0, 10.0), tb = ratio(rb, 0, 10.0);
+  INFO("T/T0 one pair " << ta << ", two half pairs " << tb);
+  CHECK(std::abs(tb / ta - 1.0) < 1e-6);
+  // Both pairs carry half of the contact: equal forces on the two tools.
+  const Vector3d F0 = rb.steps.back().tool_loads.at(0).first;
+  const Vector3d F1 = rb.steps.back().tool_loads.at(1).first;
+  CHECK((F0 - F1).norm() < 1e-6 * F0.norm());
+  // The body carries each pair's fields under its own names; one body: plain monitor names.
+  const std::string vtk = test::slurp(dir + "/last_rod.vtk");
+  CHECK(vtk.find("contact_pressure_0") != std::string::npos);
+  CHECK(vtk.find("contact_pressure_1") != std::string::npos);
+  const std::string csv = test::slurp(dir + "/steps.csv");
+  CHECK(csv.find(",mid_ux,") != std::string::npos);
+  CHECK(csv.find("rope_on_analytic_active") != std::string::npos);
 }
 
 TEST_CASE("many bodies: references between bodies, conditions, pairs and output are checked",
