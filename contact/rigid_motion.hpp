@@ -40,7 +40,6 @@ class RigidMotion {
   /// The pose at t.
   RigidPose pose(double t) const;
   bool rotates() const { return static_cast<bool>(rot_curve_); }
-  bool translates() const { return static_cast<bool>(trans_curve_); }
   const Eigen::Vector3d& point() const { return point_; }
   const Eigen::Vector3d& axis() const { return axis_; }
   /// The rotation angle at t (0 without rotation).

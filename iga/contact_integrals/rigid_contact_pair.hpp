@@ -33,8 +33,8 @@ class RigidContactPair : public ContactPair {
   /// back, X_a = c0 + Q^T (x_a - c) (a rigid map: the body's geometry, tangents and normals
   /// move with it), the integral's residual g_a and tangent blocks K_ab turned forward,
   /// Q g_a and Q K_ab Q^T (the map's derivative dX/dx = Q^T is constant at fixed t; the
-  /// integral turns the blocks as it emits them, set_turn). The
-  /// friction history the integral keeps is thus in the tool's frame and moves with it.
+  /// integral turns the blocks as it emits them, set_turn). The friction history the integral
+  /// keeps is thus in the tool's frame and moves with it.
   void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
     pose_ = pose(t);
