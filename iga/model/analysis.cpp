@@ -97,9 +97,11 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   // run's pseudo-time.
   for (const auto& [name, curve] : a.curves_)
     check_finite_curve(root["load_curves"][name], curve, a.settings_);
-  if (root.has("output")) a.output_ = parse_output(root["output"], read);
-  if (root.has("output"))  // the plots' terms must name columns of steps.csv
+  if (root.has("output")) {
+    a.output_ = parse_output(root["output"], read);
+    // the plots' terms must name columns of steps.csv
     check_plot_columns(root["output"], a.output_, a.csv_columns());
+  }
   if (a.system_->num_dofs() == 0)
     root["boundary_conditions"].fail_plain("every degree of freedom is constrained");
   return a;
@@ -118,10 +120,8 @@ void Analysis::collect_pairs(const JsonCursor& root) {
     p.pair = &bodies_[static_cast<std::size_t>(b)]->pair(next[static_cast<std::size_t>(b)]++);
     p.body = b;
     p.rigid = c["rigid"].as_string();
-    p.name = c.has("name") ? c["name"].as_string()
+    p.name = c.has("name") ? column_name(c["name"])
                            : (list.size() > 1 ? "contact_" + std::to_string(k) : "contact");
-    if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
-      c["name"].fail("must be a non-empty name without commas, quotes or line breaks");
     if (c.has("moment_about")) {
       p.moment_about = vec3(c["moment_about"]);
     } else if (const RigidMotion* m = p.pair->motion(); m && m->rotates()) {

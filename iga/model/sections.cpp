@@ -60,6 +60,12 @@ Vector3d vec3(const JsonCursor& c) {
   if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 components [x, y, z]");
   return Vector3d(c[0].as_number(), c[1].as_number(), c[2].as_number());
 }
+std::string column_name(const JsonCursor& c) {
+  std::string name = c.as_string();
+  if (name.empty() || name.find_first_of(",\"\n") != std::string::npos)
+    c.fail("must be a non-empty name without commas, quotes or line breaks");
+  return name;
+}
 /// The value of `key` in `o`, which must be one of `names`.
 std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names) {
   std::string s = c.as_string();
@@ -711,9 +717,7 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
       const Context& ctx = body_of_entry(m, bodies);
       AnalysisMonitor mon;
       mon.body = ctx.body_index;
-      mon.name = m["name"].as_string();
-      if (mon.name.empty() || mon.name.find_first_of(",\"\n") != std::string::npos)
-        m["name"].fail("must be a non-empty name without commas, quotes or line breaks");
+      mon.name = column_name(m["name"]);
       if (ctx.kind == BodyKind::kShell) {
         const Vector2d uv = surface_parameters(m["at"], *ctx.surface);
         mon.u = uv[0];

@@ -32,6 +32,9 @@ struct Context {
   int nu = 0, nv = 0;  // shell: control points in u and v
 };
 
+/// The string at c as a name that heads steps.csv columns: non-empty, without commas, quotes or
+/// line breaks (ModelError at c otherwise).
+std::string column_name(const JsonCursor& c);
 /// The vector [x, y, z] at c.
 Vector3d vec3(const JsonCursor& c);
 /// A number with 10 significant digits (messages, titles).
