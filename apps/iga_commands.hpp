@@ -25,6 +25,7 @@ inline std::ostream& output_stream(const std::string& path, std::ofstream& file)
 
 Action add_info_command(CLI::App& app);
 Action add_eval_command(CLI::App& app);
+Action add_import_command(CLI::App& app);
 Action add_make_command(CLI::App& app);
 Action add_project_command(CLI::App& app);
 Action add_run_command(CLI::App& app);

@@ -1,9 +1,11 @@
-// `iga info MODEL.json`: what a model holds.
+// `iga info MODEL.json`: what a model holds; `iga info FILE.step`: the faces of a CAD file,
+// with their type, what each imports as, size and trimming.
 #include <iostream>
 #include <memory>
 #include <sstream>
 
 #include "apps/iga_commands.hpp"
+#include "cad/cad_import.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/model/model.hpp"
 
@@ -38,13 +40,52 @@ void describe(const std::string& name, const GeometryEntity& e) {
   }
   std::cout << "\n";
 }
+
+bool is_cad_file(const std::string& path) {
+  try {
+    (void)cad_format(path);
+    return true;
+  } catch (const CadError&) {
+    return false;
+  }
+}
+
+int cad_info(const std::string& file, const std::string& unit) {
+  CadOptions opt;
+  opt.unit = unit;
+  opt.skip_trimmed = true;
+  const CadImport imp = import_cad(file, "face", opt);
+  std::cout << file << ": " << cad_format(file) << " file, " << imp.faces.size()
+            << " faces (lengths in " << unit << "; read and converted in " << imp.seconds
+            << " s)\n";
+  for (const CadFace& f : imp.faces) {
+    const Eigen::Vector3d size = f.box_hi - f.box_lo;
+    std::cout << "  face " << f.index << ": " << f.cad_type << " -> "
+              << (f.trimmed ? "not imported (trimmed)"
+                            : f.entity_type + (f.exact ? " (exact)"
+                                                       : " (approximated within " +
+                                                             std::to_string(f.tolerance) + ")"))
+              << ", area " << f.area << ", box " << size.x() << " x " << size.y() << " x "
+              << size.z() << " from (" << f.box_lo.x() << ", " << f.box_lo.y() << ", "
+              << f.box_lo.z() << "), " << (f.trimmed ? "trimmed" : "untrimmed") << ", " << f.wires
+              << (f.wires == 1 ? " boundary loop" : " boundary loops") << "\n";
+  }
+  return 0;
+}
 }  // namespace
 
 Action add_info_command(CLI::App& app) {
   auto file = std::make_shared<std::string>();
-  CLI::App* cmd = app.add_subcommand("info", "List the entities of a model file");
-  cmd->add_option("model", *file, "Model file (JSON)")->required();
-  return [file]() {
+  auto unit = std::make_shared<std::string>("mm");
+  CLI::App* cmd = app.add_subcommand(
+      "info", "List the entities of a model file, or the faces of a STEP or IGES file");
+  cmd->add_option("model", *file, "Model file (JSON), or a CAD file (.step, .stp, .iges, .igs)")
+      ->required();
+  cmd->add_option("--unit", *unit, "CAD files: the length unit to report in")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft", "um", "km"}));
+  return [file, unit]() {
+    if (is_cad_file(*file)) return cad_info(*file, *unit);
     const Model m = load_model(*file);
     std::cout << *file << ": model \"" << m.name << "\"";
     if (!m.description.empty()) std::cout << " -- " << m.description;

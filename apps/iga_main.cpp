@@ -6,6 +6,8 @@
 //   iga eval MODEL.json --grid 20 --out t.csv  a sample table as CSV
 //   iga make torus --major-radius 3 --minor-radius 1 --out torus.json   exact NURBS models
 //   iga project MODEL.json --points pts.csv [--ray dirs.csv] --out feet.csv  projections
+//   iga info die.step                        the faces of a STEP or IGES file
+//   iga import die.step --faces 0,3 --out die.json   the faces as an ordinary model
 //
 // Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
 #include <iostream>
@@ -23,6 +25,7 @@ int main(int argc, char** argv) {
   const iga::app::Action info = iga::app::add_info_command(app);
   const iga::app::Action eval = iga::app::add_eval_command(app);
   const iga::app::Action make = iga::app::add_make_command(app);
+  const iga::app::Action import = iga::app::add_import_command(app);
   const iga::app::Action project = iga::app::add_project_command(app);
   const iga::app::Action run = iga::app::add_run_command(app);
   // --help, --version: 0; a bad command line: 2
@@ -34,6 +37,7 @@ int main(int argc, char** argv) {
     if (name == "info") return info();
     if (name == "eval") return eval();
     if (name == "make") return make();
+    if (name == "import") return import();
     if (name == "project") return project();
     if (name == "run") return run();
     return 2;

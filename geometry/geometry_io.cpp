@@ -722,16 +722,32 @@ std::vector<const Surface*> GeometryModel::surfaces_of(const std::string& name) 
                           ", not a surface");
 }
 
-GeometryModel parse_geometry(const Json& j, const std::string& file, const JsonPointer& at) {
+GeometryModel parse_geometry(const Json& j, const std::string& file, const JsonPointer& at,
+                             const std::map<std::string, EntityExpander>& expanders) {
   const JsonCursor g(j, file, at);
   if (!j.is_object()) g.fail_type("an object mapping entity names to entities");
   GeometryModel m;
   for (const std::string& name : g.keys()) {
-    if (name.empty()) g[name].fail_plain("entity names must not be empty");
-    m.entities.emplace_back(name, parse_entity(g[name]));
+    const JsonCursor e = g[name];
+    if (name.empty()) e.fail_plain("entity names must not be empty");
+    const auto expander =
+        e.json().is_object() && e.json().contains("type") && e.json()["type"].is_string()
+            ? expanders.find(e.json()["type"].get<std::string>())
+            : expanders.end();
+    if (expander == expanders.end()) {
+      m.entities.emplace_back(name, parse_entity(e));
+      continue;
+    }
+    for (auto& [member, entity] : expander->second(e, name)) {
+      if (m.find(member) != nullptr || (member != name && j.contains(member)))
+        e.fail_plain("the entity \"" + member + "\" it makes is already a name of this section");
+      m.entities.emplace_back(member, std::move(entity));
+    }
   }
   for (const auto& [name, e] : m.entities)
-    if (const auto* grp = std::get_if<PatchGroup>(&e)) check_patch_group(m, *grp, g[name]);
+    if (const auto* grp = std::get_if<PatchGroup>(&e);
+        grp != nullptr && g.has(name) && g[name].has("patches"))
+      check_patch_group(m, *grp, g[name]);  // (an expander's groups are its own to check)
   return m;
 }
 

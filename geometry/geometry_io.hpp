@@ -4,6 +4,8 @@
 // e.g.  cyl.json: /geometry/roof/knots/u/3: knots must be non-decreasing, got 0.25 after 0.5
 #pragma once
 
+#include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <variant>
@@ -44,11 +46,19 @@ std::string entity_type(const GeometryEntity& e);
 /// The entity as a Surface, or nullptr.
 const Surface* as_surface(const GeometryEntity& e);
 
+/// Reads an entity of a type this layer does not know (the model layer's "cad": faces of a
+/// STEP file): given the entity's cursor and name, returns the entities it stands for, in
+/// order; they join the model in its place (their names must be new).
+using EntityExpander = std::function<std::vector<std::pair<std::string, GeometryEntity>>(
+    const JsonCursor& entity, const std::string& name)>;
+
 /// Parses a "geometry" object. `file` and `at` (the JSON pointer of `j`) are used in messages.
 /// Entities keep the order of `j` (file order for documents from read_json_file; a plain
-/// nlohmann::json converts implicitly, its keys then come alphabetically).
+/// nlohmann::json converts implicitly, its keys then come alphabetically). An entity whose
+/// "type" is a key of `expanders` is read by that expander.
 /// Throws ModelError (see json_reader.hpp).
-GeometryModel parse_geometry(const Json& j, const std::string& file, const JsonPointer& at);
+GeometryModel parse_geometry(const Json& j, const std::string& file, const JsonPointer& at,
+                             const std::map<std::string, EntityExpander>& expanders = {});
 /// Serializes in the model's entity order, placement, domain and normal written explicitly,
 /// so that parse_geometry(geometry_to_json(m)) == m exactly (doubles are written with
 /// round-trip precision; rational control points are chosen so that w * P reproduces the

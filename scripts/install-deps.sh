@@ -9,6 +9,7 @@ packages=(
   g++ cmake ninja-build pkg-config
   libeigen3-dev libcgal-dev libsuitesparse-dev nlohmann-json3-dev
   catch2 libcli11-dev libbenchmark-dev
+  libocct-data-exchange-dev libtbb-dev  # OCCT: its CMake package names libtbb.so, which only libtbb-dev holds
   python3 python3-matplotlib clang-format clang-tidy
 )
 [[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)

@@ -7,6 +7,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "iga/model/cad_entity.hpp"
+
 namespace iga {
 
 Model parse_model(const Json& j, const std::string& file) {
@@ -31,7 +33,7 @@ Model parse_model(const Json& j, const std::string& file) {
   if (root.has("name")) m.name = root["name"].as_string();
   if (root.has("description")) m.description = root["description"].as_string();
   const JsonCursor g = root["geometry"];
-  m.geometry = parse_geometry(g.json(), file, g.path());
+  m.geometry = parse_geometry(g.json(), file, g.path(), {{"cad", cad_entity_expander(file)}});
   for (const std::string& k : root.keys())
     for (const char* section : kAnalysisSections)
       if (k == section) {

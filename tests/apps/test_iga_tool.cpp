@@ -180,6 +180,36 @@ TEST_CASE("iga make writes models that load and evaluate exactly", "[apps][iga]"
   fs::remove_all(dir);
 }
 
+TEST_CASE("iga info and iga import on a STEP file: faces listed, written, read back without it",
+          "[apps][iga][cad]") {
+  const fs::path dir = fs::temp_directory_path() / ("iga_import_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string step = std::string(IGA_SOURCE_DIR) + "/data/cad/sheave_v30.step";
+  const Run info = run_iga("info \"" + step + "\"");
+  REQUIRE(info.status == 0);
+  CHECK_THAT(info.out, Catch::Contains("7 faces"));
+  CHECK_THAT(info.out, Catch::Contains("face 2: cone -> cone (exact)"));
+  CHECK_THAT(info.out, Catch::Contains("face 0: plane -> not imported (trimmed)"));
+  CHECK_THAT(info.out, Catch::Contains("2 boundary loops"));
+  const std::string json = (dir / "groove.json").string();
+  const Run imp =
+      run_iga("import \"" + step + "\" --faces 2,3 --name groove --unit m --out \"" + json + "\"");
+  REQUIRE(imp.status == 0);
+  CHECK_THAT(imp.out, Catch::Contains("2 faces as the patch group \"groove\""));
+  // The model written holds the two flanks as cones (lengths now in m) and the group.
+  const Run back = run_iga("info \"" + json + "\"");
+  REQUIRE(back.status == 0);
+  CHECK_THAT(back.out, Catch::Contains("groove.face2: cone"));
+  CHECK_THAT(back.out, Catch::Contains("v in [0.001, 0.0016]"));
+  CHECK_THAT(back.out, Catch::Contains("groove: patch_group of 2: groove.face2 groove.face3"));
+  // All faces: the trimmed ones are refused with the list of the others.
+  const Run all = run_iga("import \"" + step + "\" --out \"" + json + "\"");
+  CHECK(all.status == 1);
+  CHECK_THAT(all.err, Catch::Contains("untrimmed: 1, 2, 3, 4, 6"));
+  CHECK(run_iga("import nothing.step --out x.json").status == 1);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("iga project: closest points and rays onto the 4-patch cylinder",
           "[apps][iga][project]") {
   const fs::path dir = fs::temp_directory_path() / ("iga_project_" + std::to_string(::getpid()));

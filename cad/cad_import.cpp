@@ -1,0 +1,588 @@
+// STEP and IGES faces as the project's surfaces (see cad_import.hpp).
+#include "cad/cad_import.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <mutex>
+#include <numbers>
+#include <optional>
+#include <sstream>
+#include <type_traits>
+#include <variant>
+
+#include <BRepAdaptor_Curve2d.hxx>
+#include <BRepBndLib.hxx>
+#include <BRepBuilderAPI_Transform.hxx>
+#include <BRepGProp.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GProp_GProps.hxx>
+#include <GeomAdaptor_Surface.hxx>
+#include <GeomConvert.hxx>
+#include <GeomConvert_ApproxSurface.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <Geom_RectangularTrimmedSurface.hxx>
+#include <IGESControl_Reader.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <Standard_Failure.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Face.hxx>
+#include <gp_Ax3.hxx>
+#include <gp_Cone.hxx>
+#include <gp_Cylinder.hxx>
+#include <gp_Pln.hxx>
+#include <gp_Sphere.hxx>
+#include <gp_Torus.hxx>
+#include <gp_Trsf.hxx>
+
+namespace iga {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Vector3d vec(const gp_XYZ& p) {
+  return {p.X(), p.Y(), p.Z()};
+}
+Vector3d vec(const gp_Pnt& p) {
+  return vec(p.XYZ());
+}
+Vector3d vec(const gp_Dir& p) {
+  return vec(p.XYZ());
+}
+gp_Pnt pnt(const Vector3d& v) {
+  return {v.x(), v.y(), v.z()};
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+/// OCCT writes its transfer statistics to standard output: not ours to show.
+void silence_occt() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const Handle(Message_Messenger)& m = Message::DefaultMessenger();
+    m->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream));
+  });
+}
+
+const char* occt_unit(const std::string& unit) {
+  static const std::array<std::pair<const char*, const char*>, 7> units = {{{"mm", "MM"},
+                                                                            {"cm", "CM"},
+                                                                            {"m", "M"},
+                                                                            {"in", "INCH"},
+                                                                            {"ft", "FT"},
+                                                                            {"um", "UM"},
+                                                                            {"km", "KM"}}};
+  for (const auto& [ours, theirs] : units)
+    if (unit == ours) return theirs;
+  throw CadError("unknown length unit \"" + unit + "\" (expected mm, cm, m, in, ft, um or km)");
+}
+
+std::mutex& occt_mutex() {  // OCCT's reader settings are process-wide statics
+  static std::mutex m;
+  return m;
+}
+
+/// Reads with an XSControl reader (STEP or IGES) in the given OCCT unit. The session unit is a
+/// process-wide setting: set for this read, then put back.
+template <class Reader>
+TopoDS_Shape read_with(const std::string& path, const char* unit, const char* format) {
+  Reader reader;
+  const std::string before = Interface_Static::CVal("xstep.cascade.unit");
+  struct Restore {
+    const std::string& unit;
+    ~Restore() { Interface_Static::SetCVal("xstep.cascade.unit", unit.c_str()); }
+  } restore{before};
+  Interface_Static::SetCVal("xstep.cascade.unit", unit);
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw CadError(path + ": OpenCASCADE cannot read it as " + format);
+  reader.TransferRoots();
+  return reader.OneShape();
+}
+
+TopoDS_Shape read_shape(const std::string& path, const std::string& unit) {
+  const std::string format = cad_format(path);
+  if (!std::filesystem::is_regular_file(path)) throw CadError(path + ": no such file");
+  silence_occt();
+  const std::lock_guard<std::mutex> lock(occt_mutex());
+  const char* u = occt_unit(unit);
+  TopoDS_Shape shape;
+  try {
+    shape = format == "step" ? read_with<STEPControl_Reader>(path, u, "STEP")
+                             : read_with<IGESControl_Reader>(path, u, "IGES");
+  } catch (const Standard_Failure& e) {
+    throw CadError(path + ": OpenCASCADE failed reading it: " + e.GetMessageString());
+  }
+  if (shape.IsNull()) throw CadError(path + ": the file holds no shape");
+  return shape;
+}
+
+std::vector<TopoDS_Face> faces_of(const TopoDS_Shape& shape) {
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, TopAbs_FACE, map);
+  std::vector<TopoDS_Face> faces;
+  for (int i = 1; i <= map.Extent(); ++i) faces.push_back(TopoDS::Face(map(i)));
+  return faces;
+}
+
+const char* type_name(GeomAbs_SurfaceType t) {
+  switch (t) {
+    case GeomAbs_Plane:
+      return "plane";
+    case GeomAbs_Cylinder:
+      return "cylinder";
+    case GeomAbs_Cone:
+      return "cone";
+    case GeomAbs_Sphere:
+      return "sphere";
+    case GeomAbs_Torus:
+      return "torus";
+    case GeomAbs_BezierSurface:
+      return "bezier";
+    case GeomAbs_BSplineSurface:
+      return "bspline";
+    case GeomAbs_SurfaceOfRevolution:
+      return "revolution";
+    case GeomAbs_SurfaceOfExtrusion:
+      return "extrusion";
+    case GeomAbs_OffsetSurface:
+      return "offset";
+    default:
+      return "other";
+  }
+}
+
+struct UvBox {
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+};
+
+UvBox uv_bounds(const TopoDS_Face& f) {
+  UvBox b;
+  BRepTools::UVBounds(f, b.u0, b.u1, b.v0, b.v1);
+  return b;
+}
+
+/// Every boundary edge of the face runs along one side of its parameter rectangle, in one
+/// loop: the face is its surface's rectangle (no trimming to represent).
+bool natural_boundary(const TopoDS_Face& f, const UvBox& b, int& wires) {
+  wires = 0;
+  for (TopExp_Explorer w(f, TopAbs_WIRE); w.More(); w.Next()) ++wires;
+  if (wires != 1) return false;
+  const double tol = 1e-7 * std::max(b.u1 - b.u0, b.v1 - b.v0);
+  // Irregular fractions: a circle inscribed in the rectangle touches it at quarter points.
+  constexpr std::array<double, 7> fractions = {0.0, 0.13, 0.29, 0.5, 0.71, 0.87, 1.0};
+  for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next()) {
+    const BRepAdaptor_Curve2d c(TopoDS::Edge(e.Current()), f);
+    const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+    std::array<bool, 4> on_side = {true, true, true, true};  // u0, u1, v0, v1
+    for (const double s : fractions) {
+      const gp_Pnt2d p = c.Value(t0 + s * (t1 - t0));
+      on_side[0] = on_side[0] && std::abs(p.X() - b.u0) <= tol;
+      on_side[1] = on_side[1] && std::abs(p.X() - b.u1) <= tol;
+      on_side[2] = on_side[2] && std::abs(p.Y() - b.v0) <= tol;
+      on_side[3] = on_side[3] && std::abs(p.Y() - b.v1) <= tol;
+    }
+    if (!(on_side[0] || on_side[1] || on_side[2] || on_side[3])) return false;
+  }
+  return true;
+}
+
+/// A planar face bounded by one rectangle whose sides are not along the plane's parameter
+/// lines (STEP writers choose a plane's frame freely): the corner, the side vectors in 3-D.
+struct PlaneRectangle {
+  Vector3d corner, side1, side2;
+};
+
+std::optional<PlaneRectangle> plane_rectangle(const TopoDS_Face& f, int wires) {
+  const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
+  if (wires != 1 || GeomAdaptor_Surface(s).GetType() != GeomAbs_Plane) return std::nullopt;
+  std::vector<std::pair<gp_Pnt2d, gp_Pnt2d>> sides;
+  double scale = 0.0;
+  for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next()) {
+    const BRepAdaptor_Curve2d c(TopoDS::Edge(e.Current()), f);
+    const double t0 = c.FirstParameter(), t1 = c.LastParameter();
+    const gp_Pnt2d a = c.Value(t0), b = c.Value(t1), m = c.Value(0.5 * (t0 + t1));
+    const gp_Pnt2d q = c.Value(t0 + 0.31 * (t1 - t0));
+    scale = std::max(scale, a.Distance(b));
+    const gp_XY ab = b.XY() - a.XY();
+    // straight: the mid point and another point on the chord
+    const double off = std::max(std::abs(ab ^ (m.XY() - a.XY())), std::abs(ab ^ (q.XY() - a.XY())));
+    if (ab.Modulus() == 0.0 || off > 1e-9 * ab.SquareModulus()) return std::nullopt;
+    sides.emplace_back(a, b);
+  }
+  if (sides.size() != 4) return std::nullopt;
+  const double tol = 1e-9 * scale;
+  // The two sides at the first side's start point, then the opposite corner.
+  const gp_Pnt2d p0 = sides[0].first;
+  std::vector<gp_XY> out;
+  for (const auto& [a, b] : sides) {
+    if (a.Distance(p0) <= tol)
+      out.push_back(b.XY() - p0.XY());
+    else if (b.Distance(p0) <= tol)
+      out.push_back(a.XY() - p0.XY());
+  }
+  if (out.size() != 2 || std::abs(out[0] * out[1]) > 1e-9 * out[0].Modulus() * out[1].Modulus())
+    return std::nullopt;
+  const gp_XY far = p0.XY() + out[0] + out[1];
+  int meets = 0;
+  for (const auto& [a, b] : sides)
+    meets += (a.XY() - far).Modulus() <= tol || (b.XY() - far).Modulus() <= tol;
+  if (meets != 2) return std::nullopt;
+  const gp_Pln pl = GeomAdaptor_Surface(s).Plane();
+  const gp_Ax3 ax = pl.Position();
+  const Vector3d X = vec(ax.XDirection()), Y = vec(ax.YDirection());
+  return PlaneRectangle{vec(ax.Location()) + p0.X() * X + p0.Y() * Y,
+                        out[0].X() * X + out[0].Y() * Y, out[1].X() * X + out[1].Y() * Y};
+}
+
+CadFace describe(const TopoDS_Face& f, int index) {
+  CadFace d;
+  d.index = index;
+  d.cad_type = type_name(GeomAdaptor_Surface(BRep_Tool::Surface(f)).GetType());
+  d.trimmed = !natural_boundary(f, uv_bounds(f), d.wires) && !plane_rectangle(f, d.wires);
+  GProp_GProps props;
+  BRepGProp::SurfaceProperties(f, props);
+  d.area = props.Mass();
+  Bnd_Box box;
+  BRepBndLib::AddOptimal(f, box, false, false);
+  if (!box.IsVoid()) {
+    d.box_lo = vec(box.CornerMin());
+    d.box_hi = vec(box.CornerMax());
+  }
+  return d;
+}
+
+// ---- conversion -------------------------------------------------------------------------------
+
+/// Our frame of an OCCT gp_Ax3: right-handed (X, Y, +-Z); `flip` when OCCT's was left-handed.
+Placement placement_of(const gp_Ax3& ax, bool& flip) {
+  flip = !ax.Direct();
+  Placement p;
+  p.center = vec(ax.Location());
+  p.axis = flip ? Vector3d(-vec(ax.Direction())) : vec(ax.Direction());
+  p.ref_dir = vec(ax.XDirection());
+  return p;
+}
+
+/// Our parameters from OCCT's: u' = au u + bu, v' = av v + bv.
+struct UvMap {
+  double au = 1, bu = 0, av = 1, bv = 0;
+  Domain2 domain(const UvBox& b) const {
+    const double ua = au * b.u0 + bu, ub = au * b.u1 + bu;
+    const double va = av * b.v0 + bv, vb = av * b.v1 + bv;
+    return {{std::min(ua, ub), std::max(ua, ub)}, {std::min(va, vb), std::max(va, vb)}};
+  }
+};
+
+struct Converted {
+  GeometryEntity entity;
+  const Surface* surface = nullptr;
+  UvMap map;           // our (u, v) from OCCT's (analytic faces and unchanged NURBS)
+  bool mapped = true;  // false: OCCT reparametrized it (exact conversion or approximation)
+  bool exact = true;
+  double tolerance = 0.0;
+};
+
+NurbsSurface nurbs_of(const Geom_BSplineSurface& bs) {
+  const int nu = bs.NbUPoles(), nv = bs.NbVPoles(), p = bs.UDegree(), q = bs.VDegree();
+  TColStd_Array1OfReal ku(1, nu + p + 1), kv(1, nv + q + 1);
+  bs.UKnotSequence(ku);
+  bs.VKnotSequence(kv);
+  std::vector<double> knots_u(ku.begin(), ku.end()), knots_v(kv.begin(), kv.end());
+  std::vector<Vector3d> points;
+  std::vector<double> weights;
+  const bool rational = bs.IsURational() || bs.IsVRational();
+  for (int j = 1; j <= nv; ++j)
+    for (int i = 1; i <= nu; ++i) {  // u fastest
+      points.push_back(vec(bs.Pole(i, j)));
+      if (rational) weights.push_back(bs.Weight(i, j));
+    }
+  return {p, std::move(knots_u), q, std::move(knots_v), points, weights};
+}
+
+Converted from_bspline(Handle(Geom_BSplineSurface) bs, const UvBox& b) {
+  bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
+  if (bs->IsUPeriodic()) bs->SetUNotPeriodic();
+  if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs->Bounds(u0, u1, v0, v1);
+  const double tu = 1e-12 * (u1 - u0), tv = 1e-12 * (v1 - v0);
+  if (b.u0 < u0 - tu || b.u1 > u1 + tu || b.v0 < v0 - tv || b.v1 > v1 + tv)
+    throw CadError("its parameter range crosses the B-spline's periodic seam");
+  // A face using part of its surface, or ends not clamped (a periodic surface made
+  // non-periodic keeps its knot pattern): cut to the face's range, exactly (knot insertion).
+  const bool clamped = bs->UMultiplicity(1) == bs->UDegree() + 1 &&
+                       bs->UMultiplicity(bs->NbUKnots()) == bs->UDegree() + 1 &&
+                       bs->VMultiplicity(1) == bs->VDegree() + 1 &&
+                       bs->VMultiplicity(bs->NbVKnots()) == bs->VDegree() + 1;
+  if (!clamped || b.u0 > u0 + tu || b.u1 < u1 - tu || b.v0 > v0 + tv || b.v1 < v1 - tv)
+    bs->Segment(b.u0, b.u1, b.v0, b.v1);
+  Converted c;
+  c.entity = nurbs_of(*bs);
+  return c;
+}
+
+Converted from_analytic(const GeomAdaptor_Surface& ad, const UvBox& b) {
+  Converted c;
+  bool flip = false;
+  switch (ad.GetType()) {
+    case GeomAbs_Plane: {
+      const Placement p = placement_of(ad.Plane().Position(), flip);
+      c.entity = Plane(p, c.map.domain(b));
+      break;
+    }
+    case GeomAbs_Cylinder: {
+      const gp_Cylinder g = ad.Cylinder();
+      const Placement p = placement_of(g.Position(), flip);
+      if (flip) c.map.av = -1;  // v Z = (-v)(-Z)
+      c.entity = Cylinder(p, g.Radius(), c.map.domain(b));
+      break;
+    }
+    case GeomAbs_Sphere: {
+      const gp_Sphere g = ad.Sphere();
+      const Placement p = placement_of(g.Position(), flip);
+      if (flip) c.map.av = -1;  // sin(v) Z = sin(-v)(-Z)
+      c.entity = Sphere(p, g.Radius(), c.map.domain(b));
+      break;
+    }
+    case GeomAbs_Torus: {
+      const gp_Torus g = ad.Torus();
+      const Placement p = placement_of(g.Position(), flip);
+      if (flip) c.map.av = -1;
+      c.entity = Torus(p, g.MajorRadius(), g.MinorRadius(), c.map.domain(b));
+      break;
+    }
+    case GeomAbs_Cone: {
+      // P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z: apex at v_a = -R0 / sin A, and
+      // from there height = rho (s cot A) along Zeff (s = -1 for a left-handed frame).
+      const gp_Cone g = ad.Cone();
+      const double A = g.SemiAngle(), R0 = g.RefRadius();
+      Placement p = placement_of(g.Position(), flip);
+      const double s = flip ? -1.0 : 1.0;
+      const double va = -R0 / std::sin(A);
+      p.center = vec(g.Position().Location()) + va * std::cos(A) * vec(g.Position().Direction());
+      c.map.av = std::sin(A);
+      c.map.bv = R0;                            // v' = rho, the radius
+      if (s * std::cos(A) / std::sin(A) < 0) {  // opens along -Zeff: turn the frame over X
+        p.axis = -p.axis;
+        c.map.au = -1;
+        c.map.bu = 2 * kPi;
+      }
+      const Domain2 d = c.map.domain(b);
+      if (d.v.lo < -1e-12 * d.v.hi)
+        throw CadError("the face reaches the cone's other nappe (negative radius)");
+      c.entity = Cone(p, 0.5 * kPi - std::abs(A), {d.u, {std::max(d.v.lo, 0.0), d.v.hi}});
+      break;
+    }
+    default:
+      throw CadError("not an analytic surface");
+  }
+  return c;
+}
+
+Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size) {
+  Converted c;
+  c.mapped = false;
+  const Handle(Geom_RectangularTrimmedSurface) patch =
+      new Geom_RectangularTrimmedSurface(s, b.u0, b.u1, b.v0, b.v1);
+  try {  // exact for revolutions and extrusions of conics and B-spline curves
+    c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
+    return c;
+  } catch (const Standard_Failure&) {  // not convertible exactly: approximate
+  }
+  const double tol = 1e-6 * size;
+  GeomConvert_ApproxSurface approx(patch, tol, GeomAbs_C2, GeomAbs_C2, 9, 9, 200, 0);
+  if (!approx.HasResult())
+    throw CadError("OpenCASCADE could not approximate it by NURBS within " + std::to_string(tol));
+  c.entity = nurbs_of(*approx.Surface());
+  c.exact = false;
+  c.tolerance = approx.MaxError();
+  return c;
+}
+
+Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
+  const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
+  const GeomAdaptor_Surface ad(s);
+  Converted c;
+  int wires = 0;
+  const bool natural = natural_boundary(f, b, wires);
+  const std::optional<PlaneRectangle> r = natural ? std::nullopt : plane_rectangle(f, wires);
+  if (r) {
+    // The plane re-framed on its rectangle: corner, first side along e_x (checked below).
+    Placement p;
+    p.center = r->corner;
+    p.ref_dir = r->side1.normalized();
+    p.axis = r->side1.cross(r->side2).normalized();
+    c.entity = Plane(p, {{0, r->side1.norm()}, {0, r->side2.norm()}});
+    c.mapped = false;
+    const Surface& pl = *as_surface(c.entity);
+    const double l1 = r->side1.norm(), l2 = r->side2.norm();
+    const double err = std::max({(pl.point(l1, 0) - (r->corner + r->side1)).norm(),
+                                 (pl.point(0, l2) - (r->corner + r->side2)).norm(),
+                                 (pl.point(l1, l2) - (r->corner + r->side1 + r->side2)).norm()});
+    if (err > 1e-10 * std::max(size, 1.0))
+      throw CadError("internal error: the re-framed plane misses the face's corners by " +
+                     std::to_string(err));
+  }
+  if (!r) switch (ad.GetType()) {
+      case GeomAbs_Plane:
+      case GeomAbs_Cylinder:
+      case GeomAbs_Sphere:
+      case GeomAbs_Torus:
+      case GeomAbs_Cone:
+        c = from_analytic(ad, b);
+        break;
+      case GeomAbs_BSplineSurface:
+        c = from_bspline(ad.BSpline(), b);
+        break;
+      case GeomAbs_BezierSurface:
+        c = from_bspline(GeomConvert::SurfaceToBSplineSurface(ad.Bezier()), b);
+        break;
+      default:
+        c = from_other(s, b, size);
+    }
+  Surface& ours = std::visit(
+      [](auto& e) -> Surface& {
+        if constexpr (std::is_base_of_v<Surface, std::decay_t<decltype(e)>>)
+          return e;
+        else
+          throw CadError("internal error: a face became a " + entity_type(GeometryEntity(e)));
+      },
+      c.entity);
+  // Where the parametrization was kept: the same points as OCCT's, checked on a grid.
+  const double tol = 1e-10 * std::max(size, 1.0);
+  double worst = 0.0;
+  for (int j = 0; j <= 4 && c.mapped; ++j)
+    for (int i = 0; i <= 4; ++i) {
+      const double u = b.u0 + (b.u1 - b.u0) * i / 4, v = b.v0 + (b.v1 - b.v0) * j / 4;
+      const Vector3d theirs = vec(s->Value(u, v));
+      const Vector3d mine = ours.point(c.map.au * u + c.map.bu, c.map.av * v + c.map.bv);
+      worst = std::max(worst, (mine - theirs).norm());
+    }
+  if (worst > tol) {
+    std::ostringstream os;
+    os << "internal error: the imported " << entity_type(c.entity) << " is " << worst
+       << " away from OpenCASCADE's surface (tolerance " << tol << ")";
+    throw CadError(os.str());
+  }
+  // The face's own normal (OCCT's orientation included): compared at an inner point, OCCT's
+  // parameters mapped to ours (a reparametrization by OCCT keeps both directions).
+  const double fu = 0.623, fv = 0.571;
+  const double um = b.u0 + fu * (b.u1 - b.u0), vm = b.v0 + fv * (b.v1 - b.v0);
+  gp_Pnt P;
+  gp_Vec Su, Sv;
+  s->D1(um, vm, P, Su, Sv);
+  Vector3d theirs = vec(Su.Crossed(Sv).XYZ());
+  if (f.Orientation() == TopAbs_REVERSED) theirs = -theirs;
+  Vector2d uv(c.map.au * um + c.map.bu, c.map.av * vm + c.map.bv);
+  if (!c.mapped) {
+    const Domain2 d = ours.domain();
+    uv = {d.u.lo + fu * (d.u.hi - d.u.lo), d.v.lo + fv * (d.v.hi - d.v.lo)};
+  }
+  const SurfaceDerivs dm = ours.derivs(uv[0], uv[1], 1);
+  ours.set_normal_sign(dm.Su.cross(dm.Sv).dot(theirs) < 0 ? -1 : 1);
+  return c;
+}
+
+TopoDS_Shape placed(const TopoDS_Shape& shape, const CadPlacement& pl) {
+  if (pl.angle == 0.0 && pl.vector.isZero(0.0)) return shape;
+  if (!(pl.axis.norm() > 0.0)) throw CadError("placement: the rotation axis is zero");
+  gp_Trsf rot, move;
+  rot.SetRotation(gp_Ax1(pnt(pl.point), gp_Dir(pl.axis.x(), pl.axis.y(), pl.axis.z())), pl.angle);
+  move.SetTranslation(gp_Vec(pl.vector.x(), pl.vector.y(), pl.vector.z()));
+  return BRepBuilderAPI_Transform(shape, move.Multiplied(rot), true).Shape();  // rot first
+}
+
+std::string face_list(const std::vector<CadFace>& faces, bool trimmed) {
+  std::string s;
+  for (const CadFace& f : faces)
+    if (f.trimmed == trimmed) s += (s.empty() ? "" : ", ") + std::to_string(f.index);
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace
+
+std::string cad_format(const std::string& path) {
+  const std::string ext = lower(std::filesystem::path(path).extension().string());
+  if (ext == ".step" || ext == ".stp") return "step";
+  if (ext == ".iges" || ext == ".igs") return "iges";
+  throw CadError(path + ": not a CAD file this program reads (.step, .stp, .iges, .igs)");
+}
+
+std::vector<CadFace> list_cad_faces(const std::string& path, const std::string& unit) {
+  const std::vector<TopoDS_Face> faces = faces_of(read_shape(path, unit));
+  std::vector<CadFace> out;
+  for (std::size_t k = 0; k < faces.size(); ++k)
+    out.push_back(describe(faces[k], static_cast<int>(k)));
+  return out;
+}
+
+CadImport import_cad(const std::string& path, const std::string& prefix,
+                     const CadOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<TopoDS_Face> all =
+      faces_of(placed(read_shape(path, options.unit), options.placement));
+  if (all.empty()) throw CadError(path + ": the file holds no faces");
+  std::vector<int> chosen = options.faces;
+  if (chosen.empty())
+    for (std::size_t k = 0; k < all.size(); ++k) chosen.push_back(static_cast<int>(k));
+  CadImport out;
+  for (const int k : chosen) {
+    if (k < 0 || k >= static_cast<int>(all.size()))
+      throw CadError(path + ": face " + std::to_string(k) + " does not exist (the file has " +
+                     std::to_string(all.size()) + " faces, numbered from 0)");
+    out.faces.push_back(describe(all[static_cast<std::size_t>(k)], k));
+  }
+  for (const CadFace& f : out.faces)
+    if (f.trimmed && !options.skip_trimmed) {
+      std::vector<CadFace> described;
+      for (std::size_t k = 0; k < all.size(); ++k)
+        described.push_back(describe(all[k], static_cast<int>(k)));
+      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
+                     ") is trimmed (its boundary is not its parameter rectangle, or it has " +
+                     "holes); trimmed faces are not supported yet. Trimmed faces of the file: " +
+                     face_list(described, true) + "; untrimmed: " + face_list(described, false) +
+                     " (choose with \"faces\")");
+    }
+  for (CadFace& f : out.faces) {
+    if (f.trimmed) continue;  // (skip_trimmed)
+    const TopoDS_Face& face = all[static_cast<std::size_t>(f.index)];
+    try {
+      const Converted c = convert(face, uv_bounds(face), (f.box_hi - f.box_lo).norm());
+      f.entity_type = entity_type(c.entity);
+      f.exact = c.exact;
+      f.tolerance = c.tolerance;
+      out.entities.emplace_back(prefix + ".face" + std::to_string(f.index), c.entity);
+    } catch (const CadError& e) {
+      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
+                     "): " + e.what());
+    } catch (const std::exception& e) {  // GeometryError of our constructors, Standard_Failure
+      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
+                     "): cannot be imported: " + e.what());
+    } catch (const Standard_Failure& e) {
+      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
+                     "): OpenCASCADE failed: " + e.GetMessageString());
+    }
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace iga

@@ -1,0 +1,96 @@
+// The "cad" geometry entity (issue 15, item 1): a rigid tool from a STEP or IGES file in a
+// model. The capstan on the drum read from data/cad/cylinder.step (made by
+// scripts/make_cad_data.sh) gives the T/T0 of the built-in analytic cylinder; bad entries are
+// located errors.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "iga/model/analysis.hpp"
+#include "iga/model/model.hpp"
+#include "tests/iga/analysis_error.hpp"
+
+using namespace iga;
+
+namespace {
+const std::string kData = std::string(IGA_SOURCE_DIR) + "/data/";
+
+/// data/capstan.json with the drum of data/cad/cylinder.step as "cylinder_step" (the side face;
+/// the end discs are trimmed faces), found relative to the model file in data/.
+Json capstan_with_step() {
+  Json doc = read_json_file(kData + "capstan.json");
+  doc["geometry"]["cylinder_step"] = {
+      {"type", "cad"}, {"file", "cad/cylinder.step"}, {"faces", {0}}};
+  return doc;
+}
+}  // namespace
+
+TEST_CASE("cad entity: the capstan on the drum read from STEP gives the analytic cylinder's T/T0",
+          "[iga][analysis][cad]") {
+  const Json base = test::cubic_penalty_capstan(capstan_with_step());
+  const Model m = parse_model(base, kData + "capstan.json");
+  // The entity is a patch group of its faces, each named <name>.face<k>.
+  const auto* group = std::get_if<PatchGroup>(m.geometry.find("cylinder_step"));
+  REQUIRE(group != nullptr);
+  CHECK(group->patches == std::vector<std::string>{"cylinder_step.face0"});
+  CHECK(std::holds_alternative<Cylinder>(*m.geometry.find("cylinder_step.face0")));
+
+  Json analytic = base, step = base;
+  analytic["contact"][0]["rigid"] = "cylinder_analytic";
+  step["contact"][0]["rigid"] = "cylinder_step";
+  // (the file is found relative to the model file's folder)
+  const AnalysisResult ra = Analysis::from_json(analytic, kData + "capstan.json").run();
+  const AnalysisResult rs = Analysis::from_json(step, kData + "capstan.json").run();
+  REQUIRE(ra.full_slip);
+  REQUIRE(rs.full_slip);
+  const double T0 = 10.0;
+  const double ta = ra.steps.back().reactions.at(0).norm() / T0;
+  const double ts = rs.steps.back().reactions.at(0).norm() / T0;
+  INFO("T/T0 analytic " << ta << ", from STEP " << ts << ", exp(mu pi) " << std::exp(0.3 * M_PI));
+  // The same surface up to the 12 digits the STEP file prints: T/T0 to 1e-9.
+  CHECK(std::abs(ts / ta - 1.0) < 1e-9);
+  CHECK(std::abs(ts / std::exp(0.3 * M_PI) - 1.0) < 0.005);
+}
+
+TEST_CASE("cad entity: bad entries name the model file, the JSON path and the CAD file",
+          "[iga][analysis][cad][errors]") {
+  const Json base = capstan_with_step();
+  auto error = [&](auto&& edit) {
+    Json doc = base;
+    edit(doc["geometry"]["cylinder_step"]);
+    try {
+      (void)parse_model(doc, kData + "m.json");
+    } catch (const ModelError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(error([](Json& e) { e["file"] = "cad/none.step"; }),
+             Catch::Contains("m.json: /geometry/cylinder_step/file: ") &&
+                 Catch::Contains("cad/none.step: no such file"));
+  CHECK_THAT(error([](Json& e) { e["file"] = "capstan.json"; }),
+             Catch::Contains("not a CAD file this program reads"));
+  CHECK_THAT(error([](Json& e) { e["faces"] = Json::array({5}); }),
+             Catch::Contains("face 5 does not exist (the file has 3 faces"));
+  CHECK_THAT(error([](Json& e) { e.erase("faces"); }),
+             Catch::Contains("face 1 (plane) is trimmed"));
+  CHECK_THAT(error([](Json& e) { e["faces"] = Json::array({-1}); }),
+             Catch::Contains("/geometry/cylinder_step/faces/0: face numbers start at 0"));
+  CHECK_THAT(error([](Json& e) { e["unit"] = "furlong"; }),
+             Catch::Contains("/geometry/cylinder_step/unit"));
+  CHECK_THAT(error([](Json& e) { e["scale"] = 2; }),
+             Catch::Contains("/geometry/cylinder_step/scale"));
+  CHECK_THAT(
+      error([](Json& e) {
+        e["placement"] = {{"rotation", {{"point", {0, 0, 0}}, {"axis", {0, 0, 0}}, {"angle", 1}}}};
+      }),
+      Catch::Contains("/geometry/cylinder_step/placement/rotation/axis: must not be zero"));
+  {  // a face name already taken
+    Json doc = base;
+    doc["geometry"]["cylinder_step.face0"] = doc["geometry"]["cylinder_analytic"];
+    CHECK_THROWS_WITH(parse_model(doc, kData + "m.json"),
+                      Catch::Contains("the entity \"cylinder_step.face0\" it makes is already a "
+                                      "name of this section"));
+  }
+}
