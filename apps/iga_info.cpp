@@ -53,18 +53,15 @@ bool is_cad_file(const std::string& path) {
 int cad_info(const std::string& file, const std::string& unit) {
   CadOptions opt;
   opt.unit = unit;
-  opt.skip_trimmed = true;
   const CadImport imp = import_cad(file, "face", opt);
   std::cout << file << ": " << cad_format(file) << " file, " << imp.faces.size()
             << " faces (lengths in " << unit << "; read and converted in " << imp.seconds
             << " s)\n";
   for (const CadFace& f : imp.faces) {
     const Eigen::Vector3d size = f.box_hi - f.box_lo;
-    std::cout << "  face " << f.index << ": " << f.cad_type << " -> "
-              << (f.trimmed ? "not imported (trimmed)"
-                            : f.entity_type + (f.exact ? " (exact)"
-                                                       : " (approximated within " +
-                                                             std::to_string(f.tolerance) + ")"))
+    std::cout << "  face " << f.index << ": " << f.cad_type << " -> " << f.entity_type
+              << (f.exact ? " (exact)"
+                          : " (approximated within " + std::to_string(f.tolerance) + ")")
               << ", area " << f.area << ", box " << size.x() << " x " << size.y() << " x "
               << size.z() << " from (" << f.box_lo.x() << ", " << f.box_lo.y() << ", "
               << f.box_lo.z() << "), " << (f.trimmed ? "trimmed" : "untrimmed") << ", " << f.wires

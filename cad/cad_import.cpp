@@ -18,15 +18,19 @@
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
 #include <BRepTools.hxx>
+#include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
+#include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
 #include <GeomConvert_ApproxSurface.hxx>
+#include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_BezierSurface.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
+#include <Geom_TrimmedCurve.hxx>
 #include <IGESControl_Reader.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
@@ -39,7 +43,9 @@
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
@@ -501,6 +507,61 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
   return c;
 }
 
+NurbsCurve nurbs_of(Handle(Geom_BSplineCurve) bs) {
+  if (bs->IsPeriodic()) {
+    bs = Handle(Geom_BSplineCurve)::DownCast(bs->Copy());
+    bs->SetNotPeriodic();
+  }
+  const int n = bs->NbPoles(), p = bs->Degree();
+  TColStd_Array1OfReal k(1, n + p + 1);
+  bs->KnotSequence(k);
+  std::vector<Vector3d> points;
+  std::vector<double> weights;
+  for (int i = 1; i <= n; ++i) {
+    points.push_back(vec(bs->Pole(i)));
+    if (bs->IsRational()) weights.push_back(bs->Weight(i));
+  }
+  return {p, std::vector<double>(k.begin(), k.end()), points, weights};
+}
+
+/// The face's trimming: its loops as polylines in our (u, v) (each edge's parameter curve
+/// traversed along the wire, sampled within `deflection` by OCCT), its edges as exact NURBS
+/// curves in 3-D (degenerate edges, e.g. at a pole, have none).
+TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvMap& map,
+                            const UvBox& b) {
+  const double deflection = 1e-6 * std::hypot(b.u1 - b.u0, b.v1 - b.v0);
+  std::vector<TrimmedSurface::Loop> loops;
+  for (TopExp_Explorer w(f, TopAbs_WIRE); w.More(); w.Next()) {
+    TrimmedSurface::Loop loop;
+    for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), f); e.More(); e.Next()) {
+      const BRepAdaptor_Curve2d c(e.Current(), f);
+      const GCPnts_QuasiUniformDeflection pts(c, deflection);
+      if (!pts.IsDone()) throw CadError("OpenCASCADE could not sample a trimming curve");
+      std::vector<double> t;
+      for (int i = 1; i <= pts.NbPoints(); ++i) t.push_back(pts.Parameter(i));
+      if (e.Current().Orientation() == TopAbs_REVERSED) std::reverse(t.begin(), t.end());
+      for (std::size_t i = 0; i + 1 < t.size(); ++i) {  // the end is the next edge's start
+        const gp_Pnt2d q = c.Value(t[i]);
+        loop.emplace_back(map.au * q.X() + map.bu, map.av * q.Y() + map.bv);
+      }
+    }
+    if (loop.size() >= 3) loops.push_back(std::move(loop));
+  }
+  std::vector<NurbsCurve> edges;
+  TopTools_IndexedMapOfShape seen;
+  TopExp::MapShapes(f, TopAbs_EDGE, seen);
+  for (int i = 1; i <= seen.Extent(); ++i) {
+    const TopoDS_Edge& edge = TopoDS::Edge(seen(i));
+    if (BRep_Tool::Degenerated(edge)) continue;
+    double t0 = 0, t1 = 0;
+    const Handle(Geom_Curve) c = BRep_Tool::Curve(edge, t0, t1);
+    if (c.IsNull()) continue;
+    edges.push_back(nurbs_of(GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c, t0, t1))));
+  }
+  const double scale = std::max(std::abs(map.au), std::abs(map.av));
+  return {base, std::move(loops), std::move(edges), deflection * scale};
+}
+
 TopoDS_Shape placed(const TopoDS_Shape& shape, const CadPlacement& pl) {
   if (pl.angle == 0.0 && pl.vector.isZero(0.0)) return shape;
   if (!(pl.axis.norm() > 0.0)) throw CadError("placement: the rotation axis is zero");
@@ -508,13 +569,6 @@ TopoDS_Shape placed(const TopoDS_Shape& shape, const CadPlacement& pl) {
   rot.SetRotation(gp_Ax1(pnt(pl.point), gp_Dir(pl.axis.x(), pl.axis.y(), pl.axis.z())), pl.angle);
   move.SetTranslation(gp_Vec(pl.vector.x(), pl.vector.y(), pl.vector.z()));
   return BRepBuilderAPI_Transform(shape, move.Multiplied(rot), true).Shape();  // rot first
-}
-
-std::string face_list(const std::vector<CadFace>& faces, bool trimmed) {
-  std::string s;
-  for (const CadFace& f : faces)
-    if (f.trimmed == trimmed) s += (s.empty() ? "" : ", ") + std::to_string(f.index);
-  return s.empty() ? "none" : s;
 }
 
 }  // namespace
@@ -550,26 +604,26 @@ CadImport import_cad(const std::string& path, const std::string& prefix,
                      std::to_string(all.size()) + " faces, numbered from 0)");
     out.faces.push_back(describe(all[static_cast<std::size_t>(k)], k));
   }
-  for (const CadFace& f : out.faces)
-    if (f.trimmed && !options.skip_trimmed) {
-      std::vector<CadFace> described;
-      for (std::size_t k = 0; k < all.size(); ++k)
-        described.push_back(describe(all[k], static_cast<int>(k)));
-      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
-                     ") is trimmed (its boundary is not its parameter rectangle, or it has " +
-                     "holes); trimmed faces are not supported yet. Trimmed faces of the file: " +
-                     face_list(described, true) + "; untrimmed: " + face_list(described, false) +
-                     " (choose with \"faces\")");
-    }
   for (CadFace& f : out.faces) {
-    if (f.trimmed) continue;  // (skip_trimmed)
+    if (f.trimmed && options.skip_trimmed) continue;
     const TopoDS_Face& face = all[static_cast<std::size_t>(f.index)];
     try {
-      const Converted c = convert(face, uv_bounds(face), (f.box_hi - f.box_lo).norm());
+      const UvBox b = uv_bounds(face);
+      const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
       f.entity_type = entity_type(c.entity);
       f.exact = c.exact;
       f.tolerance = c.tolerance;
-      out.entities.emplace_back(prefix + ".face" + std::to_string(f.index), c.entity);
+      const std::string name = prefix + ".face" + std::to_string(f.index);
+      if (!f.trimmed) {
+        out.entities.emplace_back(name, c.entity);
+        continue;
+      }
+      if (!c.mapped)
+        throw CadError("trimmed, on a surface OpenCASCADE had to reparametrize (" + f.cad_type +
+                       "): its trimming curves cannot follow; not supported");
+      TrimmedSurface t = trimmed_face(face, *as_surface(c.entity), c.map, b);
+      f.entity_type = "trimmed " + entity_type(c.entity);
+      out.entities.emplace_back(name, std::move(t));
     } catch (const CadError& e) {
       throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
                      "): " + e.what());

@@ -68,16 +68,13 @@ RigidSurface RigidSurface::from_geometry(const GeometryModel& g, const std::stri
       rs.add(*n);
     else if (const auto* a = dynamic_cast<const AnalyticSurface*>(s))
       rs.add(*a);
+    else if (const auto* t = dynamic_cast<const TrimmedSurface*>(s))
+      rs.add(*t);
   }
   return rs;
 }
 
-int RigidSurface::add(const NurbsSurface& s) {
-  Piece p;
-  auto proj = std::make_shared<PatchProjector>(s);
-  p.surface = std::shared_ptr<const Surface>(proj, &proj->surface());
-  p.box = proj->box();
-  p.nurbs = std::move(proj);
+int RigidSurface::push(Piece p) {
   pieces_.push_back(std::move(p));
   box_.extend(pieces_.back().box.lo);
   box_.extend(pieces_.back().box.hi);
@@ -86,11 +83,18 @@ int RigidSurface::add(const NurbsSurface& s) {
   return num_patches() - 1;
 }
 
-int RigidSurface::add(const AnalyticSurface& s) {
+int RigidSurface::add(const NurbsSurface& s) {
   Piece p;
-  // Copy the concrete type (the pieces outlive the caller's objects).
-  p.surface = std::shared_ptr<const Surface>(s.clone());
+  auto proj = std::make_shared<PatchProjector>(s);
+  p.surface = std::shared_ptr<const Surface>(proj, &proj->surface());
+  p.box = proj->box();
+  p.nurbs = std::move(proj);
+  return push(std::move(p));
+}
+
+Box3 RigidSurface::sampled_box(const Surface& s) const {
   // Box: sampled over a bounded domain; unbounded pieces get an infinite box.
+  Box3 box;
   const Domain2 d = s.domain();
   if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) &&
       std::isfinite(d.v.hi)) {
@@ -101,22 +105,82 @@ int RigidSurface::add(const AnalyticSurface& s) {
       for (int i = 0; i <= n; ++i) {
         const SurfaceDerivs dd =
             s.derivs(d.u.lo + (d.u.hi - d.u.lo) * i / n, d.v.lo + (d.v.hi - d.v.lo) * j / n, 1);
-        p.box.extend(dd.S);
+        box.extend(dd.S);
         pad = std::max(pad,
                        dd.Su.norm() * (d.u.hi - d.u.lo) / n + dd.Sv.norm() * (d.v.hi - d.v.lo) / n);
       }
-    p.box.lo.array() -= pad;
-    p.box.hi.array() += pad;
+    box.lo.array() -= pad;
+    box.hi.array() += pad;
   } else {
-    p.box.lo.setConstant(-kInf);
-    p.box.hi.setConstant(kInf);
+    box.lo.setConstant(-kInf);
+    box.hi.setConstant(kInf);
   }
-  pieces_.push_back(std::move(p));
-  box_.extend(pieces_.back().box.lo);
-  box_.extend(pieces_.back().box.hi);
-  detect_shared_sides();
-  reset_index();
-  return num_patches() - 1;
+  return box;
+}
+
+int RigidSurface::add(const AnalyticSurface& s) {
+  Piece p;
+  // Copy the concrete type (the pieces outlive the caller's objects).
+  p.surface = std::shared_ptr<const Surface>(s.clone());
+  p.box = sampled_box(s);
+  return push(std::move(p));
+}
+
+int RigidSurface::add(const TrimmedSurface& s) {
+  Piece p;
+  p.trim = std::make_shared<TrimmedSurface>(s);
+  p.surface = p.trim;
+  if (const auto* n = dynamic_cast<const NurbsSurface*>(&s.base()))
+    p.base_nurbs = std::make_shared<PatchProjector>(*n);
+  // The face's box: the base over the loops' rectangle (a superset of the face).
+  p.box = sampled_box(s);
+  for (const TrimmedSurface::Loop& L : s.loops())
+    for (const Vector2d& uv : L) p.rim.emplace_back(s.point(uv[0], uv[1]), uv);
+  return push(std::move(p));
+}
+
+ProjectionResult RigidSurface::project_trimmed(const Piece& p, const Vector3d& x,
+                                               const ProjectionOptions& opt) const {
+  const TrimmedSurface& t = *p.trim;
+  const Surface& base = t.base();
+  ProjectionResult r =
+      p.base_nurbs ? p.base_nurbs->project(x, opt)
+                   : closest_point_analytic(dynamic_cast<const AnalyticSurface&>(base), x, opt);
+  // (A foot held at the base's own domain boundary lies on the loops: the boundary's case.)
+  if (r.status == ProjectionStatus::interior && t.inside(r.uv)) return r;
+  // The boundary: the nearest point of the edge curves, its uv by a Newton on the base from
+  // the nearest loop point.
+  const bool planar = dynamic_cast<const Plane*>(&base) != nullptr;
+  const bool certified = planar;  // one critical point: outside the loops, the face's minimum is on
+                                  // its boundary (the curves' projections are global)
+  int iterations = r.iterations;
+  double best = kInf;
+  Vector3d foot = Vector3d::Zero();
+  for (const NurbsCurve& c : t.edges()) {
+    const ProjectionResult q = iga::closest_point(c, x);
+    iterations += q.iterations;
+    if (found(q.status) && (q.point - x).norm() < best) best = (q.point - x).norm(), foot = q.point;
+  }
+  ProjectionResult out;
+  out.status = ProjectionStatus::far;
+  out.distance = kInf;
+  out.iterations = iterations;
+  if (!(best < kInf) || p.rim.empty()) return out;
+  const auto nearest =
+      std::min_element(p.rim.begin(), p.rim.end(), [&](const auto& a, const auto& b) {
+        return (a.first - foot).squaredNorm() < (b.first - foot).squaredNorm();
+      });
+  const ProjectionResult on_base = closest_point_local(base, foot, nearest->second, opt);
+  out.uv = on_base.uv;
+  out.point = foot;
+  const SurfaceDerivs d = base.derivs(out.uv[0], out.uv[1], 1);
+  out.normal = t.normal_sign() * d.Su.cross(d.Sv).normalized();
+  out.distance = (x - foot).dot(out.normal) < 0 ? -best : best;
+  out.status = ProjectionStatus::edge;
+  out.iterations += on_base.iterations;
+  out.residual = on_base.residual;
+  out.certified = certified;
+  return out;
 }
 
 void RigidSurface::detect_shared_sides() {
@@ -130,7 +194,7 @@ void RigidSurface::detect_shared_sides() {
     const Domain2 d = s.domain();
     for (int side = 0; side < 4; ++side) {
       p.shared[side] = side < 2 ? s.closed_u() : s.closed_v();
-      if (p.shared[side] || !side_is_finite(d, side)) continue;
+      if (p.trim || p.shared[side] || !side_is_finite(d, side)) continue;
       const std::vector<Vector3d> pts = side_samples(s, side, 5);
       for (std::size_t j = 0; j < pieces_.size() && !p.shared[side]; ++j) {
         if (j == i) continue;
@@ -153,7 +217,8 @@ ProjectionResult RigidSurface::project_piece(int i, const Vector3d& x, double ma
   if (p.nurbs) {
     r = p.nurbs->project_within(x, max_distance, opt);
   } else {
-    r = closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
+    r = p.trim ? project_trimmed(p, x, opt)
+               : closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
     if (std::abs(r.distance) > max_distance) {
       r.status = ProjectionStatus::far;
       r.distance = kInf;
@@ -166,6 +231,7 @@ ProjectionResult RigidSurface::project_piece(int i, const Vector3d& x, double ma
 void RigidSurface::union_status(ProjectionResult& r) const {
   if (r.status != ProjectionStatus::edge && r.status != ProjectionStatus::vertex) return;
   const Piece& p = pieces_[static_cast<std::size_t>(r.patch)];
+  if (p.trim) return;  // a trimmed face's boundary is its own (loops, not sides)
   const Domain2 d = p.surface->domain();
   int free_sides = 0;
   const bool on[4] = {r.uv[0] <= d.u.lo, r.uv[0] >= d.u.hi, r.uv[1] <= d.v.lo, r.uv[1] >= d.v.hi};
@@ -222,6 +288,8 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
   if (p.nurbs)  // certified: the warm answer is checked against the piece's control nets
     r = opt.certify ? p.nurbs->project(x, previous.uv, opt)
                     : closest_point_local(p.nurbs->surface(), x, previous.uv, opt);
+  else if (p.trim)
+    r = project_trimmed(p, x, opt);
   else
     r = closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
   r.patch = previous.patch;
@@ -240,7 +308,7 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
       if (d < best_d * (1.0 - 1e-12)) {
         best_d = d;
         best = q;
-      } else if (nurbs(i) && !q.certified) {
+      } else if ((nurbs(i) || trimmed(i)) && !q.certified) {
         best.certified = false;
       }
     }
@@ -323,11 +391,30 @@ std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vec
       consider(nurbs(piece)->project_among(x, ids, best_d, opt), piece);
     }
     for (int i = 0; i < num_patches(); ++i)
-      if (!nurbs(i)) consider(project_piece(i, x, best_d, opt), i);
+      if (!nurbs(i) && box_distance(pieces_[static_cast<std::size_t>(i)].box, x) <= best_d)
+        consider(project_piece(i, x, best_d, opt), i);
     union_status(best);
     out[q] = best;
   }
   return out;
+}
+
+ProjectionResult RigidSurface::ray_piece(int i, const Vector3d& x, const Vector3d& N,
+                                         const ProjectionOptions& opt) const {
+  const Piece& p = pieces_[static_cast<std::size_t>(i)];
+  ProjectionResult r;
+  if (p.nurbs) {
+    r = ray_project(*p.nurbs, x, N, opt);
+  } else if (p.trim) {
+    r = p.base_nurbs
+            ? ray_project(*p.base_nurbs, x, N, opt)
+            : ray_project_analytic(dynamic_cast<const AnalyticSurface&>(p.trim->base()), x, N, opt);
+    if (found(r.status) && !p.trim->inside(r.uv)) r.status = ProjectionStatus::miss;
+  } else {
+    r = ray_project_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, N, opt);
+  }
+  r.patch = i;
+  return r;
 }
 
 ProjectionResult RigidSurface::ray(const Vector3d& x, const Vector3d& N,
@@ -337,11 +424,7 @@ ProjectionResult RigidSurface::ray(const Vector3d& x, const Vector3d& N,
   bool tangent = false;
   int iterations = 0;
   for (int i = 0; i < num_patches(); ++i) {
-    const Piece& p = pieces_[static_cast<std::size_t>(i)];
-    ProjectionResult r =
-        p.nurbs ? ray_project(*p.nurbs, x, N, opt)
-                : ray_project_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, N, opt);
-    r.patch = i;
+    const ProjectionResult r = ray_piece(i, x, N, opt);
     iterations += r.iterations;
     tangent = tangent || r.status == ProjectionStatus::tangent;
     if (found(r.status) && (!found(best.status) || std::abs(r.distance) < std::abs(best.distance)))

@@ -28,6 +28,20 @@ class RigidSurface {
   /// Adds a patch; returns its index. Shared edges are recomputed.
   int add(const NurbsSurface& s);
   int add(const AnalyticSurface& s);
+  /// A trimmed face (issue 15, item 3): its closest point is the base surface's foot when that
+  /// lies inside the trimming loops, else the closest point on the face's edge curves (status
+  /// edge; uv found on the base); its ray hits count only inside the loops. Trimmed pieces are
+  /// searched like analytic ones (always candidates, pruned by the face's box). Certified: a
+  /// foot inside the loops when the base's is; a boundary foot only on a planar face (elsewhere
+  /// an interior local minimum of the distance inside the loops could be closer: not searched).
+  int add(const TrimmedSurface& s);
+  /// The trimmed face of piece i, or nullptr.
+  const TrimmedSurface* trimmed(int i) const {
+    return pieces_[static_cast<std::size_t>(i)].trim.get();
+  }
+  /// Ray x + xi3 N onto piece i alone (trimming respected); any piece type.
+  ProjectionResult ray_piece(int i, const Vector3d& x, const Vector3d& N,
+                             const ProjectionOptions& opt = {}) const;
 
   int num_patches() const { return static_cast<int>(pieces_.size()); }
   const Surface& patch(int i) const { return *pieces_[static_cast<std::size_t>(i)].surface; }
@@ -78,7 +92,16 @@ class RigidSurface {
     std::shared_ptr<const PatchProjector> nurbs;  // NURBS pieces only
     Box3 box;
     bool shared[4] = {};
+    // Trimmed pieces: the face, its base's projector if NURBS, and points of its loops in 3-D
+    // with their (u, v) (the start of the Newton that finds a boundary foot's uv).
+    std::shared_ptr<const TrimmedSurface> trim;
+    std::shared_ptr<const PatchProjector> base_nurbs;
+    std::vector<std::pair<Vector3d, Vector2d>> rim;
   };
+  ProjectionResult project_trimmed(const Piece& p, const Vector3d& x,
+                                   const ProjectionOptions& opt) const;
+  Box3 sampled_box(const Surface& s) const;
+  int push(Piece p);  ///< adds the piece, updates box, shared sides and index; its index
   ProjectionResult project_piece(int i, const Vector3d& x, double max_distance,
                                  const ProjectionOptions& opt) const;
   /// Status with respect to the union: sides shared with a neighbour are not edges.

@@ -540,8 +540,46 @@ GeometryEntity parse_construction(const JsonCursor& e) {
 }
 
 constexpr const char* kEntityTypes[] = {
-    "nurbs_curve", "nurbs_surface", "plane",      "sphere",      "cylinder",    "torus",
-    "cone",        "hyperboloid",   "revolution", "patch_group", "construction"};
+    "nurbs_curve", "nurbs_surface", "plane",      "sphere",      "cylinder",        "torus",
+    "cone",        "hyperboloid",   "revolution", "patch_group", "trimmed_surface", "construction"};
+
+GeometryEntity parse_entity(const JsonCursor& e);
+
+/// {"type": "trimmed_surface", "surface": {...}, "loops": [[[u, v], ...], ...],
+///  "edges": [{nurbs_curve}, ...], "deflection": d}
+TrimmedSurface parse_trimmed(const JsonCursor& e) {
+  e.expect_object({"type", "surface", "loops", "edges", "deflection"});
+  const JsonCursor sc = e["surface"];
+  const GeometryEntity base = parse_entity(sc);
+  const Surface* s = as_surface(base);
+  if (s == nullptr || std::holds_alternative<TrimmedSurface>(base))
+    sc.fail_plain("the base of a trimmed surface must be a NURBS or analytic surface");
+  const JsonCursor lc = e["loops"];
+  lc.expect_array(1);
+  std::vector<TrimmedSurface::Loop> loops(lc.size());
+  for (std::size_t k = 0; k < lc.size(); ++k) {
+    const JsonCursor L = lc[k];
+    L.expect_array(3);
+    for (std::size_t i = 0; i < L.size(); ++i) {
+      const JsonCursor p = L[i];
+      if (!p.json().is_array() || p.json().size() != 2) p.fail_type("[u, v]");
+      loops[k].emplace_back(p[0].as_number(), p[1].as_number());
+    }
+  }
+  std::vector<NurbsCurve> edges;
+  if (e.has("edges")) {
+    const JsonCursor ec = e["edges"];
+    ec.expect_array();
+    for (std::size_t i = 0; i < ec.size(); ++i) {
+      GeometryEntity c = parse_entity(ec[i]);
+      if (!std::holds_alternative<NurbsCurve>(c)) ec[i].fail_plain("an edge must be a nurbs_curve");
+      edges.push_back(std::get<NurbsCurve>(std::move(c)));
+    }
+  }
+  const double deflection = e.has("deflection") ? e["deflection"].as_number() : 0.0;
+  return build(e,
+               [&] { return TrimmedSurface(*s, std::move(loops), std::move(edges), deflection); });
+}
 
 GeometryEntity parse_entity(const JsonCursor& e) {
   if (!e.json().is_object()) e.fail_type("an object with a \"type\" key");
@@ -550,6 +588,7 @@ GeometryEntity parse_entity(const JsonCursor& e) {
   if (type == "nurbs_curve") return parse_nurbs_curve(e);
   if (type == "nurbs_surface") return parse_nurbs_surface(e);
   if (type == "patch_group") return parse_patch_group(e);
+  if (type == "trimmed_surface") return parse_trimmed(e);
   if (type == "construction") return parse_construction(e);
   for (const char* t : kEntityTypes)
     if (type == t) return parse_analytic(e, type);
@@ -775,6 +814,26 @@ Json entity_to_json(const GeometryEntity& e) {
     Json j;
     j["type"] = "patch_group";
     j["patches"] = g->patches;
+    return j;
+  }
+  if (const auto* t = std::get_if<TrimmedSurface>(&e)) {
+    Json j;
+    j["type"] = "trimmed_surface";
+    if (const auto* n = dynamic_cast<const NurbsSurface*>(&t->base()))
+      j["surface"] = entity_to_json(GeometryEntity(*n));
+    else
+      j["surface"] = analytic_json(dynamic_cast<const AnalyticSurface&>(t->base()));
+    Json loops = Json::array();
+    for (const TrimmedSurface::Loop& L : t->loops()) {
+      Json l = Json::array();
+      for (const Vector2d& p : L) l.push_back({p[0], p[1]});
+      loops.push_back(l);
+    }
+    j["loops"] = loops;
+    Json edges = Json::array();
+    for (const NurbsCurve& c : t->edges()) edges.push_back(entity_to_json(GeometryEntity(c)));
+    j["edges"] = edges;
+    j["deflection"] = t->deflection();
     return j;
   }
   return analytic_json(dynamic_cast<const AnalyticSurface&>(*as_surface(e)));

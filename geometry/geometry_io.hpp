@@ -15,6 +15,7 @@
 #include "geometry/json_reader.hpp"
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/nurbs_surface.hpp"
+#include "geometry/trimmed_surface.hpp"
 
 namespace iga {
 
@@ -26,7 +27,7 @@ struct PatchGroup {
 };
 
 using GeometryEntity = std::variant<NurbsCurve, NurbsSurface, Plane, Sphere, Cylinder, Torus, Cone,
-                                    Hyperboloid, Revolution, PatchGroup>;
+                                    Hyperboloid, Revolution, PatchGroup, TrimmedSurface>;
 
 /// The "geometry" section of a model: named entities in file order.
 struct GeometryModel {

@@ -398,6 +398,7 @@ void SurfaceContact::set_parameters(const SurfaceContactParameters& p) {
 bool SurfaceContact::warm_project(SurfaceContactPoint& cp) const {
   const ProjectionResult& prev = cp.foot;
   if (prev.patch < 0 || !found(prev.status)) return false;
+  if (rigid_->trimmed(prev.patch) != nullptr) return false;  // the rigid surface's own search
   const Surface& s = rigid_->patch(prev.patch);
   const auto* analytic =
       rigid_->nurbs(prev.patch) ? nullptr : static_cast<const AnalyticSurface*>(&s);
@@ -488,10 +489,7 @@ void SurfaceContact::cold_project() {
       consider(ray_project(*rigid_->nurbs(piece), cp.x, cp.normal), piece);
     }
     for (int i = 0; i < rigid_->num_patches(); ++i)
-      if (!rigid_->nurbs(i))
-        consider(ray_project_analytic(static_cast<const AnalyticSurface&>(rigid_->patch(i)), cp.x,
-                                      cp.normal),
-                 i);
+      if (!rigid_->nurbs(i)) consider(rigid_->ray_piece(i, cp.x, cp.normal), i);
     if (!found(best.status) && tangent) best.status = ProjectionStatus::tangent;
     cp.foot = best;
   }

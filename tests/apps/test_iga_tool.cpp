@@ -189,7 +189,7 @@ TEST_CASE("iga info and iga import on a STEP file: faces listed, written, read b
   REQUIRE(info.status == 0);
   CHECK_THAT(info.out, Catch::Contains("7 faces"));
   CHECK_THAT(info.out, Catch::Contains("face 2: cone -> cone (exact)"));
-  CHECK_THAT(info.out, Catch::Contains("face 0: plane -> not imported (trimmed)"));
+  CHECK_THAT(info.out, Catch::Contains("face 0: plane -> trimmed plane (exact)"));
   CHECK_THAT(info.out, Catch::Contains("2 boundary loops"));
   const std::string json = (dir / "groove.json").string();
   const Run imp =
@@ -202,10 +202,12 @@ TEST_CASE("iga info and iga import on a STEP file: faces listed, written, read b
   CHECK_THAT(back.out, Catch::Contains("groove.face2: cone"));
   CHECK_THAT(back.out, Catch::Contains("v in [0.001, 0.0016]"));
   CHECK_THAT(back.out, Catch::Contains("groove: patch_group of 2: groove.face2 groove.face3"));
-  // All faces: the trimmed ones are refused with the list of the others.
+  // All faces, the trimmed side discs included.
   const Run all = run_iga("import \"" + step + "\" --out \"" + json + "\"");
-  CHECK(all.status == 1);
-  CHECK_THAT(all.err, Catch::Contains("untrimmed: 1, 2, 3, 4, 6"));
+  CHECK(all.status == 0);
+  CHECK_THAT(all.out, Catch::Contains("face 5: plane -> trimmed plane (exact)"));
+  CHECK_THAT(run_iga("info \"" + json + "\"").out,
+             Catch::Contains("sheave_v30.face0: trimmed_surface"));
   CHECK(run_iga("import nothing.step --out x.json").status == 1);
   fs::remove_all(dir);
 }

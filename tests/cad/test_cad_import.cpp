@@ -24,6 +24,7 @@
 
 #include "cad/cad_import.hpp"
 #include "contact/rigid_surface.hpp"
+#include "geometry/json_reader.hpp"
 #include "tests/support/cad_samples.hpp"
 #include "tests/support/files.hpp"
 
@@ -294,9 +295,62 @@ TEST_CASE("cad import: bad files and faces are errors that say what is wrong", "
   CHECK_THROWS_WITH(import_cad(dir + "/a.obj", "x"), Contains("not a CAD file"));
   CHECK_THROWS_WITH(import_cad(path, "x", only({3})),
                     Contains("face 3 does not exist (the file has 3 faces"));
-  CHECK_THROWS_WITH(import_cad(path, "x"),
-                    Contains("face 1 (plane) is trimmed") && Contains("untrimmed: 0"));
   CHECK_THROWS_WITH(import_cad(path, "x", only({}, "furlong")), Contains("unknown length unit"));
   { std::ofstream(dir + "/garbage.step") << "not a step file\n"; }
   CHECK_THROWS_WITH(import_cad(dir + "/garbage.step", "x"), Contains("garbage.step"));
+}
+
+TEST_CASE("cad import: a plate with a hole is a trimmed plane: feet over the hole are on its edge",
+          "[cad][trimmed]") {
+  const std::string dir = make_dir("plate_hole");
+  const std::string path = dir + "/plate.step";
+  const double a = 4.0, r = 1.0;
+  test::write_step(test::plate_with_hole(a, r), path);
+  const CadImport imp = import_cad(path, "plate");
+  REQUIRE(imp.entities.size() == 1);
+  CHECK(imp.faces[0].trimmed);
+  CHECK(imp.faces[0].wires == 2);
+  CHECK(imp.faces[0].entity_type == "trimmed plane");
+  REQUIRE(std::holds_alternative<TrimmedSurface>(imp.entities[0].second));
+  const auto& t = std::get<TrimmedSurface>(imp.entities[0].second);
+  CHECK(t.loops().size() == 2);
+  CHECK(t.edges().size() == 5);  // 4 sides and the circle
+  RigidSurface rs;
+  rs.add(t);
+  std::mt19937 g(3);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  int over_hole = 0, over_plate = 0;
+  for (int k = 0; k < 400; ++k) {
+    const Vector3d x(0.5 * a * U(g), 0.5 * a * U(g), 0.5 * U(g));
+    const double rho = std::hypot(x.x(), x.y());
+    if (std::abs(x.z()) < 1e-3 || std::abs(rho - r) < 1e-3) continue;
+    const ProjectionResult p = rs.closest_point(x);
+    REQUIRE(found(p.status));
+    INFO("x = " << x.transpose() << ", foot " << p.point.transpose());
+    const Vector3d down(0, 0, x.z() > 0 ? -1 : 1);
+    if (rho < r) {  // over the hole: the nearest point of the hole's edge circle
+      ++over_hole;
+      CHECK(p.status == ProjectionStatus::edge);
+      const Vector3d expected(r * x.x() / rho, r * x.y() / rho, 0.0);
+      CHECK((p.point - expected).norm() <= 1e-10);
+      CHECK(std::abs(p.distance) == Approx(std::hypot(r - rho, x.z())).epsilon(1e-10));
+      CHECK(p.certified);  // a plane: no other local minimum inside the loops
+      CHECK_FALSE(found(rs.ray(x, down).status));  // a ray straight down passes through
+    } else {                                       // over the plate: straight below, on its normal
+      ++over_plate;
+      CHECK(p.status == ProjectionStatus::interior);
+      CHECK((p.point - Vector3d(x.x(), x.y(), 0)).norm() <= 1e-12);
+      CHECK(found(rs.ray(x, down).status));
+    }
+  }
+  CHECK(over_hole > 20);
+  CHECK(over_plate > 200);
+  // Beyond the outer boundary: the nearest point of the square's side.
+  const ProjectionResult side = rs.closest_point(Vector3d(3.0, 0.5, 0.2));
+  CHECK(side.status == ProjectionStatus::edge);
+  CHECK((side.point - Vector3d(2.0, 0.5, 0.0)).norm() <= 1e-10);
+  // Written as JSON and read back: the same face.
+  GeometryModel m;
+  m.entities = imp.entities;
+  CHECK(parse_geometry(geometry_to_json(m), "t.json", JsonPointer()) == m);
 }
