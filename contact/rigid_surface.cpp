@@ -214,8 +214,9 @@ ProjectionResult RigidSurface::project_piece(int i, const Vector3d& x, double ma
                                              const ProjectionOptions& opt) const {
   const Piece& p = pieces_[static_cast<std::size_t>(i)];
   ProjectionResult r;
-  if (p.nurbs) {
-    r = p.nurbs->project_within(x, max_distance, opt);
+  if (p.nurbs) {  // unbounded: the near-surface shortcut first (a certified Newton), if it holds
+    r = std::isinf(max_distance) ? p.nurbs->project(x, opt)
+                                 : p.nurbs->project_within(x, max_distance, opt);
   } else {
     r = p.trim ? project_trimmed(p, x, opt)
                : closest_point_analytic(static_cast<const AnalyticSurface&>(*p.surface), x, opt);
