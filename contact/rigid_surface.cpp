@@ -83,6 +83,12 @@ int RigidSurface::push(Piece p) {
   return num_patches() - 1;
 }
 
+RigidSurface RigidSurface::piece(int i) const {
+  RigidSurface r;
+  r.push(pieces_.at(static_cast<std::size_t>(i)));
+  return r;
+}
+
 int RigidSurface::add(const NurbsSurface& s) {
   Piece p;
   auto proj = std::make_shared<PatchProjector>(s);

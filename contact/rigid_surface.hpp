@@ -35,6 +35,8 @@ class RigidSurface {
   /// foot inside the loops when the base's is; a boundary foot only on a planar face (elsewhere
   /// an interior local minimum of the distance inside the loops could be closer: not searched).
   int add(const TrimmedSurface& s);
+  /// A rigid surface of piece i alone (sharing its projector): a contact pair per face.
+  RigidSurface piece(int i) const;
   /// The trimmed face of piece i, or nullptr.
   const TrimmedSurface* trimmed(int i) const {
     return pieces_[static_cast<std::size_t>(i)].trim.get();

@@ -116,23 +116,30 @@ void Analysis::collect_pairs(const JsonCursor& root) {
     const JsonCursor c = list[k];
     const auto it = std::find(body_names_.begin(), body_names_.end(), c["body"].as_string());
     const int b = static_cast<int>(it - body_names_.begin());
-    PairRef p;
-    p.pair = &bodies_[static_cast<std::size_t>(b)]->pair(next[static_cast<std::size_t>(b)]++);
-    p.body = b;
-    p.rigid = c["rigid"].as_string();
-    p.name = c.has("name") ? column_name(c["name"])
-                           : (list.size() > 1 ? "contact_" + std::to_string(k) : "contact");
-    if (c.has("moment_about")) {
-      p.moment_about = vec3(c["moment_about"]);
-    } else if (const RigidMotion* m = p.pair->motion(); m && m->rotates()) {
-      p.moment_about = m->point();
+    const std::string name = c.has("name")
+                                 ? column_name(c["name"])
+                                 : (list.size() > 1 ? "contact_" + std::to_string(k) : "contact");
+    // per_face: one pair per face of the tool, named <name>_<face> (face = piece index)
+    const bool per_face = c.has("per_face") && c["per_face"].as_bool();
+    const std::size_t faces = per_face ? geometry_.surfaces_of(c["rigid"].as_string()).size() : 1;
+    for (std::size_t f = 0; f < faces; ++f) {
+      PairRef p;
+      p.pair = &bodies_[static_cast<std::size_t>(b)]->pair(next[static_cast<std::size_t>(b)]++);
+      p.body = b;
+      p.rigid = c["rigid"].as_string();
+      p.name = per_face ? name + "_" + std::to_string(f) : name;
+      if (c.has("moment_about")) {
+        p.moment_about = vec3(c["moment_about"]);
+      } else if (const RigidMotion* m = p.pair->motion(); m && m->rotates()) {
+        p.moment_about = m->point();
+      }
+      for (const PairRef& q : pairs_)
+        if (q.name == p.name)
+          (c.has("name") ? c["name"] : c)
+              .fail_plain("a second contact pair named \"" + p.name +
+                          "\" (pair names are the columns of steps.csv)");
+      pairs_.push_back(std::move(p));
     }
-    for (const PairRef& q : pairs_)
-      if (q.name == p.name)
-        (c.has("name") ? c["name"] : c)
-            .fail_plain("a second contact pair named \"" + p.name +
-                        "\" (pair names are the columns of steps.csv)");
-    pairs_.push_back(std::move(p));
   }
 }
 
@@ -221,11 +228,16 @@ std::vector<Vector3d> Analysis::reactions(const VectorXd& u, double t) {
 }
 
 bool Analysis::sliding_steadily() const {
+  // Every pair in contact slides steadily (a pair without contact, e.g. a face of a per-face
+  // tool the body does not touch, holds nothing back), and some pair is in contact.
+  bool any = false;
   for (const PairRef& p : pairs_) {
     const ContactCounts c = p.pair->counts();
+    if (c.active == 0) continue;
+    any = true;
     if (!steady_sliding(c.active, c.slip, c.slip_back, c.drag_ratio, p.pair->mu())) return false;
   }
-  return !pairs_.empty();
+  return any;
 }
 
 bool Analysis::plateau_complete(double t, int& sliding_steps) const {

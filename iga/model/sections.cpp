@@ -832,7 +832,7 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
       c["type"].fail("a rod's contact is \"curve_to_rigid\"");
     c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
                      "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
-                     "slip_tol", "moment_about", "search_distance", "description"});
+                     "slip_tol", "moment_about", "search_distance", "per_face", "description"});
     check_body(c, ctx);
     const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
     ContactParameters cp;
@@ -840,13 +840,21 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
     const ContactEnforcement enforcement = parse_enforcement(c);
     const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
-    auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), rigid, cp, ppe);
-    pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-    if (c.has("search_distance"))  // default: rope radius + the longest element chord
-      pair->contact().set_search_distance(positive(c["search_distance"]));
-    if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
-      pair->set_motion(m->second);
-    problem->attach(std::move(pair));
+    // per_face: a pair per piece (face) of the tool, so that a contact point touches several
+    // faces at once, each with its own gap, normal and friction history (issue 15, item 4).
+    const bool per_face = c.has("per_face") && c["per_face"].as_bool();
+    std::vector<std::shared_ptr<const RigidSurface>> tools;
+    for (int i = 0; i < (per_face ? rigid->num_patches() : 1); ++i)
+      tools.push_back(per_face ? std::make_shared<const RigidSurface>(rigid->piece(i)) : rigid);
+    for (const std::shared_ptr<const RigidSurface>& tool : tools) {
+      auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), tool, cp, ppe);
+      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+      if (c.has("search_distance"))  // default: rope radius + the longest element chord
+        pair->contact().set_search_distance(positive(c["search_distance"]));
+      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
+        pair->set_motion(m->second);
+      problem->attach(std::move(pair));
+    }
   });
   for_each_entry(root, "boundary_conditions", ctx,
                  [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
