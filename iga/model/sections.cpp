@@ -843,8 +843,10 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     // per_face: a pair per piece (face) of the tool, so that a contact point touches several
     // faces at once, each with its own gap, normal and friction history (issue 15, item 4).
     const bool per_face = c.has("per_face") && c["per_face"].as_bool();
+    const int n_tools = per_face ? rigid->num_patches() : 1;
     std::vector<std::shared_ptr<const RigidSurface>> tools;
-    for (int i = 0; i < (per_face ? rigid->num_patches() : 1); ++i)
+    tools.reserve(static_cast<std::size_t>(n_tools));
+    for (int i = 0; i < n_tools; ++i)
       tools.push_back(per_face ? std::make_shared<const RigidSurface>(rigid->piece(i)) : rigid);
     for (const std::shared_ptr<const RigidSurface>& tool : tools) {
       auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), tool, cp, ppe);
