@@ -408,18 +408,40 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
   c.mapped = false;
   const Handle(Geom_RectangularTrimmedSurface) patch =
       new Geom_RectangularTrimmedSurface(s, b.u0, b.u1, b.v0, b.v1);
-  try {  // exact for revolutions and extrusions of conics and B-spline curves
-    c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
-    return c;
-  } catch (const Standard_Failure&) {  // not convertible exactly: approximate
+  // Exact for revolutions and extrusions (of conics and B-spline curves); for other types
+  // (offset surfaces) GeomConvert approximates silently, so they take the approximation below,
+  // whose bound is known.
+  const GeomAbs_SurfaceType type = GeomAdaptor_Surface(s).GetType();
+  if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion) {
+    try {
+      c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
+      return c;
+    } catch (const Standard_Failure&) {  // not convertible exactly: approximate
+    }
   }
+  // Approximated within 1e-6 of the face's size: C2 where OCCT reaches it, else C0 (a face
+  // with a kink, e.g. the offset of a C1 surface); the bound reported is the larger of OCCT's
+  // and the deviation sampled on a 41 x 41 grid (the approximation keeps the parameters).
   const double tol = 1e-6 * size;
-  GeomConvert_ApproxSurface approx(patch, tol, GeomAbs_C2, GeomAbs_C2, 9, 9, 200, 0);
-  if (!approx.HasResult())
+  Handle(Geom_BSplineSurface) result;
+  double bound = 0.0;
+  for (const GeomAbs_Shape continuity : {GeomAbs_C2, GeomAbs_C0}) {
+    GeomConvert_ApproxSurface approx(patch, tol, continuity, continuity, 9, 9, 400, 0);
+    if (!approx.HasResult()) continue;
+    result = approx.Surface();
+    bound = approx.MaxError();
+    if (approx.IsDone()) break;
+  }
+  if (result.IsNull())
     throw CadError("OpenCASCADE could not approximate it by NURBS within " + std::to_string(tol));
-  c.entity = nurbs_of(*approx.Surface());
+  for (int j = 0; j <= 40; ++j)
+    for (int i = 0; i <= 40; ++i) {
+      const double u = b.u0 + (b.u1 - b.u0) * i / 40, v = b.v0 + (b.v1 - b.v0) * j / 40;
+      bound = std::max(bound, s->Value(u, v).Distance(result->Value(u, v)));
+    }
+  c.entity = nurbs_of(*result);
   c.exact = false;
-  c.tolerance = approx.MaxError();
+  c.tolerance = bound;
   return c;
 }
 

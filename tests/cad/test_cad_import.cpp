@@ -10,14 +10,22 @@
 #include <numbers>
 #include <random>
 
+#include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeCone.hxx>
 #include <BRepPrimAPI_MakeCylinder.hxx>
 #include <BRepPrimAPI_MakeSphere.hxx>
 #include <BRepPrimAPI_MakeTorus.hxx>
 #include <BRep_Tool.hxx>
+#include <Geom_BezierCurve.hxx>
+#include <Geom_BezierSurface.hxx>
+#include <Geom_OffsetSurface.hxx>
 #include <Geom_Surface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Precision.hxx>
 #include <STEPControl_Reader.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TopExp.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
 #include <TopoDS.hxx>
@@ -353,4 +361,57 @@ TEST_CASE("cad import: a plate with a hole is a trimmed plane: feet over the hol
   GeometryModel m;
   m.entities = imp.entities;
   CHECK(parse_geometry(geometry_to_json(m), "t.json", JsonPointer()) == m);
+}
+
+TEST_CASE("cad import: extrusions convert exactly, offset surfaces within the stated bound",
+          "[cad]") {
+  const std::string dir = make_dir("other");
+  // A B-spline curve extruded along z (a surface of linear extrusion), and the offset (0.2) of
+  // the B-spline face: OCCT keeps both types in STEP.
+  TColgp_Array1OfPnt poles(1, 4);
+  poles(1) = gp_Pnt(0, 0, 0), poles(2) = gp_Pnt(1, 1, 0), poles(3) = gp_Pnt(2, -1, 0),
+  poles(4) = gp_Pnt(3, 0.5, 0);
+  const Handle(Geom_BezierCurve) profile = new Geom_BezierCurve(poles);
+  const Handle(Geom_Surface) extrusion =
+      new Geom_SurfaceOfLinearExtrusion(profile, gp_Dir(0, 0.2, 1));
+  // (the offset of a smooth bicubic Bezier patch: OCCT approximates it C2 within 1e-6; the
+  // offset of a face with a kink is approximated C0, with a larger bound, reported too)
+  TColgp_Array2OfPnt net(1, 4, 1, 4);
+  for (int i = 1; i <= 4; ++i)
+    for (int j = 1; j <= 4; ++j)
+      net(i, j) = gp_Pnt(i, j, 0.3 * std::sin(1.1 * i) * std::cos(0.7 * j));
+  const Handle(Geom_Surface) offset = new Geom_OffsetSurface(new Geom_BezierSurface(net), 0.2);
+  struct Case {
+    const char* name;
+    Handle(Geom_Surface) surface;
+    double u0, u1, v0, v1;
+    bool exact;
+  };
+  for (const Case& c : {Case{"extrusion", extrusion, 0.0, 1.0, 0.0, 2.0, true},
+                        Case{"offset", offset, 0.0, 1.0, 0.0, 1.0, false}}) {
+    INFO(c.name);
+    const std::string path = dir + "/" + c.name + ".step";
+    test::write_step(
+        BRepBuilderAPI_MakeFace(c.surface, c.u0, c.u1, c.v0, c.v1, Precision::Confusion()).Face(),
+        path);
+    const CadImport imp = import_cad(path, "s");
+    REQUIRE(imp.entities.size() == 1);
+    CHECK(imp.faces[0].cad_type == c.name);
+    CHECK(imp.faces[0].entity_type == "nurbs_surface");
+    CHECK(imp.faces[0].exact == c.exact);
+    const double size = (imp.faces[0].box_hi - imp.faces[0].box_lo).norm();
+    if (!c.exact) CHECK(imp.faces[0].tolerance <= 1e-6 * size);
+    // OCCT's points of the face lie on the imported surface: to round-off when exact, within
+    // the reported bound (and a margin for the closest point's own tolerance) when not.
+    RigidSurface rs;
+    rs.add(std::get<NurbsSurface>(imp.entities[0].second));
+    const double bound = c.exact ? 1e-10 * size : imp.faces[0].tolerance + 1e-10 * size;
+    for (int j = 0; j <= 6; ++j)
+      for (int i = 0; i <= 6; ++i) {
+        const gp_Pnt P =
+            c.surface->Value(c.u0 + (c.u1 - c.u0) * i / 6, c.v0 + (c.v1 - c.v0) * j / 6);
+        const Vector3d x(P.X(), P.Y(), P.Z());
+        CHECK(std::abs(rs.closest_point(x).distance) <= bound);
+      }
+  }
 }
