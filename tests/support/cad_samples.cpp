@@ -4,10 +4,13 @@
 #include <numbers>
 #include <stdexcept>
 
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
 #include <BRepBuilderAPI_MakeWire.hxx>
+#include <BRepFilletAPI_MakeFillet.hxx>
+#include <BRepPrimAPI_MakeBox.hxx>
 #include <BRepPrimAPI_MakeRevol.hxx>
 #include <GC_MakeCircle.hxx>
 #include <Geom_BSplineSurface.hxx>
@@ -23,6 +26,7 @@
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
+#include <TopExp_Explorer.hxx>
 #include <TopoDS.hxx>
 #include <gp_Circ.hxx>
 
@@ -125,6 +129,21 @@ TopoDS_Shape sheave(double R_out, double w, double R_root, double alpha, double 
   return BRepPrimAPI_MakeRevol(profile, gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)),
                                2 * std::numbers::pi)
       .Shape();
+}
+
+TopoDS_Shape filleted_die(double a, double height, double r) {
+  const TopoDS_Shape box =
+      BRepPrimAPI_MakeBox(gp_Pnt(-a / 2, -a / 2, -height), a, a, height).Shape();
+  BRepFilletAPI_MakeFillet fillet(box);
+  for (TopExp_Explorer e(box, TopAbs_EDGE); e.More(); e.Next()) {
+    const BRepAdaptor_Curve c(TopoDS::Edge(e.Current()));
+    const gp_Pnt p = c.Value(c.FirstParameter()), q = c.Value(c.LastParameter());
+    if (std::abs(p.Z()) < 1e-12 && std::abs(q.Z()) < 1e-12)
+      fillet.Add(r, TopoDS::Edge(e.Current()));
+  }
+  fillet.Build();
+  if (!fillet.IsDone()) throw std::runtime_error("filleted_die: OpenCASCADE could not fillet");
+  return fillet.Shape();
 }
 
 }  // namespace iga::test

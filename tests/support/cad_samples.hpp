@@ -32,5 +32,9 @@ TopoDS_Face plate_with_hole(double a, double r);
 /// half-angle `alpha` (radians) whose flanks meet at radius R_root (or a flat bottom of half
 /// width `flat` there), revolved from its profile.
 TopoDS_Shape sheave(double R_out, double w, double R_root, double alpha, double flat = 0.0);
+/// A die: the box [-a/2, a/2]^2 x [-height, 0] with the four edges of its top face filleted
+/// (radius r, OCCT's BRepFilletAPI_MakeFillet): a flat top, four cylindrical fillets mitred at
+/// the corners, the sides.
+TopoDS_Shape filleted_die(double a, double height, double r);
 
 }  // namespace iga::test

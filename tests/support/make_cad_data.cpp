@@ -6,6 +6,8 @@
 // bspline_face.step      a rational bicubic-by-quadratic face with a double knot
 // plate_with_hole.step   a square plate of side 4 with a hole of radius 1 (trimmed)
 // sheave_v30.step        a sheave with a V-groove of half-angle 30 degrees (root radius 1)
+// die_fillet.step        a die 4 x 4 x 1, top at z = 0, its top edges filleted (r = 0.5)
+//                        (data/plate_on_die.json)
 // Lengths in mm (STEP's unit here); a model reads them with "unit" as it needs.
 #include <filesystem>
 #include <iostream>
@@ -38,6 +40,8 @@ int main(int argc, char** argv) {
                           (dir / "plate_with_hole.step").string());
     iga::test::write_step(iga::test::sheave(1.6, 0.6, 1.0, std::numbers::pi / 6),
                           (dir / "sheave_v30.step").string());
+    iga::test::write_step(iga::test::filleted_die(4.0, 1.0, 0.5),
+                          (dir / "die_fillet.step").string());
     for (const auto& f : std::filesystem::directory_iterator(dir)) {
       std::cout << f.path().filename().string() << ":\n";
       for (const iga::CadFace& face : iga::list_cad_faces(f.path().string()))

@@ -10,6 +10,7 @@
 #include "iga/model/analysis.hpp"
 #include "iga/model/model.hpp"
 #include "tests/iga/analysis_error.hpp"
+#include "tests/support/files.hpp"
 
 using namespace iga;
 
@@ -138,4 +139,37 @@ TEST_CASE("cad entity: a rope lying across the hole of a plate read from STEP sa
   // it lifts a little, as a beam bent over a support does.
   CHECK(z_side_hole > r - 1e-3);
   CHECK(z_side_hole < r + 0.01);
+}
+
+TEST_CASE("cad entity: a plate pressed onto a filleted die read from STEP (data/plate_on_die.json)",
+          "[iga][analysis][cad][trimmed]") {
+  // The die's top is flat (3 x 3), its edges filleted (trimmed cylinders). Under the uniform
+  // load q = 1 the plate rests on the flat top: there the contact pressure is q and the lower
+  // face sits q / eps_N below the die (penalty), 1e-4 + 1e-4 below where it started. The
+  // overhang bends down over the fillets; the problem is symmetric.
+  const std::string dir = test::fresh_out_dir("cad_entity", "plate_on_die");
+  Json doc = read_json_file(kData + "plate_on_die.json");
+  doc["output"]["monitors"].push_back({{"name", "xm"}, {"at", {0.0, 0.5}}});
+  doc["output"]["monitors"].push_back({{"name", "yp"}, {"at", {0.5, 1.0}}});
+  Analysis a = Analysis::from_json(doc, kData + "plate_on_die.json");
+  const AnalysisResult r = a.run(nullptr, dir);
+  REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
+  const auto& d = r.steps.back().displacements;  // centre, edge_mid (x = +1.8), xm, yp
+  CHECK(d.at(0).z() == Approx(-2e-4).epsilon(0.01));
+  // The overhang at the four edge midpoints alike (measured: x -0.05871 / -0.05866, y -0.05869).
+  CHECK(d.at(1).z() == Approx(d.at(3).z()).epsilon(0.005));
+  CHECK(d.at(2).z() == Approx(d.at(3).z()).epsilon(0.005));
+  CHECK(d.at(1).z() < -0.03);  // bent down over the fillet
+  // The pressure on the middle of the flat top is q.
+  const std::string vtk = test::slurp(dir + "/last_shell.vtk");
+  const std::vector<double> x = test::vtk_points(vtk);
+  const std::vector<double> p = test::vtk_array(vtk, "SCALARS", "contact_pressure");
+  REQUIRE(p.size() * 3 == x.size());
+  int n = 0;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (std::abs(x[3 * i]) < 0.5 && std::abs(x[3 * i + 1]) < 0.5) {
+      ++n;
+      CHECK(p[i] == Approx(1.0).epsilon(0.02));
+    }
+  CHECK(n > 100);
 }
