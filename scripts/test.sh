@@ -10,4 +10,6 @@ flavour=release
 "$root/scripts/build.sh" "$flavour"
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
+# OpenCASCADE's process-wide objects, never freed (scripts/lsan_occt.supp)
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/scripts/lsan_occt.supp:print_suppressions=0}
 ctest --test-dir "$root/build/$flavour" --output-on-failure --parallel "$(nproc)" --timeout 600
