@@ -28,7 +28,14 @@ constexpr double kPi = std::numbers::pi;
 const std::string kData = std::string(IGA_SOURCE_DIR) + "/data/";
 
 /// T/T0 at full slip of the capstan's rope (radius r, centre line at radius rho) wrapped by pi
-/// in the sheave of `step` (every face a pair of its own), mu = 0.2.
+/// in the sheave of `step` (every face a pair of its own), mu = 0.2: the mean over the three
+/// steps of the sliding plateau that stop the run (T/T0 swings as points enter and leave the
+/// lift-off zones, issue 12 item 3; measured at alpha = 20 deg: +0.42 % with steps of 0.1,
+/// +0.02 % with 0.025, which the stiff wedge does not always allow). A run that does not reach
+/// full slip (Newton stalls in the stiff wedge and the step size collapses; which run does
+/// depends on the last bits of the arithmetic: tried with glibc's FMA paths masked) is run again
+/// with half the largest step, as the capstan app pulls again; the first that reaches full slip
+/// counts, none fails the test.
 double belt_ratio(const std::string& step, double r, double rho, int& pairs, bool wedge = true) {
   Json doc = read_json_file(kData + "capstan.json");
   doc["geometry"]["sheave"] = {{"type", "cad"}, {"file", step}};
@@ -42,8 +49,8 @@ double belt_ratio(const std::string& step, double r, double rho, int& pairs, boo
   // and the penalty's error (T / (R^2 eps_N), issue 12) with it (measured at alpha = 20 deg:
   // +0.52 % with eps = 2.1e4, +0.41 % with 2.1e5, +0.22 % with 2.1e6). With the augmented
   // Lagrangian the two flanks' multipliers do not converge once the rope is pulled (open; see
-  // the note of issue 15).
-  // On the flat bottom alone: the capstan's own settings (exact enforcement).
+  // the note of issue 15). On the flat bottom alone: the capstan's own settings (exact
+  // enforcement).
   if (wedge) {
     c.erase("enforcement");
     c.erase("penetration_tol");
@@ -51,11 +58,23 @@ double belt_ratio(const std::string& step, double r, double rho, int& pairs, boo
     c["eps_T"] = 2.1e6;
   }
   doc["boundary_conditions"][1]["magnitude"] = 0.1;  // enough pull to slide at T/T0 ~ 6
-  Analysis a = Analysis::from_json(doc, kData + "sheave.json");
-  pairs = a.num_pairs();
-  const AnalysisResult res = a.run();
-  REQUIRE(res.full_slip);  // (the run stops there)
-  return res.steps.back().reactions.at(0).norm() / 10.0;
+  for (const double max_step : {0.1, 0.05, 0.025, 0.0125}) {
+    doc["solver"]["max_step"] = max_step;
+    doc["solver"]["initial_step"] = max_step;
+    Analysis a = Analysis::from_json(doc, kData + "sheave.json");
+    pairs = a.num_pairs();
+    const AnalysisResult res = a.run();
+    if (res.full_slip) {  // the mean over the sliding plateau (the stop rule's last 3 steps)
+      REQUIRE(res.steps.size() >= 3);
+      double T = 0.0;
+      for (std::size_t k = res.steps.size() - 3; k < res.steps.size(); ++k)
+        T += res.steps[k].reactions.at(0).norm() / 3.0;
+      return T / 10.0;
+    }
+    WARN("no full slip with max_step " << max_step << ": again with half of it");
+  }
+  FAIL("no full slip");
+  return 0.0;
 }
 
 }  // namespace
@@ -69,8 +88,11 @@ TEST_CASE("V-belt: a rope in a V-groove read from STEP reaches exp(mu phi / sin 
     const double alpha = alpha_deg * kPi / 180.0;
     const std::string step = dir + "/sheave_" + std::to_string(int(alpha_deg)) + ".step";
     test::write_step(test::sheave(1.6, 0.8, R_root, alpha), step);
-    // The rope's centre touches both flanks: at r from each, on the mid-plane.
-    const double rho = R_root + r / std::sin(alpha);
+    // The rope's centre touches both flanks: at r from each, on the mid-plane; 1e-6 inside,
+    // so that every point is in contact from the start (a rope that only touches at zero gap
+    // makes Newton hunt between contact states in the first steps, more or less so depending
+    // on the last bits of the arithmetic: tried).
+    const double rho = R_root + r / std::sin(alpha) - 1e-6;
     int pairs = 0;
     const double ratio = belt_ratio(step, r, rho, pairs);
     const double law = std::exp(mu * kPi / std::sin(alpha));
