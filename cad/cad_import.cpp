@@ -627,7 +627,6 @@ CadImport import_cad(const std::string& path, const std::string& prefix,
     out.faces.push_back(describe(all[static_cast<std::size_t>(k)], k));
   }
   for (CadFace& f : out.faces) {
-    if (f.trimmed && options.skip_trimmed) continue;
     const TopoDS_Face& face = all[static_cast<std::size_t>(f.index)];
     try {
       const UvBox b = uv_bounds(face);

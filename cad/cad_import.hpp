@@ -56,9 +56,6 @@ struct CadOptions {
   /// "in", "ft", "um", "km".
   std::string unit = "mm";
   CadPlacement placement;
-  /// Leave trimmed faces out (listed in CadImport::faces with an empty entity_type) instead of
-  /// refusing them.
-  bool skip_trimmed = false;
 };
 
 /// One face of the file as read.
@@ -77,9 +74,7 @@ struct CadFace {
 /// The imported faces, named `<prefix>.face<k>` (k the face number), and what each was.
 struct CadImport {
   std::vector<std::pair<std::string, GeometryEntity>> entities;
-  /// The chosen faces, in order: each imported one gives the next entity (with skip_trimmed a
-  /// trimmed face has an empty entity_type and no entity).
-  std::vector<CadFace> faces;
+  std::vector<CadFace> faces;  ///< the chosen faces, same order as entities
   double seconds = 0.0;  ///< wall time of reading and converting
 };
 
@@ -87,9 +82,10 @@ struct CadImport {
 /// case. Throws CadError otherwise.
 std::string cad_format(const std::string& path);
 
-/// Reads the file and converts the chosen faces. Throws CadError if the file cannot be read,
-/// a face number is out of range, or a face is trimmed (trimmed faces are not supported yet:
-/// the message names them and the untrimmed ones).
+/// Reads the file and converts the chosen faces; a trimmed face becomes a TrimmedSurface
+/// (geometry/trimmed_surface.hpp: its base as above, its loops and edges). Throws CadError if
+/// the file cannot be read, a face number is out of range, or a face cannot be converted (a
+/// trimmed face on a surface OCCT must reparametrize); the message names file and face.
 CadImport import_cad(const std::string& path, const std::string& prefix,
                      const CadOptions& options = {});
 
