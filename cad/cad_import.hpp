@@ -75,7 +75,7 @@ struct CadFace {
 struct CadImport {
   std::vector<std::pair<std::string, GeometryEntity>> entities;
   std::vector<CadFace> faces;  ///< the chosen faces, same order as entities
-  double seconds = 0.0;  ///< wall time of reading and converting
+  double seconds = 0.0;        ///< wall time of reading and converting
 };
 
 /// The file's format from its extension: "step" (.step, .stp) or "iges" (.iges, .igs), any
