@@ -98,23 +98,25 @@ int RigidSurface::add(const NurbsSurface& s) {
   return push(std::move(p));
 }
 
-Box3 RigidSurface::sampled_box(const Surface& s) const {
+Box3 RigidSurface::sampled_box(const Surface& s, const Domain2& d, int n) {
   // Box: sampled over a bounded domain; unbounded pieces get an infinite box.
   Box3 box;
-  const Domain2 d = s.domain();
   if (std::isfinite(d.u.lo) && std::isfinite(d.u.hi) && std::isfinite(d.v.lo) &&
       std::isfinite(d.v.hi)) {
-    // Sampling bounds the surface only approximately: pad by the largest sample spacing.
-    double pad = 0.0;
-    const int n = 24;
+    // The bilinear interpolant of the samples lies in their box; the surface is within
+    // (h_u^2 |S_uu| + h_v^2 |S_vv|) / 8 of it on each cell (the interpolation error bound),
+    // the second derivatives' maximum taken over the samples and doubled for safety.
+    const double hu = (d.u.hi - d.u.lo) / n, hv = (d.v.hi - d.v.lo) / n;
+    double suu = 0.0, svv = 0.0;
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        const SurfaceDerivs dd =
-            s.derivs(d.u.lo + (d.u.hi - d.u.lo) * i / n, d.v.lo + (d.v.hi - d.v.lo) * j / n, 1);
+        const SurfaceDerivs dd = s.derivs(d.u.lo + hu * i, d.v.lo + hv * j, 2);
         box.extend(dd.S);
-        pad = std::max(pad,
-                       dd.Su.norm() * (d.u.hi - d.u.lo) / n + dd.Sv.norm() * (d.v.hi - d.v.lo) / n);
+        suu = std::max(suu, dd.Suu.norm());
+        svv = std::max(svv, dd.Svv.norm());
       }
+    const double pad =
+        2.0 * (hu * hu * suu + hv * hv * svv) / 8.0 + 1e-12 * (1.0 + (box.hi - box.lo).norm());
     box.lo.array() -= pad;
     box.hi.array() += pad;
   } else {
@@ -128,7 +130,7 @@ int RigidSurface::add(const AnalyticSurface& s) {
   Piece p;
   // Copy the concrete type (the pieces outlive the caller's objects).
   p.surface = std::shared_ptr<const Surface>(s.clone());
-  p.box = sampled_box(s);
+  p.box = sampled_box(s, s.domain(), 24);
   return push(std::move(p));
 }
 
@@ -138,8 +140,29 @@ int RigidSurface::add(const TrimmedSurface& s) {
   p.surface = p.trim;
   if (const auto* n = dynamic_cast<const NurbsSurface*>(&s.base()))
     p.base_nurbs = std::make_shared<PatchProjector>(*n);
-  // The face's box: the base over the loops' rectangle (a superset of the face).
-  p.box = sampled_box(s);
+  // The face's boxes: the cells of the base that meet the face (a NURBS base's Bezier
+  // elements, bounded by their control nets; an analytic base's cells of an 8 x 8 grid over the
+  // loops' rectangle, sampled); the face's box is their union.
+  const Domain2 d = s.domain();
+  if (p.base_nurbs) {
+    for (std::size_t e = 0; e < p.base_nurbs->elements().size(); ++e)
+      if (s.meets(p.base_nurbs->elements()[e].range))
+        p.boxes.push_back(p.base_nurbs->element_boxes()[e]);
+  } else {
+    const int n = 8;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const Domain2 cell{
+            {d.u.lo + (d.u.hi - d.u.lo) * i / n, d.u.lo + (d.u.hi - d.u.lo) * (i + 1) / n},
+            {d.v.lo + (d.v.hi - d.v.lo) * j / n, d.v.lo + (d.v.hi - d.v.lo) * (j + 1) / n}};
+        if (s.meets(cell)) p.boxes.push_back(sampled_box(s.base(), cell, 4));
+      }
+  }
+  if (p.boxes.empty()) p.boxes.push_back(sampled_box(s, d, 24));  // (loops thinner than a cell)
+  for (const Box3& b : p.boxes) {
+    p.box.extend(b.lo);
+    p.box.extend(b.hi);
+  }
   for (const TrimmedSurface::Loop& L : s.loops())
     for (const Vector2d& uv : L) p.rim.emplace_back(s.point(uv[0], uv[1]), uv);
   return push(std::move(p));
@@ -338,12 +361,17 @@ ProjectionResult RigidSurface::closest_point(const Vector3d& x, const Projection
 void RigidSurface::reset_index() {
   // A new index object: copies made before keep theirs (of their pieces).
   index_ = std::make_shared<ElementIndex>();
-  for (int i = 0; i < num_patches(); ++i)
+  for (int i = 0; i < num_patches(); ++i) {
     if (const PatchProjector* P = nurbs(i))
       for (std::size_t e = 0; e < P->element_boxes().size(); ++e) {
         index_->boxes.push_back(P->element_boxes()[e]);
         index_->tags.emplace_back(i, static_cast<int>(e));
       }
+    for (const Box3& b : pieces_[static_cast<std::size_t>(i)].boxes) {
+      index_->boxes.push_back(b);
+      index_->tags.emplace_back(i, -1);
+    }
+  }
 }
 
 const RigidBoxIndex& RigidSurface::element_index(double distance) const {
@@ -395,10 +423,13 @@ std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vec
       while (k < pairs.size() && pairs[k].query == static_cast<int>(q) &&
              tag[static_cast<std::size_t>(pairs[k].box)].first == piece)
         ids.push_back(tag[static_cast<std::size_t>(pairs[k++].box)].second);
-      consider(nurbs(piece)->project_among(x, ids, best_d, opt), piece);
+      consider(nurbs(piece) ? nurbs(piece)->project_among(x, ids, best_d, opt)
+                            : project_piece(piece, x, best_d, opt),  // a trimmed face
+               piece);
     }
     for (int i = 0; i < num_patches(); ++i)
-      if (!nurbs(i) && box_distance(pieces_[static_cast<std::size_t>(i)].box, x) <= best_d)
+      if (!nurbs(i) && !trimmed(i) &&
+          box_distance(pieces_[static_cast<std::size_t>(i)].box, x) <= best_d)
         consider(project_piece(i, x, best_d, opt), i);
     union_status(best);
     out[q] = best;

@@ -64,20 +64,24 @@ class RigidSurface {
   ProjectionResult closest_point(const Vector3d& x, const ProjectionResult& previous,
                                  const ProjectionOptions& opt = {}) const;
   /// Closest points of many query points within `search_distance` (status far beyond it):
-  /// a broad phase over all Bezier elements of all patches (element_index: the uniform grid of
-  /// contact_search.hpp, built once per distance; or CGAL's box_intersection_d with use_cgal,
-  /// which rebuilds its tree on every call), then the projection among each point's candidate
-  /// elements only. Analytic pieces are always candidates.
+  /// a broad phase over all Bezier elements of all NURBS pieces and the boxes of the trimmed
+  /// faces (element_index: the uniform grid of contact_search.hpp, built once per distance; or
+  /// CGAL's box_intersection_d with use_cgal, which rebuilds its tree on every call), then the
+  /// projection among each point's candidate elements (a trimmed face: the face) only.
+  /// Untrimmed analytic pieces are always candidates, pruned by their box.
   std::vector<ProjectionResult> closest_points(const std::vector<Vector3d>& points,
                                                double search_distance, bool use_cgal = false,
                                                const ProjectionOptions& opt = {}) const;
   /// The Bezier elements of all NURBS pieces indexed for the broad phase with boxes enlarged
   /// by `distance`: built at the first call for that distance and kept (a rigid tool never
   /// deforms; a moving one is queried in its own frame), shared by copies, safe to call from
-  /// several threads. Box b of the index is element tag(b).second of piece tag(b).first.
+  /// several threads. Box b of the index is element tag(b).second of piece tag(b).first, or a
+  /// box of trimmed piece tag(b).first when tag(b).second is -1 (the cells of its base that
+  /// meet the face: issue 15, item 3).
   const RigidBoxIndex& element_index(double distance) const;
   const std::pair<int, int>& element_tag(int box) const;
-  /// The element boxes of the NURBS pieces, in the index's order.
+  /// The element boxes of the NURBS pieces and the boxes of the trimmed ones, in the index's
+  /// order.
   const std::vector<Box3>& element_boxes() const;
 
   /// Ray x + xi3 N: the hit with the smallest |xi3| over all pieces (miss / tangent if none).
@@ -99,10 +103,13 @@ class RigidSurface {
     std::shared_ptr<const TrimmedSurface> trim;
     std::shared_ptr<const PatchProjector> base_nurbs;
     std::vector<std::pair<Vector3d, Vector2d>> rim;
+    // Trimmed pieces' boxes for the broad phase: the base's cells (Bezier elements of a NURBS
+    // base, an 8 x 8 grid over the loops' rectangle of an analytic one) that meet the face.
+    std::vector<Box3> boxes;
   };
   ProjectionResult project_trimmed(const Piece& p, const Vector3d& x,
                                    const ProjectionOptions& opt) const;
-  Box3 sampled_box(const Surface& s) const;
+  static Box3 sampled_box(const Surface& s, const Domain2& d, int n);
   int push(Piece p);  ///< adds the piece, updates box, shared sides and index; its index
   ProjectionResult project_piece(int i, const Vector3d& x, double max_distance,
                                  const ProjectionOptions& opt) const;

@@ -31,6 +31,27 @@ double segment_distance(const Vector2d& p, const Vector2d& a, const Vector2d& b)
   return (p - (a + t * ab)).norm();
 }
 
+// Whether segment ab meets the closed rectangle r (Liang-Barsky clipping).
+bool segment_meets(const Vector2d& a, const Vector2d& b, const Domain2& r) {
+  double t0 = 0.0, t1 = 1.0;
+  const Vector2d d = b - a;
+  const double p[4] = {-d[0], d[0], -d[1], d[1]};
+  const double q[4] = {a[0] - r.u.lo, r.u.hi - a[0], a[1] - r.v.lo, r.v.hi - a[1]};
+  for (int k = 0; k < 4; ++k) {
+    if (p[k] == 0.0) {
+      if (q[k] < 0.0) return false;  // parallel to this side and outside it
+    } else {
+      const double t = q[k] / p[k];
+      if (p[k] < 0.0)
+        t0 = std::max(t0, t);
+      else
+        t1 = std::min(t1, t);
+      if (t0 > t1) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace
 
 TrimmedSurface::TrimmedSurface(const Surface& base, std::vector<Loop> loops,
@@ -113,6 +134,16 @@ double TrimmedSurface::distance_to_loops(const Vector2d& uv) const {
     for (std::size_t i = 0; i < L.size(); ++i)
       best = std::min(best, segment_distance(uv, L[i], L[(i + 1) % L.size()]));
   return best;
+}
+
+bool TrimmedSurface::meets(const Domain2& r) const {
+  if (r.u.hi < box_.u.lo || r.u.lo > box_.u.hi || r.v.hi < box_.v.lo || r.v.lo > box_.v.hi)
+    return false;
+  for (const Loop& L : loops_)
+    for (std::size_t i = 0; i < L.size(); ++i)
+      if (segment_meets(L[i], L[(i + 1) % L.size()], r)) return true;
+  // No loop crosses r: it is wholly inside or wholly outside.
+  return inside({0.5 * (r.u.lo + r.u.hi), 0.5 * (r.v.lo + r.v.hi)});
 }
 
 SurfaceDerivs TrimmedSurface::derivs(double u, double v, int order) const {

@@ -37,6 +37,9 @@ class TrimmedSurface final : public Surface {
   bool inside(const Vector2d& uv) const;
   /// Distance in (u, v) from uv to the nearest loop segment.
   double distance_to_loops(const Vector2d& uv) const;
+  /// Whether the closed rectangle `r` of (u, v) holds a point of the face (inside the loops or
+  /// on them): a loop segment crosses r, or r lies wholly inside (its centre is inside).
+  bool meets(const Domain2& r) const;
 
   // Surface interface: the base's geometry and normal sign (set_normal_sign sets both).
   SurfaceDerivs derivs(double u, double v, int order = 2) const override;

@@ -486,10 +486,11 @@ void SurfaceContact::cold_project() {
       const int piece = rigid_->element_tag(pairs[k].box).first;
       if (piece == last_piece) continue;  // pairs are sorted: one ray projection per piece
       last_piece = piece;
-      consider(ray_project(*rigid_->nurbs(piece), cp.x, cp.normal), piece);
+      consider(rigid_->ray_piece(piece, cp.x, cp.normal), piece);  // NURBS or trimmed piece
     }
     for (int i = 0; i < rigid_->num_patches(); ++i)
-      if (!rigid_->nurbs(i)) consider(rigid_->ray_piece(i, cp.x, cp.normal), i);
+      if (!rigid_->nurbs(i) && !rigid_->trimmed(i))
+        consider(rigid_->ray_piece(i, cp.x, cp.normal), i);
     if (!found(best.status) && tangent) best.status = ProjectionStatus::tangent;
     cp.foot = best;
   }

@@ -9,6 +9,8 @@
 #include "contact/rigid_surface.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/json_reader.hpp"
+#include "geometry/refinement.hpp"
+#include "geometry/trimmed_surface.hpp"
 
 using namespace iga;
 
@@ -147,4 +149,78 @@ TEST_CASE("RigidSurface::closest_points: broad phase + narrow phase equals the f
   CHECK(&more.element_index(d) != &index);
   CHECK(rs.element_tag(static_cast<int>(rs.element_boxes().size()) - 1).first ==
         rs.num_patches() - 1);
+}
+
+namespace {
+// A square [-2, 2]^2 with a round hole of radius 1 (a 256-gon of the loop; the edge curves are
+// the exact square and circle), on the base `base` whose (u, v) are x and y.
+TrimmedSurface plate_with_hole(const Surface& base) {
+  TrimmedSurface::Loop outer{{-2, -2}, {2, -2}, {2, 2}, {-2, 2}};
+  TrimmedSurface::Loop hole;
+  for (int k = 0; k < 256; ++k)
+    hole.emplace_back(std::cos(2 * kPi * k / 256), std::sin(2 * kPi * k / 256));
+  std::vector<NurbsCurve> edges{make_line({-2, -2, 0}, {2, -2, 0}),
+                                make_line({2, -2, 0}, {2, 2, 0}), make_line({2, 2, 0}, {-2, 2, 0}),
+                                make_line({-2, 2, 0}, {-2, -2, 0}),
+                                make_circle(Vector3d::Zero(), Vector3d::UnitZ(), 1.0)};
+  return TrimmedSurface(base, {outer, hole}, std::move(edges), 1e-4);
+}
+}  // namespace
+
+TEST_CASE("RigidSurface::closest_points: trimmed faces are in the broad phase by their own boxes",
+          "[contact][trimmed]") {
+  // The same face on an analytic plane and on a NURBS plane of 8 x 8 elements.
+  const Plane plane;
+  const NurbsSurface patch =
+      subdivide(make_plane_patch({-2, -2, 0}, {4, 0, 0}, {0, 4, 0}), 8, 8);  // u = (x + 2) / 4
+  // The NURBS patch's parameters are not x and y: its face's loops are mapped.
+  const TrimmedSurface on_plane = plate_with_hole(plane);
+  std::vector<TrimmedSurface::Loop> loops = on_plane.loops();
+  for (auto& L : loops)
+    for (Vector2d& uv : L) uv = (uv.array() + 2.0) / 4.0;
+  const TrimmedSurface on_patch(patch, loops, on_plane.edges(), 1e-4);
+  for (const TrimmedSurface* t : {&on_plane, &on_patch}) {
+    RigidSurface rs;
+    rs.add(*t);
+    rs.add(make_cylinder(Vector3d(0, 0, -3), Vector3d::UnitX(), Vector3d::UnitY(), 0.5, 1.0));
+    // Cells wholly in the hole are not boxes of the face: over the hole's centre there is
+    // no candidate of it nearer than the hole's edge.
+    int face_boxes = 0;
+    for (std::size_t b = 0; b < rs.element_boxes().size(); ++b)
+      if (rs.element_tag(static_cast<int>(b)).first == 0) {
+        CHECK(rs.element_tag(static_cast<int>(b)).second == -1);
+        ++face_boxes;
+      }
+    CHECK(face_boxes > 0);
+    CHECK(face_boxes < 64);
+    const std::vector<Vector3d> centre{Vector3d(0, 0, 0.05)};
+    for (const SearchPair& p : rs.element_index(0.3).query(centre))
+      CHECK(rs.element_tag(p.box).first != 0);
+    // Batch answers equal the full search's, with either broad phase.
+    std::mt19937 g(11);
+    std::uniform_real_distribution<double> U(-2.5, 2.5), Z(-0.6, 0.6);
+    std::vector<Vector3d> pts;
+    for (int k = 0; k < 600; ++k) pts.emplace_back(U(g), U(g), Z(g));
+    const double d = 0.5;
+    for (const bool cgal : {false, true}) {
+      const std::vector<ProjectionResult> batch = rs.closest_points(pts, d, cgal);
+      int near = 0, on_edge = 0;
+      for (std::size_t k = 0; k < pts.size(); ++k) {
+        const ProjectionResult full = rs.closest_point(pts[k]);
+        const double dist = (full.point - pts[k]).norm();
+        INFO("x = " << pts[k].transpose() << (cgal ? " (CGAL)" : " (grid)"));
+        if (dist <= d * (1 - 1e-9)) {
+          ++near;
+          on_edge += full.status == ProjectionStatus::edge;
+          REQUIRE(found(batch[k].status));
+          CHECK((batch[k].point - full.point).norm() <= 1e-9);
+          CHECK(batch[k].patch == full.patch);
+        } else if (dist > d * (1 + 1e-9)) {
+          CHECK(batch[k].status == ProjectionStatus::far);
+        }
+      }
+      CHECK(near > 200);
+      CHECK(on_edge > 20);  // feet on the hole's and the outer edges are among them
+    }
+  }
 }
