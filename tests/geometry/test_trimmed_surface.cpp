@@ -59,8 +59,7 @@ TEST_CASE("TrimmedSurface: a rectangle meets the face exactly when some point of
     bool sampled = false;
     const int n = 40;
     for (int j = 0; j <= n && !sampled; ++j)
-      for (int i = 0; i <= n && !sampled; ++i)
-        sampled = t.inside({u0 + w * i / n, v0 + h * j / n});
+      for (int i = 0; i <= n && !sampled; ++i) sampled = t.inside({u0 + w * i / n, v0 + h * j / n});
     INFO("rectangle [" << u0 << ", " << u0 + w << "] x [" << v0 << ", " << v0 + h << "]");
     if (sampled) CHECK(t.meets(r));
     if (t.meets(r) && !sampled) {

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include <BRepAdaptor_Curve.hxx>
+#include <BRepAlgoAPI_Splitter.hxx>
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -27,8 +28,10 @@
 #include <TColStd_Array2OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TopExp_Explorer.hxx>
+#include <TopTools_ListOfShape.hxx>
 #include <TopoDS.hxx>
 #include <gp_Circ.hxx>
+#include <gp_Pln.hxx>
 
 namespace iga::test {
 
@@ -144,6 +147,26 @@ TopoDS_Shape filleted_die(double a, double height, double r) {
   fillet.Build();
   if (!fillet.IsDone()) throw std::runtime_error("filleted_die: OpenCASCADE could not fillet");
   return fillet.Shape();
+}
+
+TopoDS_Shape split_xy(const TopoDS_Shape& shape, double x_s, double y_s) {
+  // The faces (the shell) are split, not the solid: a split solid would have the cut planes
+  // inside it as faces of its parts.
+  TopTools_ListOfShape arguments, tools;
+  for (TopExp_Explorer e(shape, TopAbs_SHELL); e.More(); e.Next()) arguments.Append(e.Current());
+  const double big = 100.0;
+  tools.Append(
+      BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(x_s, 0, 0), gp_Dir(1, 0, 0)), -big, big, -big, big)
+          .Face());
+  tools.Append(
+      BRepBuilderAPI_MakeFace(gp_Pln(gp_Pnt(0, y_s, 0), gp_Dir(0, 1, 0)), -big, big, -big, big)
+          .Face());
+  BRepAlgoAPI_Splitter splitter;
+  splitter.SetArguments(arguments);
+  splitter.SetTools(tools);
+  splitter.Build();
+  if (!splitter.IsDone()) throw std::runtime_error("split_xy: OpenCASCADE could not split");
+  return splitter.Shape();
 }
 
 }  // namespace iga::test

@@ -36,5 +36,8 @@ TopoDS_Shape sheave(double R_out, double w, double R_root, double alpha, double 
 /// (radius r, OCCT's BRepFilletAPI_MakeFillet): a flat top, four cylindrical fillets mitred at
 /// the corners, the sides.
 TopoDS_Shape filleted_die(double a, double height, double r);
+/// The shape's shells split by the planes x = x_s and y = y_s (OCCT's BRepAlgoAPI_Splitter):
+/// the same surface in more faces, with seams where the planes cut it.
+TopoDS_Shape split_xy(const TopoDS_Shape& shape, double x_s, double y_s);
 
 }  // namespace iga::test

@@ -8,6 +8,8 @@
 // sheave_v30.step        a sheave with a V-groove of half-angle 30 degrees (root radius 1)
 // die_fillet.step        a die 4 x 4 x 1, top at z = 0, its top edges filleted (r = 0.5)
 //                        (data/plate_on_die.json)
+// die_fillet_split.step  the same die split by the planes x = 0.37 and y = -0.61: the same
+//                        geometry in more faces (seams across the top and the fillets)
 // Lengths in mm (STEP's unit here); a model reads them with "unit" as it needs.
 #include <filesystem>
 #include <iostream>
@@ -42,6 +44,8 @@ int main(int argc, char** argv) {
                           (dir / "sheave_v30.step").string());
     iga::test::write_step(iga::test::filleted_die(4.0, 1.0, 0.5),
                           (dir / "die_fillet.step").string());
+    iga::test::write_step(iga::test::split_xy(iga::test::filleted_die(4.0, 1.0, 0.5), 0.37, -0.61),
+                          (dir / "die_fillet_split.step").string());
     for (const auto& f : std::filesystem::directory_iterator(dir)) {
       std::cout << f.path().filename().string() << ":\n";
       for (const iga::CadFace& face : iga::list_cad_faces(f.path().string()))
