@@ -263,6 +263,36 @@ TEST_CASE("SurfaceContact: a 2 x 2 split hyperboloid gives the residual of the s
   }
 }
 
+TEST_CASE("SurfaceContact: beyond an open edge of the rigid surface there is no contact",
+          "[iga][contact][surface_contact]") {
+  // A rigid unit square (a bounded patch, open edges) and a plate twice as wide, delta below
+  // the square's plane: over the square the points penetrate by delta; beside it their feet
+  // are on the square's edge x = 0, off its normal (outside its normal prism, [KS15] Sect.
+  // 2.2): not in contact, whatever the distance to the edge (before the rule, as -|x - edge|).
+  RigidSurface square;
+  square.add(make_plane_patch(Vector3d::Zero(), Vector3d::UnitX(), Vector3d::UnitY()));
+  const double delta = 0.01, eps_n = 1e4;
+  const NurbsSurface ref =
+      plate(-1.0, 1.0, 0.0, 1.0, 4, false, [&](double, double) { return -delta; });
+  SurfaceContact sc(ref, square,
+                    {eps_n, 0.0, 0.0, Strategy::kRigidMaster, ShellFace::kMid, 0.1, 4, 1.0});
+  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * ref.num_u() * ref.num_v());
+  sc.assemble(ref.control_points(), R, nullptr);
+  int beside = 0;
+  for (const SurfaceContactPoint& cp : sc.points()) {
+    if (cp.x.x() > 0.0) {
+      CHECK(cp.active);
+      CHECK(cp.gap == Approx(-delta).epsilon(1e-12));
+    } else {
+      ++beside;
+      CHECK(found(cp.foot.status));  // the edge is within the search distance
+      CHECK_FALSE(cp.active);
+    }
+  }
+  CHECK(beside == 4 * 4 * 16 / 2);
+  CHECK(resultant(R).z() == Approx(-delta * eps_n * 1.0).epsilon(1e-12));  // the square's area
+}
+
 TEST_CASE("SurfaceContact: a flat plate pressed uniformly into a plane carries eps_N delta area",
           "[iga][contact][surface_contact]") {
   RigidSurface plane;
