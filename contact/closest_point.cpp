@@ -235,6 +235,7 @@ void set_regions(std::vector<N>& tree, const NurbsSurface& s, const std::vector<
         n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
                       std::max(n.region.v.hi, m.net.range.v.hi)};
       }
+    n.region_chord = detail::chord_data(n.region_bounds);
   }
 }
 
@@ -863,7 +864,7 @@ const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
   if (tree_.empty()) return nullptr;
   const Node* n = &tree_[static_cast<std::size_t>(element_of(uv))];
   while (true) {
-    if (inside(n->region, uv) && detail::chord_test(n->region_bounds, r_star)) return n;
+    if (inside(n->region, uv) && detail::chord_test(n->region_chord, r_star)) return n;
     if (n->child < 0) return nullptr;
     const Domain2& g = n->net.range;
     n = &tree_[static_cast<std::size_t>(n->child + (uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +

@@ -285,9 +285,6 @@ namespace {
 Iv meet(Iv a, Iv b) {
   return {std::max(a.lo, b.lo), std::min(a.hi, b.hi)};
 }
-IVec3 point(const Vector3d& v) {
-  return {{{v[0], v[0]}, {v[1], v[1]}, {v[2], v[2]}}};
-}
 }  // namespace
 
 double refine_about_centre(DistanceBounds& d, const SurfaceDerivs& dc, const Vector3d& x, double a,
@@ -348,12 +345,39 @@ bool convex_weyl(const PatchBounds& b, const Vector3d& x) {
 }
 
 bool chord_test(const PatchBounds& b, const Vector3d& r_star) {
-  const IVec3 r = point(b.frame * r_star);
+  return chord_test(chord_data(b), r_star);
+}
+
+ChordData chord_data(const PatchBounds& b) {
+  ChordData c;
+  c.frame = b.frame;
+  c.Suu = b.Suu;
+  c.Suv = b.Suv;
+  c.Svv = b.Svv;
+  c.G11 = norm2(b.Su);
+  c.G22 = norm2(b.Sv);
+  c.G12 = dot(b.Su, b.Sv);
+  c.sigma = jacobian_floor(b);
+  return c;
+}
+
+namespace {
+// a . r for a point r: the same as dot(a, point(r)), with one product per bound.
+Iv dot_point(const IVec3& a, const Vector3d& r) {
+  return r[0] * a.c[0] + r[1] * a.c[1] + r[2] * a.c[2];
+}
+}  // namespace
+
+bool chord_test(const ChordData& c, const Vector3d& r_star) {
+  const Vector3d r = c.frame * r_star;
+  const Iv puu = dot_point(c.Suu, r), puv = dot_point(c.Suv, r), pvv = dot_point(c.Svv, r);
   DistanceBounds m;
-  m.H11 = norm2(b.Su) - dot(b.Suu, r);
-  m.H22 = norm2(b.Sv) - dot(b.Svv, r);
-  m.H12 = dot(b.Su, b.Sv) - dot(b.Suv, r);
-  return convex_gram(m) || weyl_test(b, r);
+  m.H11 = c.G11 - puu;
+  m.H22 = c.G22 - pvv;
+  m.H12 = c.G12 - puv;
+  if (convex_gram(m)) return true;
+  const double lam = lambda_max_upper(puu, puv, pvv);  // weyl_test
+  return c.sigma * c.sigma > lam * (1.0 + 1e-9) + 1e-300;
 }
 
 DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {

@@ -129,6 +129,17 @@ double refine_about_centre(DistanceBounds& d, const SurfaceDerivs& dc, const Vec
 /// G - Phi positive definite proves it. Unlike the Hessian (17), r* is fixed: near the surface
 /// Phi is small and the test holds on whole elements.
 bool chord_test(const PatchBounds& b, const Vector3d& r_star);
+/// What the chord test needs of a patch's bounds, with the parts that do not depend on r*
+/// computed once (G = [S_i.S_j] and the Jacobian floor sigma): the same answers as
+/// chord_test(b, r*), bit for bit, at a fraction of the cost (a warm start's certificate).
+struct ChordData {
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  IVec3 Suu, Suv, Svv;
+  Iv G11, G22, G12;
+  double sigma = 0.0;  ///< Jacobian floor (convex_weyl)
+};
+ChordData chord_data(const PatchBounds& b);
+bool chord_test(const ChordData& c, const Vector3d& r_star);
 
 /// True when the Hessian (17) is positive definite at every point of the patch: F is strictly
 /// convex there, so any point satisfying the bound-constrained optimality conditions on the
