@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -549,7 +550,10 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   // the first assembly is at the start state, so its feet are where the points rest.
   if (!anchored_start_ && master)
     for (SurfaceContactPoint& cp : points_)
-      if (found(cp.foot.status) && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
+      if (found(cp.foot.status) && cp.history.patch < 0) {
+        cp.history = anchor_at(cp.foot);
+        cp.x_committed = cp.x;
+      }
   anchored_start_ = true;
 
   // 2. Point laws, residual and element tangents.
@@ -601,11 +605,43 @@ void SurfaceContact::commit() {
       h.T_vector = cp.active ? cp.T_vector : Vector3d::Zero();
     }
     cp.history = h;
+    cp.x_committed = cp.x;
   }
   augmentation_.commit(points_);
 }
 
+AugmentResult SurfaceContact::passed_through() const {
+  // A point that was apart at the last commit (a foot, no contact) and is apart now, whose
+  // straight path since then enters the rigid body, went through it in one step (a free body
+  // that falls, a step too large for the penalty to catch it): the state would be one without
+  // contact, silently wrong. The step fails and is cut. A path shorter than the point's
+  // committed distance to the body cannot reach it: only the others cast a ray.
+  int n = 0;
+  double longest = 0.0;
+  for (const SurfaceContactPoint& cp : points_) {
+    const ContactHistory& h = cp.history;
+    if (cp.active || h.active || h.patch < 0) continue;
+    const Vector3d d = cp.x - cp.x_committed;
+    const double len = d.norm();
+    if (!(len > (cp.x_committed - h.foot).norm())) continue;
+    const ProjectionResult hit = rigid_->ray(cp.x_committed, d / len);
+    if (!found(hit.status) || !(hit.distance > 0.0 && hit.distance < len)) continue;
+    if (hit.normal.dot(d) >= 0.0) continue;  // leaving the body, not entering it
+    ++n;
+    longest = std::max(longest, len);
+  }
+  if (n == 0) return {};
+  char buf[256];
+  std::snprintf(buf, sizeof buf,
+                "%d contact point(s) went through the rigid surface in one step (moved up to "
+                "%.3g, across the surface)",
+                n, longest);
+  return {AugmentStatus::failed, buf};
+}
+
 AugmentResult SurfaceContact::augment() {
+  if (AugmentResult through = passed_through(); through.status == AugmentStatus::failed)
+    return through;
   const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
   return augmentation_.update(
       points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },

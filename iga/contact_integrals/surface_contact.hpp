@@ -148,7 +148,8 @@ struct SurfaceContactPoint : ContactMultipliers {
   bool slip = false;                     ///< return mapping on the slip surface (36)
   bool first_contact = false;            ///< active, but not in contact at the last converged step
   ContactHistory history;                ///< committed state of the last converged step
-  double slip_distance = 0.0;            ///< |g_T| (master) or the chord of the feet |d| (slave)
+  Vector3d x_committed = Vector3d::Zero();  ///< x at the last commit (passed_through)
+  double slip_distance = 0.0;               ///< |g_T| (master) or the chord of the feet |d| (slave)
 };
 
 /// Active points split into sticking and sliding ones (SurfaceContact::sticks).
@@ -173,6 +174,10 @@ class SurfaceContact {
   /// History and multipliers, as CurveContact: commit() after a converged step, augment() the
   /// Uzawa update, predict(t) the step's first multipliers, restore() after a cut-back.
   void commit();
+  /// Failed when a point apart from the body at the last commit and now, whose straight path
+  /// since then enters the body (a ray from where it was), went through it in one step
+  /// (augment() reports it, so the solver cuts the step).
+  AugmentResult passed_through() const;
   AugmentResult augment();
   void predict(double t);
   void restore();
