@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "geometry/differential_geometry.hpp"
+#include "iga/contact_integrals/pass_through.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -82,7 +83,10 @@ bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_para
   cp.law = ContactPoint();
   cp.N = cp.T = cp.B = 0.0;
   if (!found(cp.foot.status)) return false;
-  if (anchor_start && cp.history.patch < 0) cp.history = anchor_at(cp.foot);
+  if (anchor_start && cp.history.patch < 0) {
+    cp.history = anchor_at(cp.foot);
+    cp.x_committed = cp.x;
+  }
   // A foot on an open edge or corner of the rigid body with the point off the surface normal
   // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
   // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
@@ -218,11 +222,19 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
 void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
     cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
+    cp.x_committed = cp.x;
   }
   augmentation_.commit(points_);
 }
 
+AugmentResult CurveContact::passed_through() const {
+  return iga::passed_through(points_, *rigid_,
+                             [](const CurveContactPoint& cp) { return cp.law.active; });
+}
+
 AugmentResult CurveContact::augment() {
+  if (AugmentResult through = passed_through(); through.status == AugmentStatus::failed)
+    return through;
   const bool friction = params_.mu > 0.0 && params_.eps_t > 0.0;
   return augmentation_.update(
       points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },

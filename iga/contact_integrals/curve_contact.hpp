@@ -25,13 +25,14 @@ namespace iga {
 
 /// One contact point's state for output.
 struct CurveContactPoint : ContactMultipliers {
-  double eta = 0.0;                  ///< curve parameter
-  double weight = 0.0;               ///< quadrature weight times reference ds/deta
-  Vector3d x = Vector3d::Zero();     ///< current position r_s
-  ProjectionResult foot;             ///< its projection (warm start of the next evaluation)
-  ContactPoint law;                  ///< the point law's state
-  ContactHistory history;            ///< committed state of the last converged step
-  double N = 0.0, T = 0.0, B = 0.0;  ///< normal (68), pulling (69) and dragging (70) forces
+  double eta = 0.0;                         ///< curve parameter
+  double weight = 0.0;                      ///< quadrature weight times reference ds/deta
+  Vector3d x = Vector3d::Zero();            ///< current position r_s
+  ProjectionResult foot;                    ///< its projection (warm start of the next evaluation)
+  ContactPoint law;                         ///< the point law's state
+  ContactHistory history;                   ///< committed state of the last converged step
+  Vector3d x_committed = Vector3d::Zero();  ///< x at the last commit (passed_through)
+  double N = 0.0, T = 0.0, B = 0.0;         ///< normal (68), pulling (69) and dragging (70) forces
 };
 
 struct CurveContactCounts {
@@ -80,6 +81,9 @@ class CurveContact {
   /// the state of the last assembly (iga/contact_integrals/contact_augmentation.hpp); penalty:
   /// satisfied.
   AugmentResult augment();
+  /// Failed when a point apart from the body at the last commit and now went through it on
+  /// its way (pass_through.hpp); augment() reports it first, so the solver cuts the step.
+  AugmentResult passed_through() const;
   /// Augmented Lagrange: multipliers for the first solve of a step at time t, extrapolated
   /// from the last two commits (NormalAugmentation::predict); no effect after an update.
   void predict(double t);

@@ -17,6 +17,7 @@
 #include "contact/contact_search.hpp"
 #include "contact/ray_projection.hpp"
 #include "geometry/differential_geometry.hpp"
+#include "iga/contact_integrals/pass_through.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -611,32 +612,8 @@ void SurfaceContact::commit() {
 }
 
 AugmentResult SurfaceContact::passed_through() const {
-  // A point that was apart at the last commit (a foot, no contact) and is apart now, whose
-  // straight path since then enters the rigid body, went through it in one step (a free body
-  // that falls, a step too large for the penalty to catch it): the state would be one without
-  // contact, silently wrong. The step fails and is cut. A path shorter than the point's
-  // committed distance to the body cannot reach it: only the others cast a ray.
-  int n = 0;
-  double longest = 0.0;
-  for (const SurfaceContactPoint& cp : points_) {
-    const ContactHistory& h = cp.history;
-    if (cp.active || h.active || h.patch < 0) continue;
-    const Vector3d d = cp.x - cp.x_committed;
-    const double len = d.norm();
-    if (!(len > (cp.x_committed - h.foot).norm())) continue;
-    const ProjectionResult hit = rigid_->ray(cp.x_committed, d / len);
-    if (!found(hit.status) || !(hit.distance > 0.0 && hit.distance < len)) continue;
-    if (hit.normal.dot(d) >= 0.0) continue;  // leaving the body, not entering it
-    ++n;
-    longest = std::max(longest, len);
-  }
-  if (n == 0) return {};
-  char buf[256];
-  std::snprintf(buf, sizeof buf,
-                "%d contact point(s) went through the rigid surface in one step (moved up to "
-                "%.3g, across the surface)",
-                n, longest);
-  return {AugmentStatus::failed, buf};
+  return iga::passed_through(points_, *rigid_,
+                             [](const SurfaceContactPoint& cp) { return cp.active; });
 }
 
 AugmentResult SurfaceContact::augment() {

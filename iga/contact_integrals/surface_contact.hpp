@@ -174,9 +174,8 @@ class SurfaceContact {
   /// History and multipliers, as CurveContact: commit() after a converged step, augment() the
   /// Uzawa update, predict(t) the step's first multipliers, restore() after a cut-back.
   void commit();
-  /// Failed when a point apart from the body at the last commit and now, whose straight path
-  /// since then enters the body (a ray from where it was), went through it in one step
-  /// (augment() reports it, so the solver cuts the step).
+  /// Failed when a point apart from the body at the last commit and now went through it on
+  /// its way (pass_through.hpp); augment() reports it first, so the solver cuts the step.
   AugmentResult passed_through() const;
   AugmentResult augment();
   void predict(double t);

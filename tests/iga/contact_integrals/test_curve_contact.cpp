@@ -14,6 +14,7 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/contact_integrals/curve_contact.hpp"
+#include "tests/iga/contact_integrals/pass_through_case.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
 using namespace iga;
@@ -121,4 +122,24 @@ TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch, far p
   CurveContact cold(ref, four, cp, 4);
   CHECK(residual(cold, away).norm() == 0.0);
   for (const CurveContactPoint& p : cold.points()) CHECK(p.foot.status == ProjectionStatus::far);
+}
+
+TEST_CASE("CurveContact: a step that carries the rope through the rigid body is reported",
+          "[iga][contact][curve_contact]") {
+  // The slab 0.5 thick and a rope of radius 0.05 lying 0.1 above it, committed there (search
+  // distance 0.5). Moved to 0.2 below the slab it went through; moved up, or down into
+  // contact, it did not.
+  const RigidSurface slab = test::slab();
+  const NurbsCurve ref = subdivide(elevate_degree(make_line({-1, 0, 0.15}, {1, 0, 0.15}), 2), 4);
+  CurveContact cc(ref, slab, ContactParameters{1e3, 0.0, 0.0, 0.05}, 3);
+  cc.set_search_distance(0.5);
+  CHECK(test::moved_by(cc, ref, 0.0).status == AugmentStatus::satisfied);
+  cc.commit();
+  const AugmentResult through = test::moved_by(cc, ref, -0.85);  // centre line at z = -0.7
+  CHECK(through.status == AugmentStatus::failed);
+  CHECK(through.message.find("12 contact point(s) went through") != std::string::npos);
+  CHECK(cc.augment().status == AugmentStatus::failed);
+  CHECK(test::moved_by(cc, ref, 0.5).status == AugmentStatus::satisfied);    // lifted off
+  CHECK(test::moved_by(cc, ref, -0.11).status == AugmentStatus::satisfied);  // 0.01 deep
+  CHECK(cc.counts().active == 12);
 }

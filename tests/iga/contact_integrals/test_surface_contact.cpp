@@ -23,6 +23,7 @@
 #include "geometry/refinement.hpp"
 #include "iga/contact_integrals/surface_contact.hpp"
 #include "iga/contact_integrals/surface_contact_pair.hpp"
+#include "tests/iga/contact_integrals/pass_through_case.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
 using namespace iga;
@@ -295,35 +296,25 @@ TEST_CASE("SurfaceContact: beyond an open edge of the rigid surface there is no 
 
 TEST_CASE("SurfaceContact: a step that carries points through the rigid body is reported",
           "[iga][contact][surface_contact]") {
-  // A rigid slab 0.5 thick (top z = 0, bottom z = -0.5: two bounded squares, normals out) and
-  // a plate 0.01 above it, committed there. Moved to 0.2 below the slab (farther than the
-  // search distance 0.3 from where it was, and apart from the slab again), it went through:
-  // passed_through() fails, augment() with it. Moved up, or down into contact, it did not.
-  RigidSurface slab;
-  slab.add(make_plane_patch(Vector3d(-2, -2, 0), Vector3d(4, 0, 0), Vector3d(0, 4, 0)));
-  slab.add(make_plane_patch(Vector3d(-2, -2, -0.5), Vector3d(0, 4, 0), Vector3d(4, 0, 0)));
+  // The slab 0.5 thick and a plate 0.01 above it, committed there. Moved to 0.2 below the slab
+  // (farther than the search distance 0.3 from where it was, and apart from the slab again),
+  // it went through: passed_through() fails, augment() with it. Moved up, or down into
+  // contact, it did not.
+  const RigidSurface slab = test::slab();
   const NurbsSurface ref =
       plate(-1.0, 1.0, -1.0, 1.0, 2, false, [](double, double) { return 0.01; });
   SurfaceContact sc(ref, slab,
                     {1e4, 0.0, 0.0, Strategy::kRigidMaster, ShellFace::kMid, 0.1, 3, 0.3});
-  Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * ref.num_u() * ref.num_v());
-  sc.assemble(ref.control_points(), R, nullptr);
+  CHECK(test::moved_by(sc, ref, 0.0).status == AugmentStatus::satisfied);
   sc.commit();
-  auto moved = [&](double dz) {
-    std::vector<Vector3d> x = ref.control_points();
-    for (Vector3d& q : x) q.z() += dz;
-    R.setZero();
-    sc.assemble(x, R, nullptr);
-    return sc.passed_through();
-  };
-  const AugmentResult through = moved(-0.71);  // to z = -0.7
+  const AugmentResult through = test::moved_by(sc, ref, -0.71);  // to z = -0.7
   CHECK(through.status == AugmentStatus::failed);
   CHECK(through.message.find("36 contact point(s) went through") != std::string::npos);
   CHECK(sc.augment().status == AugmentStatus::failed);
-  CHECK(moved(0.5).status == AugmentStatus::satisfied);    // lifted off
-  CHECK(moved(-0.02).status == AugmentStatus::satisfied);  // in contact, 0.01 deep
+  CHECK(test::moved_by(sc, ref, 0.5).status == AugmentStatus::satisfied);    // lifted off
+  CHECK(test::moved_by(sc, ref, -0.02).status == AugmentStatus::satisfied);  // 0.01 deep
   CHECK(sc.counts().active == 36);
-  CHECK(moved(-0.2).status == AugmentStatus::satisfied);  // inside, in contact (-0.19)
+  CHECK(test::moved_by(sc, ref, -0.2).status == AugmentStatus::satisfied);  // in contact, -0.19
 }
 
 TEST_CASE("SurfaceContact: a flat plate pressed uniformly into a plane carries eps_N delta area",
