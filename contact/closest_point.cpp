@@ -223,19 +223,19 @@ void set_regions(std::vector<N>& tree, const NurbsSurface& s, const std::vector<
     const int j1 = J + 1 < wv && c1_border(s.knots_v(), breaks_v, J + 1, l) ? J + 1 : J;
     N& n = tree[k];
     n.region = n.net.range;
-    n.region_bounds = n.bounds;
+    detail::PatchBounds region_bounds = n.bounds;
     for (int j = j0; j <= j1; ++j)
       for (int i = i0; i <= i1; ++i) {
         if (i == I && j == J) continue;
         const N& m = tree[static_cast<std::size_t>(
             grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])];
-        detail::unite(n.region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
+        detail::unite(region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
         n.region.u = {std::min(n.region.u.lo, m.net.range.u.lo),
                       std::max(n.region.u.hi, m.net.range.u.hi)};
         n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
                       std::max(n.region.v.hi, m.net.range.v.hi)};
       }
-    n.region_chord = detail::chord_data(n.region_bounds);
+    n.region_chord = detail::chord_data(region_bounds);
   }
 }
 

@@ -94,8 +94,7 @@ class PatchProjector {
     SurfaceDerivs centre;        // S, S_u, S_v at the centre of net.range
     int child = -1;              // the tree's: first of the four children (-1: none)
     Domain2 region;
-    detail::PatchBounds region_bounds;
-    detail::ChordData region_chord;  // of region_bounds (the certificate's chord test)
+    detail::ChordData region_chord;  // the region's bounds, as the chord test needs them
     double gap =
         0.0;  // lower bound of the distance from the node's points to those outside its region
     // The pieces of the tree outside the region nearest to the node: the coarsest nodes apart

@@ -344,8 +344,33 @@ bool convex_weyl(const PatchBounds& b, const Vector3d& x) {
   return weyl_test(b, r);
 }
 
+namespace {
+// a . r for a point r: the same as dot(a, point(r)), with one product per bound.
+Iv dot_point(const IVec3& a, const Vector3d& r) {
+  return r[0] * a.c[0] + r[1] * a.c[1] + r[2] * a.c[2];
+}
+
+// The chord test from its parts; sigma() (the Jacobian floor) only where the Gram test fails.
+template <class Sigma>
+bool chord_test_of(const Eigen::Matrix3d& frame, const IVec3& Suu, const IVec3& Suv,
+                   const IVec3& Svv, Iv G11, Iv G22, Iv G12, Sigma&& sigma,
+                   const Vector3d& r_star) {
+  const Vector3d r = frame * r_star;
+  const Iv puu = dot_point(Suu, r), puv = dot_point(Suv, r), pvv = dot_point(Svv, r);
+  DistanceBounds m;
+  m.H11 = G11 - puu;
+  m.H22 = G22 - pvv;
+  m.H12 = G12 - puv;
+  if (convex_gram(m)) return true;
+  const double s = sigma();  // weyl_test
+  return s * s > lambda_max_upper(puu, puv, pvv) * (1.0 + 1e-9) + 1e-300;
+}
+}  // namespace
+
 bool chord_test(const PatchBounds& b, const Vector3d& r_star) {
-  return chord_test(chord_data(b), r_star);
+  return chord_test_of(
+      b.frame, b.Suu, b.Suv, b.Svv, norm2(b.Su), norm2(b.Sv), dot(b.Su, b.Sv),
+      [&] { return jacobian_floor(b); }, r_star);
 }
 
 ChordData chord_data(const PatchBounds& b) {
@@ -361,23 +386,9 @@ ChordData chord_data(const PatchBounds& b) {
   return c;
 }
 
-namespace {
-// a . r for a point r: the same as dot(a, point(r)), with one product per bound.
-Iv dot_point(const IVec3& a, const Vector3d& r) {
-  return r[0] * a.c[0] + r[1] * a.c[1] + r[2] * a.c[2];
-}
-}  // namespace
-
 bool chord_test(const ChordData& c, const Vector3d& r_star) {
-  const Vector3d r = c.frame * r_star;
-  const Iv puu = dot_point(c.Suu, r), puv = dot_point(c.Suv, r), pvv = dot_point(c.Svv, r);
-  DistanceBounds m;
-  m.H11 = c.G11 - puu;
-  m.H22 = c.G22 - pvv;
-  m.H12 = c.G12 - puv;
-  if (convex_gram(m)) return true;
-  const double lam = lambda_max_upper(puu, puv, pvv);  // weyl_test
-  return c.sigma * c.sigma > lam * (1.0 + 1e-9) + 1e-300;
+  return chord_test_of(
+      c.frame, c.Suu, c.Suv, c.Svv, c.G11, c.G22, c.G12, [&] { return c.sigma; }, r_star);
 }
 
 DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
