@@ -124,4 +124,11 @@ ContactHistory commit_contact(const ContactPoint& c, int patch) {
   return h;
 }
 
+bool beyond_open_edge(const ProjectionResult& foot, const Vector3d& x) {
+  if (foot.status != ProjectionStatus::edge && foot.status != ProjectionStatus::vertex)
+    return false;
+  const Vector3d d = x - foot.point;
+  return (d - d.dot(foot.normal) * foot.normal).norm() > 1e-8 * (1.0 + d.norm());
+}
+
 }  // namespace iga

@@ -120,6 +120,12 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
 /// state, before the first commit).
 ContactHistory anchor_at(const ProjectionResult& foot);
 
+/// A foot on an open edge or corner of the rigid body (status edge or vertex) with the point x
+/// off the surface normal there: x lies beyond the edge (outside the normal prism of the
+/// surface, [KS15] Sect. 2.2), where the gap along the edge normal means nothing, so the point
+/// is not in contact. False for an interior foot.
+bool beyond_open_edge(const ProjectionResult& foot, const Vector3d& x);
+
 /// The history to store after a converged step.
 ContactHistory commit_contact(const ContactPoint& c, int patch);
 

@@ -87,14 +87,7 @@ bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_para
     cp.history = anchor_at(cp.foot);
     cp.x_committed = cp.x;
   }
-  // A foot on an open edge or corner of the rigid body with the point off the surface normal
-  // there: the point lies beyond the edge (outside the normal prism of the surface, [KS15]
-  // Sect. 2.2), where the gap along the edge normal means nothing; not in contact.
-  if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
-    const Vector3d d = cp.x - cp.foot.point;
-    const Vector3d& nrm = cp.foot.normal;
-    if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) return false;
-  }
+  if (beyond_open_edge(cp.foot, cp.x)) return false;  // not in contact
   cp.law = evaluate_contact(rigid.patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
                             cp.lambda_n, tangential ? &cp.lambda_t : nullptr);
   return true;

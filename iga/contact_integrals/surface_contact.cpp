@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -128,19 +127,12 @@ struct LawInputs {
 bool master_law(const Surface& rigid_patch, const PointGeometry& g,
                 const ContactParameters& law_params, bool tangential, SurfaceContactPoint& cp,
                 Vector3d& f, Matrix39& df) {
-  // A foot on an open edge or corner of the rigid body (a trimmed face's boundary, a patch's
-  // free side) with the point off the surface normal there: the point lies beyond the edge
-  // (outside the normal prism, [KS15] Sect. 2.2), where the gap along the edge normal means
-  // nothing: not in contact, as for rods (curve_contact.cpp). With one pair per face, this is
-  // what keeps a face from claiming the points of its neighbour across a seam.
-  if (cp.foot.status == ProjectionStatus::edge || cp.foot.status == ProjectionStatus::vertex) {
-    const Vector3d d = g.x - cp.foot.point;
-    const Vector3d& nrm = cp.foot.normal;
-    if ((d - d.dot(nrm) * nrm).norm() > 1e-8 * (1.0 + d.norm())) {
-      cp.gap = 0.0;
-      cp.slip_distance = 0.0;
-      return false;
-    }
+  // Beyond an open edge of the rigid body (a trimmed face's boundary, a patch's free side):
+  // not in contact, as for rods.
+  if (beyond_open_edge(cp.foot, g.x)) {
+    cp.gap = 0.0;
+    cp.slip_distance = 0.0;
+    return false;
   }
   const ContactPoint law = evaluate_contact(rigid_patch, cp.foot, g.x, law_params, cp.history,
                                             cp.lambda_n, tangential ? &cp.lambda_t : nullptr);
