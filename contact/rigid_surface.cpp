@@ -142,7 +142,8 @@ int RigidSurface::add(const TrimmedSurface& s) {
     p.base_nurbs = std::make_shared<PatchProjector>(*n);
   // The face's boxes: the cells of the base that meet the face (a NURBS base's Bezier
   // elements, bounded by their control nets; an analytic base's cells of an 8 x 8 grid over the
-  // loops' rectangle, sampled); the face's box is their union.
+  // loops' rectangle, sampled); the face's box is their union. (The cells cover the loops'
+  // rectangle, so the cells the loops cross are never none.)
   const Domain2 d = s.domain();
   if (p.base_nurbs) {
     for (std::size_t e = 0; e < p.base_nurbs->elements().size(); ++e)
@@ -158,7 +159,6 @@ int RigidSurface::add(const TrimmedSurface& s) {
         if (s.meets(cell)) p.boxes.push_back(sampled_box(s.base(), cell, 4));
       }
   }
-  if (p.boxes.empty()) p.boxes.push_back(sampled_box(s, d, 24));  // (loops thinner than a cell)
   for (const Box3& b : p.boxes) {
     p.box.extend(b.lo);
     p.box.extend(b.hi);
