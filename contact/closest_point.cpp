@@ -577,8 +577,9 @@ struct CertifiedSearch {
                element, range, false);
   }
 
-  // Visits a node: one of the tree (`stored`: its bounds and centre precomputed) or a piece
-  // split off below the tree's depth; `element` is its Bezier element.
+  // Visits a node: one of the tree (`stored`: its centre's derivatives precomputed) or a piece
+  // split off below the tree's depth (its bounds from its parent's, patch_bounds_within);
+  // `element` is its Bezier element.
   void visit(const Node& node, bool stored, int element, int depth) {
     const Domain2& range = node.net.range;
     if (is_proven(range)) return;
@@ -591,7 +592,7 @@ struct CertifiedSearch {
     }
     // The distance to the box of the node's points in its tangent frame (thin across the
     // surface: close to the distance to the piece where the surface curves towards x).
-    if (stored && std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
+    if (std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
     if (settled_by_bounds(node, stored, element)) return;
     if (depth == 0 && !warm) {  // seeds for a good optimum early (a warm start has one)
       seed_newtons(element);
@@ -613,19 +614,15 @@ struct CertifiedSearch {
   // they prune the node or show that F has one minimum there, which a Newton then finds.
   bool settled_by_bounds(const Node& node, bool stored, int element) {
     const Domain2& range = node.net.range;
-    // The exact derivatives at the node's centre: the frame of its bounds, the mean value
-    // forms, and a surface point there as an upper bound.
+    // The exact derivatives at the node's centre: the mean value forms, and a surface point
+    // there as an upper bound.
     const double a = 0.5 * (range.u.hi - range.u.lo), b = 0.5 * (range.v.hi - range.v.lo);
     SurfaceDerivs dc_here;
-    detail::PatchBounds pb_here;
-    if (!stored) {
-      dc_here = surface.derivs(range.u.lo + a, range.v.lo + b, 1);
-      pb_here = detail::patch_bounds(node.net, detail::tangent_frame(dc_here));
-    }
+    if (!stored) dc_here = surface.derivs(range.u.lo + a, range.v.lo + b, 1);
     const SurfaceDerivs& dc = stored ? node.centre : dc_here;
     const double dist_c = (x - dc.S).norm();
     if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
-    const detail::PatchBounds& pb = stored ? node.bounds : pb_here;
+    const detail::PatchBounds& pb = node.bounds;
     // The node holding the best answer, an optimum of the patch: the chord test.
     if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point))
       return true;
@@ -686,6 +683,7 @@ struct CertifiedSearch {
     }
     for (int k = 0; k < 4; ++k) {
       finish_node(children[k]);
+      children[k].bounds = detail::patch_bounds_within(children[k].net, node.bounds);
       by_bound[k] = {box_distance2(children[k].box, x), k};
     }
     std::sort(by_bound, by_bound + 4);
@@ -903,6 +901,9 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOpti
       r.certified = true;
       return r;
     }
+    // Not proven: the search, started from that answer when it is one (an upper bound that
+    // prunes from the first node on).
+    if (found(r.status)) return search(x, nullptr, boxes_.size(), kInf, opt, &r);
     const int used = r.iterations;
     r = search(x, nullptr, boxes_.size(), kInf, opt);
     r.iterations += used;

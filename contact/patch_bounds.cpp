@@ -63,16 +63,16 @@ Poly<T> make_poly(int m, int n) {
 // Binomial coefficients C(n, k) for n < 32 (degrees up to 3 kMaxNetDegree).
 struct Binomials {
   double c[32][32] = {};
-  Binomials() {
+  constexpr Binomials() {
     for (int n = 0; n < 32; ++n) {
       c[n][0] = 1.0;
       for (int k = 1; k <= n; ++k) c[n][k] = c[n - 1][k - 1] + (k < n ? c[n - 1][k] : 0.0);
     }
   }
 };
+constexpr Binomials kBinomials;
 double binom(int n, int k) {
-  static const Binomials table;
-  return table.c[n][k];
+  return kBinomials.c[n][k];
 }
 // d/du (dir 0) or d/dv (dir 1), `scale` = 1 / (width of the range in that direction)
 template <class T>
@@ -110,20 +110,33 @@ Poly<T> elevate(Poly<T> f, int m, int n) {
   }
   return f;
 }
+// The product in Bernstein form: with the scaled coefficients C(m, i) C(n, j) c_ij of each
+// factor, the product's scaled coefficients are the plain 2-D convolution of the factors'.
 template <class T>
 Poly<T> times(const Poly<T>& f, const Poly<double>& g) {
   Poly<T> h = make_poly<T>(f.m + g.m, f.n + g.n);
-  double cu[32][32];  // C(f.m, a) C(g.m, b) / C(h.m, a + b)
-  for (int b = 0; b <= g.m; ++b)
-    for (int a = 0; a <= f.m; ++a) cu[a][b] = binom(f.m, a) * binom(g.m, b) / binom(h.m, a + b);
+  thread_local std::vector<T> fs;
+  thread_local std::vector<double> gs;
+  fs.resize(f.c.size());
+  gs.resize(g.c.size());
+  for (int j = 0; j <= f.n; ++j)
+    for (int i = 0; i <= f.m; ++i)
+      fs[static_cast<std::size_t>(i + (f.m + 1) * j)] =
+          (binom(f.m, i) * binom(f.n, j)) * f.at(i, j);
+  for (int j = 0; j <= g.n; ++j)
+    for (int i = 0; i <= g.m; ++i)
+      gs[static_cast<std::size_t>(i + (g.m + 1) * j)] = binom(g.m, i) * binom(g.n, j) * g.at(i, j);
   for (int d = 0; d <= g.n; ++d)
     for (int c = 0; c <= f.n; ++c) {
-      const double bv = binom(f.n, c) * binom(g.n, d) / binom(h.n, c + d);
+      const T* fr = &fs[static_cast<std::size_t>((f.m + 1) * c)];
       for (int b = 0; b <= g.m; ++b) {
-        const double gb = bv * g.at(b, d);
-        for (int a = 0; a <= f.m; ++a) h.at(a + b, c + d) += (cu[a][b] * gb) * f.at(a, c);
+        const double gb = gs[static_cast<std::size_t>(b + (g.m + 1) * d)];
+        T* hr = &h.at(b, c + d);
+        for (int a = 0; a <= f.m; ++a) hr[a] += gb * fr[a];
       }
     }
+  for (int j = 0; j <= h.n; ++j)
+    for (int i = 0; i <= h.m; ++i) h.at(i, j) /= binom(h.m, i) * binom(h.n, j);
   return h;
 }
 template <class T>
@@ -185,8 +198,12 @@ PatchBounds patch_bounds(const BezierPatch& b, const Eigen::Matrix3d& frame) {
   return patch_bounds(b.pw.data(), b.degree_u, b.degree_v, b.range, frame);
 }
 
-PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
-                         const Eigen::Matrix3d& frame) {
+namespace {
+
+// patch_bounds; `rational`: false skips the products of the rational derivatives' numerators
+// and denominators (patch_bounds_within, which meets the result with the whole patch's bounds).
+PatchBounds bounds_of(const Vector4d* pw, int p, int q, const Domain2& range,
+                      const Eigen::Matrix3d& frame, bool rational) {
   PatchBounds out;
   out.frame = frame;
   const std::size_t n = static_cast<std::size_t>((p + 1) * (q + 1));
@@ -236,7 +253,7 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
   out.Svv = div_pos(sub(sub(Avv.xyz(), mul(2.0 * Av.w(), out.Sv)), mul(Avv.w(), out.S)), w);
   out.Suv = div_pos(
       sub(sub(sub(Auv.xyz(), mul(Au.w(), out.Sv)), mul(Av.w(), out.Su)), mul(Auv.w(), out.S)), w);
-  if (w.lo < w.hi) {
+  if (rational && w.lo < w.hi) {
     // Rational: the interval quotient rule above ignores that S, its derivatives and w move
     // together, and is loose. The derivatives as rational Bezier functions instead, with the
     // denominators w^2 and w^3 (positive coefficients):
@@ -263,6 +280,23 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
     out.Suv = meet3(out.Suv, ratio_box(minus(times(derivative(Nu, 1, iv), W), times(Nu, Wv2)), W3));
     out.Svv = meet3(out.Svv, ratio_box(minus(times(derivative(Nv, 1, iv), W), times(Nv, Wv2)), W3));
   }
+  return out;
+}
+
+}  // namespace
+
+PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
+                         const Eigen::Matrix3d& frame) {
+  return bounds_of(pw, p, q, range, frame, true);
+}
+
+PatchBounds patch_bounds_within(const Net& piece, const PatchBounds& whole) {
+  PatchBounds out = bounds_of(piece.pw.data(), piece.p, piece.q, piece.range, whole.frame, false);
+  out.Su = meet3(out.Su, whole.Su);
+  out.Sv = meet3(out.Sv, whole.Sv);
+  out.Suu = meet3(out.Suu, whole.Suu);
+  out.Suv = meet3(out.Suv, whole.Suv);
+  out.Svv = meet3(out.Svv, whole.Svv);
   return out;
 }
 

@@ -99,6 +99,12 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
 PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
 PatchBounds patch_bounds(const BezierPatch& b,
                          const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+/// The bounds of a piece of a patch (a node split off by de Casteljau) whose bounds `whole`
+/// are known, in whole's frame: S from the piece's points, the derivatives by the quotient rule
+/// intersected with whole's (the piece's values are among the patch's). Without the products of
+/// rational numerators and denominators that patch_bounds forms for a rational patch: a
+/// fraction of its cost, for the pieces below the projector's tree.
+PatchBounds patch_bounds_within(const Net& piece, const PatchBounds& whole);
 /// Widens `a` to hold `b` too (both in the same frame): the boxes of a region made of the two
 /// patches. The chord test on the union holds for points of a convex parameter region covered
 /// by the patches where the surface is C1 (the chord's Taylor remainder needs a continuous

@@ -429,20 +429,31 @@ TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (samp
           "[contact][closest][certified]") {
   // The interval bounds of S and its first and second derivatives over a Bezier element must
   // hold every sampled value, on a rational element (torus) and a polynomial one, whole and
-  // after de Casteljau halving in u and v.
+  // after de Casteljau halving in u and v; and the bounds of pieces from the whole's
+  // (patch_bounds_within, as the certified search takes them below its tree), nested twice.
   for (const char* file : {"freeform_bicubic.json", "torus_patch.json"}) {
     const NurbsSurface s = test::data_surface(file);
     for (const BezierPatch& b : bezier_extract(s)) {
       detail::Net net, lo, hi;
       REQUIRE(detail::to_net(b, net));
       detail::split_half(net, 0, lo, hi);
+      detail::Net lo_lo, lo_hi;
+      detail::split_half(lo, 1, lo_lo, lo_hi);
       // whole, halves, and the whole in a turned frame (the boxes are taken in that frame)
       const Eigen::Matrix3d turn =
           Eigen::AngleAxisd(0.7, Vector3d(1.0, 2.0, -0.5).normalized()).toRotationMatrix();
-      for (int variant = 0; variant < 4; ++variant) {
-        const detail::Net* n = variant == 1 ? &lo : variant == 2 ? &hi : &net;
-        const Eigen::Matrix3d frame = variant == 3 ? turn : Eigen::Matrix3d::Identity();
-        const detail::PatchBounds pb = detail::patch_bounds(*n, frame);
+      const detail::PatchBounds turned = detail::patch_bounds(net, turn);
+      const detail::PatchBounds lo_within = detail::patch_bounds_within(lo, turned);
+      for (int variant = 0; variant < 6; ++variant) {
+        const detail::Net* n = variant == 1 || variant == 4 ? &lo
+                               : variant == 2               ? &hi
+                               : variant == 5               ? &lo_hi
+                                                            : &net;
+        const Eigen::Matrix3d frame = variant >= 3 ? turn : Eigen::Matrix3d::Identity();
+        const detail::PatchBounds pb = variant == 4 ? lo_within
+                                       : variant == 5
+                                           ? detail::patch_bounds_within(lo_hi, lo_within)
+                                           : detail::patch_bounds(*n, frame);
         auto inside = [&](const detail::IVec3& box, const Vector3d& v) {
           bool ok = true;
           for (int k = 0; k < 3; ++k) {
