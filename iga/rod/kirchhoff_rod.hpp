@@ -106,6 +106,7 @@ struct RodSection {
   /// General section (EI1 != EI2): D_1 = the part of this vector normal to T, normalized;
   /// D_2 = T x D_1. Unused for isotropic sections.
   Vector3d ref_direction = Vector3d::Zero();
+  double GJ = 0.0;  ///< torsional stiffness (the twisting rod, twisting_rod.hpp; unused here)
 
   bool isotropic() const { return EI1 == EI2; }
   /// Solid circle of radius r: EA = E pi r^2, EI1 = EI2 = E pi r^4 / 4.
