@@ -129,7 +129,8 @@ void TwistingRod::set_reference_triads(const std::vector<Vector3d>& X) {
     const Element& el = elements_[std::min(kk, elements_.size() - 1)];
     const auto& dN = kk < elements_.size() ? el.dN_lo : el.dN_hi;
     Vector3d a = Vector3d::Zero();
-    for (int j = 0; j <= p; ++j) a += dN[static_cast<std::size_t>(j)] * X[static_cast<std::size_t>(el.first + j)];
+    for (int j = 0; j <= p; ++j)
+      a += dN[static_cast<std::size_t>(j)] * X[static_cast<std::size_t>(el.first + j)];
     if (!(a.norm() > 0.0))
       throw RodError("TwistingRod: zero tangent at the knot " + num(knots_[kk]));
     Triad& T = ref_[kk];
@@ -137,8 +138,10 @@ void TwistingRod::set_reference_triads(const std::vector<Vector3d>& X) {
     if (section_.ref_direction.norm() > 0.0) {
       const Vector3d D = section_.ref_direction - section_.ref_direction.dot(T.t) * T.t;
       if (!(D.norm() > 1e-8 * section_.ref_direction.norm()))
-        throw RodError("TwistingRod: the section's ref_direction is parallel to the tangent at "
-                       "the knot " + num(knots_[kk]));
+        throw RodError(
+            "TwistingRod: the section's ref_direction is parallel to the tangent at "
+            "the knot " +
+            num(knots_[kk]));
       T.d1 = D.normalized();
     } else if (kk == 0) {
       int axis = 0;  // the coordinate axis most normal to the tangent
@@ -216,8 +219,7 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
     return r;
   };
   // The nodal triad at knot k (the chart of the committed triad, turned by alpha_k - alpha_k^c).
-  auto nodal = [&](const std::array<double, kMaxDegree + 1>& dN, int knot, int dof, JV& t,
-                   JV& d1) {
+  auto nodal = [&](const std::array<double, kMaxDegree + 1>& dN, int knot, int dof, JV& t, JV& d1) {
     t = unit(combo([&](int j) { return dN[static_cast<std::size_t>(j)]; }));
     const Triad& c = triads[static_cast<std::size_t>(knot)];
     const JV g = sr(JV::constant(c.t), t, JV::constant(c.d1));
@@ -255,8 +257,8 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
     const JV dt = il * (b - dot(t, b) * t);  // t'
     // g = SR(t0 -> t) d10 and g' (the header's formula, differentiated in xi)
     const Jt ic = inverse(1.0 + dot(t0, t));
-    const Jt w = dot(t, d10) * ic;                                  // (t.d10) / (1 + t0.t)
-    const Jt dw = (dot(dt, d10) - w * dot(t0, dt)) * ic;            // w'
+    const Jt w = dot(t, d10) * ic;                        // (t.d10) / (1 + t0.t)
+    const Jt dw = (dot(dt, d10) - w * dot(t0, dt)) * ic;  // w'
     const JV apt = t0 + t;
     const JV g = d10 - w * apt;
     const JV dg = -1.0 * (dw * apt + w * dt);
@@ -341,9 +343,8 @@ double TwistingRod::energy(std::span<const Vector3d> x, std::span<const double> 
   return W;
 }
 
-void TwistingRod::element_tangent(int e, std::span<const Vector3d> x,
-                                  std::span<const double> alpha, Eigen::VectorXd& f,
-                                  Eigen::MatrixXd* K) const {
+void TwistingRod::element_tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
+                                  Eigen::VectorXd& f, Eigen::MatrixXd* K) const {
   check(x, alpha);
   Eval ev;
   ev.derivatives = true;
@@ -363,7 +364,9 @@ void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> 
     evaluate(e, x, alpha, committed_, ev);
     const int first = elements_[static_cast<std::size_t>(e)].first;
     const int ne = 3 * (p + 1) + 2;
-    auto global = [&](int l) { return l < 3 * (p + 1) ? 3 * first + l : 3 * (n + e + l - 3 * (p + 1)); };
+    auto global = [&](int l) {
+      return l < 3 * (p + 1) ? 3 * first + l : 3 * (n + e + l - 3 * (p + 1));
+    };
     for (int i = 0; i < ne; ++i) {
       f[global(i)] += ev.f[i];
       if (K)
@@ -427,7 +430,8 @@ void TwistingRod::commit(std::span<const Vector3d> x, std::span<const double> al
     elements_[static_cast<std::size_t>(e)].Delta = ev.Delta;
     next[static_cast<std::size_t>(e)] = {ev.t0, ev.d10, alpha[static_cast<std::size_t>(e)]};
     if (e + 1 == num_elements())
-      next[static_cast<std::size_t>(e + 1)] = {ev.t1, ev.d11, alpha[static_cast<std::size_t>(e + 1)]};
+      next[static_cast<std::size_t>(e + 1)] = {ev.t1, ev.d11,
+                                               alpha[static_cast<std::size_t>(e + 1)]};
   }
   committed_ = std::move(next);
 }
@@ -543,7 +547,8 @@ void TwistingRodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve 
 void TwistingRodProblem::add_torque(int knot, double Mt, LoadCurve curve) {
   if (knot < 0 || knot >= rod_.num_knots())
     throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range");
-  std::vector<std::pair<int, Vector3d>> f = {{rod_.num_control_points() + knot, Vector3d(Mt, 0, 0)}};
+  std::vector<std::pair<int, Vector3d>> f = {
+      {rod_.num_control_points() + knot, Vector3d(Mt, 0, 0)}};
   add_nodal_load(std::move(f), std::move(curve));
 }
 
@@ -570,8 +575,7 @@ std::string TwistingRodProblem::describe() const {
          " control points, " + std::to_string(rod_.num_knots()) + " twists)";
 }
 
-Vector3d TwistingRodProblem::displacement(double pu, double pv, const VectorXd& u,
-                                          double t) const {
+Vector3d TwistingRodProblem::displacement(double pu, double pv, const VectorXd& u, double t) const {
   (void)pv;
   std::vector<Vector3d> x;
   std::vector<double> alpha;

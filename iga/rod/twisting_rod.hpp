@@ -74,11 +74,11 @@ namespace iga {
 
 /// Strains, section forces and frame at one point of the twisting rod (output, tests).
 struct TwistStrains {
-  double eps = 0.0;                     ///< Green-Lagrange axial strain
-  double axial_force = 0.0;             ///< EA eps
-  Vector3d kappa = Vector3d::Zero();    ///< (kappa_1, kappa_2, kappa_3), per reference length
-  Vector3d moment = Vector3d::Zero();   ///< (EI_1 (kappa_1 - K_1), EI_2 (..), GJ (kappa_3 - K_3))
-  double twist = 0.0;                   ///< phi + the left knot's alpha (for plots)
+  double eps = 0.0;                    ///< Green-Lagrange axial strain
+  double axial_force = 0.0;            ///< EA eps
+  Vector3d kappa = Vector3d::Zero();   ///< (kappa_1, kappa_2, kappa_3), per reference length
+  Vector3d moment = Vector3d::Zero();  ///< (EI_1 (kappa_1 - K_1), EI_2 (..), GJ (kappa_3 - K_3))
+  double twist = 0.0;                  ///< phi + the left knot's alpha (for plots)
   Vector3d t = Vector3d::Zero(), d1 = Vector3d::Zero(), d2 = Vector3d::Zero();  ///< frame
   double energy_density = 0.0;
 };
@@ -226,7 +226,8 @@ class TwistingRodProblem : public ControlPointProblem {
   void add_torque(int knot, double Mt, LoadCurve curve = ramp());
 
   /// Control points and twists of the state.
-  void split(const VectorXd& u, double t, std::vector<Vector3d>& x, std::vector<double>& alpha) const;
+  void split(const VectorXd& u, double t, std::vector<Vector3d>& x,
+             std::vector<double>& alpha) const;
 
   // ---- Body ------------------------------------------------------------------------------------
   std::string type() const override { return "twisting_rod"; }
