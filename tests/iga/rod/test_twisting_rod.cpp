@@ -181,7 +181,7 @@ TEST_CASE("TwistingRod: a commit re-centres the chart without changing the state
   Eigen::VectorXd f;
   rod.assemble(s.x, s.alpha, f, nullptr);
   rod.commit(s.x, s.alpha);
-  CHECK(rod.energy(s.x, s.alpha) == Approx(W).epsilon(1e-12));
+  CHECK(rod.energy(s.x, s.alpha) == Approx(W).epsilon(1e-10));  // triads recomputed: round-off
   Eigen::VectorXd f2;
   rod.assemble(s.x, s.alpha, f2, nullptr);
   // The position forces differ (the chart's SR part moves with the tangent differently), the
@@ -264,7 +264,7 @@ TEST_CASE("TwistingRodProblem: pure torsion twists by T L / GJ, the centre line 
   }
 }
 
-TEST_CASE("TwistingRodProblem: the 45-degree bend (Bathe & Bolourchi; Simo & Vu-Quoc)",
+TEST_CASE("TwistingRodProblem: the 45-degree bend of Bathe & Bolourchi and Simo & Vu-Quoc",
           "[iga][rod][twist]") {
   // A cantilever bent to a 45-degree arc of radius 100 in the x-y plane, clamped at the origin
   // (tangent +y), 1 x 1 section, E = 1e7, G = 5e6 (J = 1/6, the polar moment of the papers),
