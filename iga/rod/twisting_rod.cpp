@@ -229,6 +229,24 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
   JV t0, d10, t1, d11;
   nodal(el.dN_lo, e, ia, t0, d10);
   nodal(el.dN_hi, e + 1, ia + 1, t1, d11);
+  if (out.moment_side >= 0) {
+    // Virtual work M.(t x dt) + a dd1.d2, a = M.t + Mt: f_j = sum_c v_c t_c,j + a d1_c,j d2_c
+    // with v = M x t; K_jk = d f_j / d q_k from the jets' gradients and Hessians.
+    const JV& t = out.moment_side == 0 ? t0 : t1;
+    const JV& d1 = out.moment_side == 0 ? d10 : d11;
+    const JV d2 = cross(t, d1);
+    const JV v = cross(JV::constant(out.M), t);
+    const Jt a = dot(t, out.M) + out.Mt;
+    out.f = Eigen::VectorXd::Zero(N);
+    out.K = Eigen::MatrixXd::Zero(N, N);
+    for (std::size_t c = 0; c < 3; ++c) {
+      out.f += v.c[c].v * t.c[c].g + (a.v * d2.c[c].v) * d1.c[c].g;
+      out.K += t.c[c].g * v.c[c].g.transpose() + v.c[c].v * t.c[c].H;
+      out.K += (d2.c[c].v * d1.c[c].g) * a.g.transpose() + (a.v * d2.c[c].v) * d1.c[c].H;
+      out.K += a.v * (d1.c[c].g * d2.c[c].g.transpose());
+    }
+    return;
+  }
   // Delta_e: the angle about t1 from SR(t0 -> t1) d10 to d11, continued from the committed one.
   const JV m = sr(t0, t1, d10);
   Jt Delta = atan2(dot(cross(m, d11), t1), dot(m, d11));
@@ -356,17 +374,13 @@ void TwistingRod::element_tangent(int e, std::span<const Vector3d> x, std::span<
 void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> alpha,
                            Eigen::VectorXd& f, std::vector<Triplet>* K) const {
   check(x, alpha);
-  const int n = num_control_points(), p = degree();
   f.setZero(num_dofs());
   Eval ev;
   ev.derivatives = true;
+  const int ne = 3 * (degree() + 1) + 2;
   for (int e = 0; e < num_elements(); ++e) {
     evaluate(e, x, alpha, committed_, ev);
-    const int first = elements_[static_cast<std::size_t>(e)].first;
-    const int ne = 3 * (p + 1) + 2;
-    auto global = [&](int l) {
-      return l < 3 * (p + 1) ? 3 * first + l : 3 * (n + e + l - 3 * (p + 1));
-    };
+    auto global = [&](int l) { return global_dof(e, l); };
     for (int i = 0; i < ne; ++i) {
       f[global(i)] += ev.f[i];
       if (K)
@@ -374,6 +388,28 @@ void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> 
           if (ev.K(i, j) != 0.0) K->emplace_back(global(i), global(j), ev.K(i, j));
     }
   }
+}
+
+int TwistingRod::global_dof(int e, int l) const {
+  const int np = degree() + 1;
+  return l < 3 * np ? 3 * elements_.at(static_cast<std::size_t>(e)).first + l
+                    : 3 * (num_control_points() + e + l - 3 * np);
+}
+
+void TwistingRod::knot_moment(int knot, const Vector3d& M, double Mt, std::span<const Vector3d> x,
+                              std::span<const double> alpha, int& e, Eigen::VectorXd& f,
+                              Eigen::MatrixXd& K) const {
+  check(x, alpha);
+  if (knot < 0 || knot >= num_knots())
+    throw RodError("TwistingRod::knot_moment: knot " + std::to_string(knot) + " out of range");
+  e = std::min(knot, num_elements() - 1);
+  Eval ev;
+  ev.moment_side = knot == e ? 0 : 1;
+  ev.M = M;
+  ev.Mt = Mt;
+  evaluate(e, x, alpha, committed_, ev);
+  f = ev.f;
+  K = ev.K;
 }
 
 TwistStrains TwistingRod::strains(double xi, std::span<const Vector3d> x,
@@ -547,18 +583,37 @@ void TwistingRodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve 
 void TwistingRodProblem::add_torque(int knot, double Mt, LoadCurve curve) {
   if (knot < 0 || knot >= rod_.num_knots())
     throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range");
-  std::vector<std::pair<int, Vector3d>> f = {
-      {rod_.num_control_points() + knot, Vector3d(Mt, 0, 0)}};
-  add_nodal_load(std::move(f), std::move(curve));
+  moments_.push_back({knot, Vector3d::Zero(), Mt, std::move(curve)});
+}
+
+void TwistingRodProblem::add_moment(int knot, const Vector3d& M, LoadCurve curve) {
+  if (knot < 0 || knot >= rod_.num_knots())
+    throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range");
+  moments_.push_back({knot, M, 0.0, std::move(curve)});
 }
 
 void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
                                         std::vector<Triplet>* K) {
-  (void)t;
   const std::size_t n = static_cast<std::size_t>(rod_.num_control_points());
   alpha_.resize(static_cast<std::size_t>(rod_.num_knots()));
   for (std::size_t k = 0; k < alpha_.size(); ++k) alpha_[k] = x[n + k][0];
   rod_.assemble(x.first(n), alpha_, g, K);
+  Eigen::VectorXd f;
+  Eigen::MatrixXd Km;
+  for (const KnotMoment& mo : moments_) {
+    const double lam = mo.curve(t);
+    if (lam == 0.0) continue;
+    int e = 0;
+    rod_.knot_moment(mo.knot, lam * mo.M, lam * mo.Mt, x.first(n), alpha_, e, f, Km);
+    for (Eigen::Index i = 0; i < f.size(); ++i) {
+      const int gi = rod_.global_dof(e, static_cast<int>(i));
+      g[gi] -= f[i];  // g = f_int - f_ext
+      if (K)
+        for (Eigen::Index j = 0; j < f.size(); ++j)
+          if (Km(i, j) != 0.0)
+            K->emplace_back(gi, rod_.global_dof(e, static_cast<int>(j)), -Km(i, j));
+    }
+  }
 }
 
 void TwistingRodProblem::commit(const VectorXd& u, double t) {

@@ -121,6 +121,16 @@ class TwistingRod {
   void assemble(std::span<const Vector3d> x, std::span<const double> alpha, Eigen::VectorXd& f,
                 std::vector<Triplet>* K) const;
 
+  /// The generalized forces of a couple M fixed in space and a torque Mt about the current
+  /// tangent at knot k, by their virtual work M.(t x dt) + (M.t + Mt) dd1.d2 on the spin of the
+  /// nodal triad, and their derivative K = df/dq (not symmetric): the element's DOFs (e: the
+  /// element holding the knot; f, K in its local numbering).
+  void knot_moment(int knot, const Vector3d& M, double Mt, std::span<const Vector3d> x,
+                   std::span<const double> alpha, int& e, Eigen::VectorXd& f,
+                   Eigen::MatrixXd& K) const;
+  /// Global DOF of local DOF l of element e (the header's numbering).
+  int global_dof(int e, int l) const;
+
   /// Position, frame and strains at parameter xi.
   TwistStrains strains(double xi, std::span<const Vector3d> x, std::span<const double> alpha) const;
   Vector3d point(double xi, std::span<const Vector3d> x) const;
@@ -168,6 +178,12 @@ class TwistingRod {
   struct Eval {
     bool derivatives = false;
     const double* xi = nullptr;
+    /// >= 0: instead, the generalized force f and its derivative K of a couple M (fixed in
+    /// space) and a torque Mt about the current tangent at the element's knot moment_side
+    /// (0 left, 1 right).
+    int moment_side = -1;
+    Vector3d M = Vector3d::Zero();
+    double Mt = 0.0;
     double W = 0.0;
     Eigen::VectorXd f;
     Eigen::MatrixXd K;
@@ -199,11 +215,10 @@ class TwistingRod {
 /// DofMap's point n + k (components 1, 2 fixed), so that it is fixed, prescribed along a load
 /// curve and reported (reactions(): the torque about the tangent) like a displacement.
 ///
-/// Torques: a torque M_t about the tangent at a knot is the generalized force M_t on alpha_k.
-/// The twist unknown turns the nodal triad about t_k; the chart's SR part turns it about t_k
-/// too when the tangent moves within a step, so a torque on alpha alone is exact where the
-/// tangent at the knot is held (a clamped or guided end) and otherwise the work of the torque
-/// on the twist relative to the smallest rotation of the section.
+/// Couples and torques at knots (end moments): a couple M fixed in space and a torque M_t about
+/// the current tangent do the virtual work M.(t x dt) + (M.t + M_t) dd1.d2 on the spin of the
+/// nodal triad (TwistingRod::knot_moment), so the section at the knot carries exactly M (+ M_t
+/// t) in equilibrium; their load stiffness is not symmetric (symmetric() is false with them).
 class TwistingRodProblem : public ControlPointProblem {
  public:
   explicit TwistingRodProblem(TwistingRod rod);
@@ -223,8 +238,10 @@ class TwistingRodProblem : public ControlPointProblem {
 
   /// Dead force F at parameter xi (f_i = R_i(xi) F).
   void add_point_load(double xi, const Vector3d& F, LoadCurve curve = ramp());
-  /// Torque M_t about the tangent at knot k (see the class comment).
+  /// Torque M_t about the current tangent at knot k (see the class comment).
   void add_torque(int knot, double Mt, LoadCurve curve = ramp());
+  /// Couple M, fixed in space, at knot k (see the class comment).
+  void add_moment(int knot, const Vector3d& M, LoadCurve curve = ramp());
 
   /// Control points and twists of the state.
   void split(const VectorXd& u, double t, std::vector<Vector3d>& x,
@@ -239,6 +256,7 @@ class TwistingRodProblem : public ControlPointProblem {
   void commit(const VectorXd& u, double t) override;
 
  protected:
+  bool model_symmetric() const override { return moments_.empty(); }
   /// The centre line with the axial force, the three moments (two bending, torque), the twist
   /// and the section frame (d1, d2) per sample.
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
@@ -246,7 +264,14 @@ class TwistingRodProblem : public ControlPointProblem {
                       std::vector<Triplet>* K) override;
 
  private:
+  struct KnotMoment {
+    int knot = 0;
+    Vector3d M = Vector3d::Zero();
+    double Mt = 0.0;
+    LoadCurve curve;
+  };
   TwistingRod rod_;
+  std::vector<KnotMoment> moments_;
   std::vector<double> alpha_;  // work storage
 };
 
