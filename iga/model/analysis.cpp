@@ -154,12 +154,13 @@ Analysis Analysis::load(const std::string& path) {
 }
 
 BodyKind Analysis::body_kind() const {
-  return dynamic_cast<const RodProblem*>(&body(0)) ? BodyKind::kRod : BodyKind::kShell;
+  return dynamic_cast<const ShellProblem*>(&body(0)) ? BodyKind::kShell : BodyKind::kRod;
 }
 
 RodProblem& Analysis::rod_problem() {
   auto* p = dynamic_cast<RodProblem*>(&body(0));
-  if (p == nullptr) throw std::logic_error("Analysis::rod_problem: the body is a shell");
+  if (p == nullptr)
+    throw std::logic_error("Analysis::rod_problem: the body is not a torsion-free rod");
   return *p;
 }
 

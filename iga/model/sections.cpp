@@ -11,16 +11,19 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <ostream>
 #include <sstream>
 #include <tuple>
+#include <type_traits>
 
 #include "geometry/constructions.hpp"
 #include "geometry/number_text.hpp"
 #include "iga/model/model.hpp"
 #include "iga/output/output_format.hpp"
 #include "iga/output/vtk_writer.hpp"
+#include "iga/rod/twisting_rod.hpp"
 
 namespace iga::model_detail {
 
@@ -328,9 +331,23 @@ void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p)
       if (!p.constrained(i, c)) p.fix(i, c);
 }
 
-void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+/// The knot of a rod with torsion at c: "start", "end" or a knot index.
+int twist_knot(const JsonCursor& c, const TwistingRodProblem& p) {
+  if (c.json().is_string())
+    return p.end_knot(one_of(c, {"start", "end"}) == "start" ? RodEnd::kStart : RodEnd::kEnd);
+  const int k = c.as_int();
+  if (k < 0 || k >= p.rod().num_knots())
+    c.fail("knot index must be in 0.." + std::to_string(p.rod().num_knots() - 1));
+  return k;
+}
+
+/// Boundary conditions of rods, with and without torsion (P: RodProblem, TwistingRodProblem).
+template <class P>
+void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, P& p) {
+  constexpr bool kTwist = std::is_same_v<P, TwistingRodProblem>;
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
+  const std::string type = kTwist ? one_of(o["type"], {"fix", "clamp", "displacement", "twist"})
+                                  : one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
   check_body(o, ctx);
   try {
     if (type == "fix") {
@@ -339,12 +356,24 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodPr
       o.expect_object({"type", "body", "end", "description"});
       const std::string e = one_of(o["end"], {"start", "end"});
       p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
+    } else if (type == "twist") {  // the twist at a knot, fixed or along a load curve (radians)
+      if constexpr (kTwist) {
+        o.expect_object({"type", "body", "at", "angle", "curve", "description"});
+        const int k = twist_knot(o["at"], p);
+        const double angle = o.has("angle") ? o["angle"].as_number() : 0.0;
+        if (angle == 0.0 && !o.has("curve"))
+          p.fix_twist(k);
+        else
+          p.prescribe_twist(k, angle, curve_of(o, ctx));
+      }
     } else if (type == "symmetry") {  // the end crosses a symmetry plane of normal n
-      o.expect_object({"type", "body", "end", "normal", "description"});
-      const std::string e = one_of(o["end"], {"start", "end"});
-      const Vector3d n = vec3(o["normal"]);
-      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
-      p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
+      if constexpr (!kTwist) {
+        o.expect_object({"type", "body", "end", "normal", "description"});
+        const std::string e = one_of(o["end"], {"start", "end"});
+        const Vector3d n = vec3(o["normal"]);
+        if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
+        p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
+      }
     } else {
       o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
                        "motion", "description"});
@@ -360,9 +389,14 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, RodPr
   }
 }
 
-void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
+/// Loads of rods, with and without torsion (P: RodProblem, TwistingRodProblem).
+template <class P>
+void parse_rod_load(const JsonCursor& o, const Context& ctx, P& p) {
+  constexpr bool kTwist = std::is_same_v<P, TwistingRodProblem>;
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = one_of(o["type"], {"point_force", "line_load", "moment"});
+  const std::string type = kTwist
+                               ? one_of(o["type"], {"point_force", "line_load", "moment", "torque"})
+                               : one_of(o["type"], {"point_force", "line_load", "moment"});
   check_body(o, ctx);
   auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
   if (type == "point_force") {
@@ -378,6 +412,18 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, RodProblem& p) {
   } else if (type == "line_load") {
     o.expect_object({"type", "name", "body", "q", "curve", "description"});
     p.add_line_load(vec3(o["q"]), curve_of(o, ctx));
+  } else if constexpr (kTwist) {  // at a knot: "start", "end" or a knot index
+    try {
+      if (type == "torque") {
+        o.expect_object({"type", "name", "body", "at", "torque", "curve", "description"});
+        p.add_torque(twist_knot(o["at"], p), o["torque"].as_number(), curve_of(o, ctx));
+      } else {
+        o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
+        p.add_moment(twist_knot(o["at"], p), vec3(o["moment"]), curve_of(o, ctx));
+      }
+    } catch (const RodError& e) {
+      o.fail_plain(e.what());
+    }
   } else {
     o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
     p.add_moment(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
@@ -551,10 +597,22 @@ RodSection parse_rod_material(const JsonCursor& m) {
   const std::string type = one_of(m["type"], {"rod", "rod_circular"});
   RodSection s;
   if (type == "rod_circular") {
-    m.expect_object({"type", "E", "radius", "description"});
-    return RodSection::circular(positive(m["E"]), positive(m["radius"]));
+    m.expect_object({"type", "E", "radius", "G", "nu", "description"});
+    const double E = positive(m["E"]), r = positive(m["radius"]);
+    s = RodSection::circular(E, r);
+    if (m.has("G") && m.has("nu")) m.fail_plain("give either \"G\" or \"nu\"");
+    double G = 0.0;
+    if (m.has("G")) G = positive(m["G"]);
+    if (m.has("nu")) {
+      const double nu = m["nu"].as_number();
+      if (!(nu > -1.0 && nu < 0.5)) m["nu"].fail("must be in (-1, 0.5)");
+      G = E / (2.0 * (1.0 + nu));
+    }
+    s.GJ = G * std::numbers::pi * r * r * r * r / 2.0;  // J: the polar moment of the circle
+    return s;
   }
-  m.expect_object({"type", "EA", "EI", "EI1", "EI2", "ref_direction", "description"});
+  m.expect_object({"type", "EA", "EI", "EI1", "EI2", "GJ", "ref_direction", "description"});
+  if (m.has("GJ")) s.GJ = positive(m["GJ"]);
   s.EA = positive(m["EA"]);
   if (m.has("EI")) {
     if (m.has("EI1") || m.has("EI2")) m.fail_plain("give either \"EI\" or \"EI1\" and \"EI2\"");
@@ -789,43 +847,11 @@ void for_each_entry(const JsonCursor& root, const char* key, const Context& ctx,
     if (list[k]["body"].as_string() == ctx.body) f(list[k]);
 }
 
-/// The rod body, its contact pair, boundary conditions and loads.
-std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                      const GeometryModel& geometry, const JsonCursor& materials) {
-  b.expect_object(
-      {"type", "curve", "material", "quadrature_points", "bending", "stress_free", "description"});
-  const JsonCursor cc = b["curve"];
-  ctx.curve = geometry.curve(cc.as_string());
-  if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
-  // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
-  if (const long n = static_cast<long>(ctx.curve->knots().breaks().size()) - 1;
-      n > kMaxCurveElements)
-    cc.fail("the curve has " + std::to_string(n) + " elements, above the limit of " +
-            std::to_string(kMaxCurveElements) + " of a rod body");
-  const JsonCursor mc = b["material"];
-  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
-  const JsonCursor mat = materials[mc.as_string()];
-  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) == "shell")
-    mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
-  const RodSection section = parse_rod_material(mat);
-  RodOptions opt;
-  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
-  if (b.has("bending"))
-    opt.bending =
-        one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
-            ? BendingMeasure::kTransportedFrame
-            : BendingMeasure::kCurvatureMagnitude;
-  if (b.has("stress_free"))
-    opt.straight_stress_free = one_of(b["stress_free"], {"reference", "straight"}) == "straight";
-  std::optional<KirchhoffRod> rod;
-  try {
-    rod.emplace(*ctx.curve, section, opt);
-  } catch (const std::invalid_argument& e) {
-    b.fail_plain(e.what());
-  }
-  ctx.n_points = rod->num_control_points();
-
-  auto problem = std::make_unique<RodProblem>(std::move(*rod));
+/// A rod's contact pairs, boundary conditions and loads (P: RodProblem, TwistingRodProblem; the
+/// contact acts on the centre line's control points alone).
+template <class P>
+void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryModel& geometry,
+                        P& problem) {
   for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
     // The type first: a shell's contact keys would otherwise be reported as unknown keys.
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
@@ -849,20 +875,69 @@ std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& 
     for (int i = 0; i < n_tools; ++i)
       tools.push_back(per_face ? std::make_shared<const RigidSurface>(rigid->piece(i)) : rigid);
     for (const std::shared_ptr<const RigidSurface>& tool : tools) {
-      auto pair = std::make_unique<CurveContactPair>(problem->rod().reference(), tool, cp, ppe);
+      auto pair = std::make_unique<CurveContactPair>(problem.rod().reference(), tool, cp, ppe);
       pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
       if (c.has("search_distance"))  // default: rope radius + the longest element chord
         pair->contact().set_search_distance(positive(c["search_distance"]));
       if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
         pair->set_motion(m->second);
-      problem->attach(std::move(pair));
+      problem.attach(std::move(pair));
     }
   });
   for_each_entry(root, "boundary_conditions", ctx,
-                 [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, *problem); });
-  for_each_entry(root, "loads", ctx,
-                 [&](const JsonCursor& o) { parse_rod_load(o, ctx, *problem); });
-  return problem;
+                 [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, problem); });
+  for_each_entry(root, "loads", ctx, [&](const JsonCursor& o) { parse_rod_load(o, ctx, problem); });
+}
+
+/// The rod body, its contact pair, boundary conditions and loads.
+std::unique_ptr<Body> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                const GeometryModel& geometry, const JsonCursor& materials) {
+  b.expect_object({"type", "curve", "material", "quadrature_points", "bending", "stress_free",
+                   "torsion", "description"});
+  const JsonCursor cc = b["curve"];
+  ctx.curve = geometry.curve(cc.as_string());
+  if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
+  // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
+  if (const long n = static_cast<long>(ctx.curve->knots().breaks().size()) - 1;
+      n > kMaxCurveElements)
+    cc.fail("the curve has " + std::to_string(n) + " elements, above the limit of " +
+            std::to_string(kMaxCurveElements) + " of a rod body");
+  const JsonCursor mc = b["material"];
+  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
+  const JsonCursor mat = materials[mc.as_string()];
+  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) == "shell")
+    mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
+  const RodSection section = parse_rod_material(mat);
+  const bool torsion = b.has("torsion") && b["torsion"].as_bool();
+  if (torsion && !(section.GJ > 0.0))
+    mc.fail(
+        "a rod with \"torsion\": true needs a torsional stiffness: \"GJ\" (type \"rod\") or "
+        "\"G\" or \"nu\" (type \"rod_circular\")");
+  if (torsion && b.has("bending"))
+    b["bending"].fail("a rod with torsion has its section frame: no \"bending\" measure to choose");
+  RodOptions opt;
+  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
+  if (b.has("bending"))
+    opt.bending =
+        one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
+            ? BendingMeasure::kTransportedFrame
+            : BendingMeasure::kCurvatureMagnitude;
+  if (b.has("stress_free"))
+    opt.straight_stress_free = one_of(b["stress_free"], {"reference", "straight"}) == "straight";
+  try {
+    if (torsion) {
+      auto problem = std::make_unique<TwistingRodProblem>(TwistingRod(*ctx.curve, section, opt));
+      ctx.n_points = problem->rod().num_control_points();
+      attach_rod_entries(root, ctx, geometry, *problem);
+      return problem;
+    }
+    auto problem = std::make_unique<RodProblem>(KirchhoffRod(*ctx.curve, section, opt));
+    ctx.n_points = problem->rod().num_control_points();
+    attach_rod_entries(root, ctx, geometry, *problem);
+    return problem;
+  } catch (const RodError& e) {
+    b.fail_plain(e.what());
+  }
 }
 
 /// The shell body, its contact pair, boundary conditions, springs and loads.

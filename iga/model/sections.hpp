@@ -59,8 +59,8 @@ std::map<std::string, std::shared_ptr<const RigidMotion>> parse_rigid_motions(
 void check_entry_bodies(const JsonCursor& root, const Context& ctx);
 /// The rod (shell) body b of the model root with its contact pairs attached (in the file's
 /// order), its boundary conditions and loads: the entries whose "body" is ctx.body.
-std::unique_ptr<RodProblem> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                      const GeometryModel& geometry, const JsonCursor& materials);
+std::unique_ptr<Body> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
+                                const GeometryModel& geometry, const JsonCursor& materials);
 std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
                                           const GeometryModel& geometry,
                                           const JsonCursor& materials);

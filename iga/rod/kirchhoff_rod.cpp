@@ -592,31 +592,35 @@ void RodProblem::add_line_load(const Vector3d& q, LoadCurve curve) {
   add_line_load(q, rod_.reference().domain(), std::move(curve));
 }
 
-void RodProblem::add_line_load(const Vector3d& q, Interval range, LoadCurve curve) {
-  // f_i = int_range R_i q dS, Gauss-Legendre on each element's part of the range.
-  const int n = num_control_points();
-  std::vector<Vector3d> f(static_cast<std::size_t>(n), Vector3d::Zero());
+std::vector<Vector3d> rod_line_load(const NurbsCurve& reference, const Vector3d& q,
+                                    Interval range) {
+  // f_i = int_range R_i q dS, Gauss-Legendre on each knot span's part of the range.
+  std::vector<Vector3d> f(static_cast<std::size_t>(reference.num_control_points()),
+                          Vector3d::Zero());
   std::array<double, kMaxGaussPoints> gx{}, gw{};
-  const int ng = std::min(kMaxGaussPoints, rod_.degree() + 2);
+  const int ng = std::min(kMaxGaussPoints, reference.degree() + 2);
   gauss_legendre(ng, gx, gw);
-  for (int e = 0; e < rod_.num_elements(); ++e) {
-    const Interval r = rod_.element_range(e);
-    const double lo = std::max(r.lo, range.lo), hi = std::min(r.hi, range.hi);
+  const std::vector<double> breaks = reference.knots().breaks();
+  for (std::size_t e = 0; e + 1 < breaks.size(); ++e) {
+    const double lo = std::max(breaks[e], range.lo), hi = std::min(breaks[e + 1], range.hi);
     if (!(hi > lo)) continue;
     const double mid = 0.5 * (lo + hi), half = 0.5 * (hi - lo);
     for (int g = 0; g < ng; ++g) {
       const RationalBasis B =
-          rational_basis(rod_.reference(), mid + half * gx[static_cast<std::size_t>(g)]);
+          rational_basis(reference, mid + half * gx[static_cast<std::size_t>(g)]);
       Vector3d R1 = Vector3d::Zero();
       for (int j = 0; j < B.count; ++j)
-        R1.noalias() +=
-            B.dN[static_cast<std::size_t>(j)] * rod_.reference().control_point(B.first + j);
+        R1.noalias() += B.dN[static_cast<std::size_t>(j)] * reference.control_point(B.first + j);
       const double w = half * gw[static_cast<std::size_t>(g)] * R1.norm();
       for (int j = 0; j < B.count; ++j)
         f[static_cast<std::size_t>(B.first + j)] += (w * B.N[static_cast<std::size_t>(j)]) * q;
     }
   }
-  add_nodal_load(f, std::move(curve));
+  return f;
+}
+
+void RodProblem::add_line_load(const Vector3d& q, Interval range, LoadCurve curve) {
+  add_nodal_load(rod_line_load(rod_.reference(), q, range), std::move(curve));
 }
 
 void RodProblem::add_moment(double xi, const Vector3d& M, LoadCurve curve) {

@@ -228,6 +228,10 @@ class KirchhoffRod {
 
 enum class RodEnd { kStart, kEnd };
 
+/// The generalized forces f_i = int R_i q dS of a dead load q per unit reference length over
+/// the parameter range of a rod's reference curve (one per control point).
+std::vector<Vector3d> rod_line_load(const NurbsCurve& reference, const Vector3d& q, Interval range);
+
 /// A rod with boundary conditions and loads as a NonlinearProblem. The unknowns u are the
 /// displacements of the free control point components; constrained components are fixed or
 /// prescribed along load curves. Each control point has an orthonormal local basis Q_i (default

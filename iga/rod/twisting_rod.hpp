@@ -238,6 +238,14 @@ class TwistingRodProblem : public ControlPointProblem {
 
   /// Dead force F at parameter xi (f_i = R_i(xi) F).
   void add_point_load(double xi, const Vector3d& F, LoadCurve curve = ramp());
+  /// Dead distributed force q per unit reference length over the parameter range (default:
+  /// all).
+  void add_line_load(const Vector3d& q, LoadCurve curve = ramp()) {
+    add_line_load(q, rod_.reference().domain(), std::move(curve));
+  }
+  void add_line_load(const Vector3d& q, Interval range, LoadCurve curve = ramp()) {
+    add_nodal_load(rod_line_load(rod_.reference(), q, range), std::move(curve));
+  }
   /// Torque M_t about the current tangent at knot k (see the class comment).
   void add_torque(int knot, double Mt, LoadCurve curve = ramp());
   /// Couple M, fixed in space, at knot k (see the class comment).

@@ -89,6 +89,61 @@ TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the
   CHECK(cur.derivs(D.hi, 1).d[1].normalized().dot(t_end.normalized()) > 1.0 - 1e-5);
 }
 
+TEST_CASE("analysis: data/helix_couple.json (a rod with torsion) winds into the helix",
+          "[iga][analysis][twist]") {
+  // The model's closed form (its description; tests/iga/rod/test_twisting_rod.cpp): 1.5 turns
+  // of a helix about the couple, tip at (m.e_x) L m + (EI/|M|) (1 - cos 3 pi) m x e_perp.
+  // 16 elements here (the file's 32 take 3 s): tip within 5e-3 L (measured 3e-3 L).
+  Json doc = read_json_file(kData + "helix_couple.json");
+  doc["geometry"]["rod"]["elements"] = 16;
+  doc["output"]["vtk"] = "none";
+  Analysis a = Analysis::from_json(doc, "helix_couple.json");
+  REQUIRE(a.body_kind() == BodyKind::kRod);
+  const AnalysisResult r = a.run();
+  REQUIRE(r.solver.converged());
+  const double L = 10.0, M = 3 * std::numbers::pi / L, th = std::numbers::pi / 3;
+  const Vector3d m(std::cos(th), std::sin(th), 0.0), ep = Vector3d::UnitX() - m.x() * m;
+  const Vector3d tip = m.x() * L * m + (1.0 / M) * 2.0 * m.cross(ep);
+  const Vector3d u = a.displacement({"tip", 1.0, 0.0}, r.u, r.solver.t);
+  INFO("tip " << (Vector3d(L, 0, 0) + u).transpose() << ", exact " << tip.transpose());
+  CHECK((Vector3d(L, 0, 0) + u - tip).norm() < 5e-3 * L);
+}
+
+TEST_CASE("analysis: the keys of rods with torsion are checked at their JSON path",
+          "[iga][analysis][twist][errors]") {
+  const Json base = read_json_file(kData + "helix_couple.json");
+  auto error = [&](auto&& edit) { return test::analysis_error(base, edit); };
+  CHECK_THAT(error([](Json& d) { d["materials"]["wire"].erase("GJ"); }),
+             Catch::Contains("m.json: /bodies/rod/material: a rod with \"torsion\": true needs a "
+                             "torsional stiffness"));
+  CHECK_THAT(error([](Json& d) { d["materials"]["wire"]["GJ"] = 0.0; }),
+             Catch::Contains("m.json: /materials/wire/GJ: must be > 0, got 0"));
+  CHECK_THAT(error([](Json& d) { d["bodies"]["rod"]["bending"] = "transported_frame"; }),
+             Catch::Contains("m.json: /bodies/rod/bending: a rod with torsion has its section "
+                             "frame"));
+  CHECK_THAT(error([](Json& d) { d["loads"][0]["at"] = 40; }),
+             Catch::Contains("m.json: /loads/0/at: knot index must be in 0..32, got 40"));
+  CHECK_THAT(
+      error([](Json& d) {
+        d["boundary_conditions"].push_back({{"type", "symmetry"}, {"body", "rod"}});
+      }),
+      Catch::Contains("m.json: /boundary_conditions/1/type: expected one of \"fix\", \"clamp\", "
+                      "\"displacement\", \"twist\""));
+  CHECK_THAT(error([](Json& d) {
+               d["bodies"]["rod"]["torsion"] = false;
+               d["boundary_conditions"].push_back(
+                   {{"type", "twist"}, {"body", "rod"}, {"at", "end"}, {"angle", 1.0}});
+             }),
+             Catch::Contains("m.json: /boundary_conditions/1/type: expected one of \"fix\", "
+                             "\"clamp\", \"symmetry\", \"displacement\", got \"twist\""));
+  // A twist prescribed at the end and a torque load are accepted.
+  CHECK(error([](Json& d) {
+          d["boundary_conditions"].push_back(
+              {{"type", "twist"}, {"body", "rod"}, {"at", "end"}, {"angle", 1.0}});
+          d["loads"].push_back({{"type", "torque"}, {"body", "rod"}, {"at", 5}, {"torque", 0.1}});
+        }) == "no error");
+}
+
 TEST_CASE("analysis: structural errors of the model name their JSON path",
           "[iga][analysis][errors]") {
   const Json base = test::cubic_penalty_capstan(read_json_file(kData + "capstan.json"));
