@@ -17,7 +17,7 @@ using Matrix23 = Eigen::Matrix<double, 2, 3>;
 
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
-                              double lambda_n, const Vector3d* lambda_t) {
+                              double lambda_n, const Vector3d* lambda_t, const Vector3d* roll) {
   ContactPoint c;
   c.xi = foot.uv;
   const SurfaceDerivs d = s.derivs(foot.uv[0], foot.uv[1], 2);
@@ -78,7 +78,9 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   }
   // The slip since the anchor rho_(n), in the current tangent plane: g_T = P (rho - rho_(n)),
   // the spatial form of Delta xi^i rho_i (54) (equal to first order, exact on a plane).
-  const Vector3d chord = d.S - history.foot;
+  // With a rolling displacement s the body's material point at the contact has moved by the
+  // foot's motion plus s.
+  const Vector3d chord = d.S - history.foot + (roll ? *roll : Vector3d::Zero());
   const Vector3d gT = P * chord;
   c.slip_distance = gT.norm();
   const Matrix3d dgT_dr = drho_dr - n.dot(chord) * dn_dr - n * (chord.transpose() * dn_dr);
@@ -87,18 +89,23 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   const double m = t.norm();  // |T_tr| (35): sqrt(T^i a_ij T^j) of a tangent vector
   const double absN = -c.N;
   c.phi = m - p.mu * absN;
-  Matrix3d dT_dr;
+  const Matrix3d dt_ds = -p.eps_t * P;  // dg_T/ds = P
+  Matrix3d dT_dr, dT_ds;
   if (m - p.mu * absN <= 0.0 || m == 0.0) {  // stick (36)
     c.T_vector = t;
     dT_dr = dt_dr;
+    dT_ds = dt_ds;
   } else {  // slip (36): T = mu |N| t / |t|
     c.slip = true;
     const Vector3d u = t / m;
     c.T_vector = p.mu * absN * u;
     const Eigen::RowVector3d dabsN_dr = -p.eps_n * n.transpose();
-    dT_dr = p.mu * u * dabsN_dr +
-            (p.mu * absN / m) * (Matrix3d::Identity() - u * u.transpose()) * dt_dr;
+    const Matrix3d dir = (p.mu * absN / m) * (Matrix3d::Identity() - u * u.transpose());
+    dT_dr = p.mu * u * dabsN_dr + dir * dt_dr;
+    dT_ds = dir * dt_ds;
   }
+  if (roll) c.stiffness_roll = dT_ds;
+  c.stiffness_tangential = dT_dr;
   c.T = a_inv * (J.transpose() * c.T_vector);  // contravariant components T^i (output)
   c.force += c.T_vector;
   c.stiffness += dT_dr;

@@ -102,8 +102,10 @@ struct ContactPoint {
   Vector2d xi = Vector2d::Zero();        ///< foot parameters
   Vector3d foot = Vector3d::Zero();
   Vector3d normal = Vector3d::Zero();
-  Vector3d force = Vector3d::Zero();      ///< f on the deformable point
-  Matrix3d stiffness = Matrix3d::Zero();  ///< df/dr
+  Vector3d force = Vector3d::Zero();           ///< f on the deformable point
+  Matrix3d stiffness = Matrix3d::Zero();       ///< df/dr
+  Matrix3d stiffness_roll = Matrix3d::Zero();  ///< df/ds, s the rolling displacement (if given)
+  Matrix3d stiffness_tangential = Matrix3d::Zero();  ///< dT/dr, the tangential force's part
 };
 
 /// Evaluates the law at the deformable point r whose closest point on `s` is `foot` (computed
@@ -112,9 +114,15 @@ struct ContactPoint {
 /// vertices the tangent drops the terms of the held parameters. `lambda_n` <= 0: the normal
 /// multiplier of the augmented Lagrangian at this point (0: the penalty law (34)). `lambda_t`:
 /// the tangential multiplier, used in (66) in place of the committed force T_(n) (null: T_(n)).
+/// `roll`: the displacement s of the body's material point at the contact relative to its
+/// centre line since the anchor (a rope turning about its axis by dphi carries its surface
+/// point by about -R dphi t x n): the slip is then g_T = P (rho - rho_(n) + s), the material
+/// point's motion, so that a point that rolls without slipping sticks; stiffness_roll = df/ds
+/// (null: s = 0).
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
-                              double lambda_n = 0.0, const Vector3d* lambda_t = nullptr);
+                              double lambda_n = 0.0, const Vector3d* lambda_t = nullptr,
+                              const Vector3d* roll = nullptr);
 
 /// The history of a point at rest on its foot: anchored there, no tangential force (the start
 /// state, before the first commit).

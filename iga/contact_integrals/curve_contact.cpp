@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 
 #include "geometry/differential_geometry.hpp"
@@ -77,9 +78,10 @@ void project_cold(const RigidSurface& rigid, const std::vector<int>& cold,
 }
 
 // The point law at a point with its foot found: false (law cleared) without a foot or beyond
-// an open edge, where there is no contact; `anchor_start`: the first assembly (see assemble).
+// an open edge, where there is no contact; `anchor_start`: the first assembly (see assemble);
+// `roll`: the rolling displacement of a rod with torsion (null: none).
 bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_params, bool tangential,
-                    bool anchor_start, CurveContactPoint& cp) {
+                    bool anchor_start, const Vector3d* roll, CurveContactPoint& cp) {
   cp.law = ContactPoint();
   cp.N = cp.T = cp.B = 0.0;
   if (!found(cp.foot.status)) return false;
@@ -89,8 +91,54 @@ bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_para
   }
   if (beyond_open_edge(cp.foot, cp.x)) return false;  // not in contact
   cp.law = evaluate_contact(rigid.patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
-                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr);
+                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr, roll);
   return true;
+}
+
+// The rolling displacement of a rod with torsion at a point (CurveContact::set_twisting_rod):
+// s(dphi) = -R dphi b_c, b_c = t_c x n_c, and its first two derivatives in dphi.
+struct Roll {
+  Vector3d s, s1, s2;
+};
+Roll roll_of(const CurveContactPoint& cp, double R) {
+  const Vector3d b = cp.frame_t_c.cross(cp.normal_c);
+  return {-R * cp.spin * b, -R * b, Vector3d::Zero()};
+}
+
+// The twist part of an active point: the friction's work T.s_phi d(dphi) on the DOFs of the rod
+// element holding it (sp: the spin and its derivatives there), and the coupling blocks of the
+// tangent (see CurveContact::set_twisting_rod): with f = w T.s_phi,
+//   R_j -= f g_j (g = d dphi / dq),
+//   K_(a r) k -= w R_a (dT/ds s_phi)_r g_k,   K_j (b c) -= w g_j (s_phi^T dT/dr)_c R_b,
+//   K_jk -= w [(s_phi^T dT/ds s_phi + T.s_phi2) g_j g_k + T.s_phi H_jk].
+void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, int p,
+                     const TwistingRod& rod, const TwistingRod::Spin& sp, const Roll& roll,
+                     Eigen::VectorXd& R, std::vector<Eigen::Triplet<double>>* K) {
+  const Vector3d& T = cp.law.T_vector;
+  const double w = cp.weight, f = T.dot(roll.s1);
+  const auto ne = static_cast<int>(sp.gradient.size());
+  for (int j = 0; j < ne; ++j) R[rod.global_dof(sp.element, j)] -= w * f * sp.gradient[j];
+  if (!K) return;
+  const Vector3d ks = cp.law.stiffness_roll * roll.s1;                              // dT/ds s_phi
+  const Eigen::RowVector3d sk = roll.s1.transpose() * cp.law.stiffness_tangential;  // s^T dT/dr
+  const double kss = roll.s1.dot(ks) + T.dot(roll.s2);
+  for (int a = 0; a <= p; ++a) {
+    const double Ra = basis.N[a];
+    const int A = basis.first + a;
+    for (int k = 0; k < ne; ++k) {
+      const int gk = rod.global_dof(sp.element, k);
+      for (int r = 0; r < 3; ++r) {
+        K->emplace_back(3 * A + r, gk, -w * Ra * ks[r] * sp.gradient[k]);
+        K->emplace_back(gk, 3 * A + r, -w * sp.gradient[k] * sk[r] * Ra);
+      }
+    }
+  }
+  for (int j = 0; j < ne; ++j)
+    for (int k = 0; k < ne; ++k) {
+      const double v = kss * sp.gradient[j] * sp.gradient[k] + f * sp.hessian(j, k);
+      if (v != 0.0)
+        K->emplace_back(rod.global_dof(sp.element, j), rod.global_dof(sp.element, k), -w * v);
+    }
 }
 
 // R_a -= int R_a f ds at an active point.
@@ -155,9 +203,30 @@ void add_near_stiffness(const CurveContactPoint& cp, const RationalBasis& basis,
 
 }  // namespace
 
+void CurveContact::set_twisting_rod(const TwistingRod* rod) {
+  if (rod &&
+      (rod->num_control_points() != ref_.num_control_points() || rod->degree() != ref_.degree()))
+    throw std::invalid_argument(
+        "CurveContact::set_twisting_rod: the rod's curve is not the contact's reference");
+  twist_ = rod;
+}
+
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
+  // A rod with torsion: its knot twists follow the control points in x.
+  std::span<const Vector3d> xb(x);
+  thread_local std::vector<double> alpha;
+  if (twist_) {
+    const std::size_t n = static_cast<std::size_t>(ref_.num_control_points());
+    if (x.size() != n + static_cast<std::size_t>(twist_->num_knots()))
+      throw std::invalid_argument("CurveContact: a rod with torsion needs its points and twists");
+    if (!turn_.isIdentity(0.0))
+      throw std::invalid_argument("CurveContact: a rod with torsion on a moving tool");
+    xb = xb.first(n);
+    alpha.resize(static_cast<std::size_t>(twist_->num_knots()));
+    for (std::size_t k = 0; k < alpha.size(); ++k) alpha[k] = x[n + k][0];
+  }
   // Current positions (77); the points without a warm start go through the broad phase.
   cold_.clear();
   cold_x_.clear();
@@ -190,7 +259,25 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       ++next_cold;
     else
       cp.foot = rigid_->closest_point(cp.x, cp.foot);
-    if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start, cp)) continue;
+    TwistingRod::Spin sp;
+    Roll roll{};
+    if (twist_) {
+      if (cp.frame_t_c.isZero()) {  // the first assembly: the frame at rest
+        const TwistStrains st = twist_->strains(cp.eta, xb, alpha);
+        cp.frame_t_c = st.t;
+        cp.frame_d1_c = st.d1;
+        if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
+      }
+      sp = twist_->spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, xb, alpha);
+      cp.frame_t = sp.t;
+      cp.frame_d1 = sp.d1;
+      cp.spin = sp.value;
+      roll = roll_of(cp, params_.radius);
+    }
+    cp.torque = 0.0;
+    if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
+                        twist_ ? &roll.s : nullptr, cp))
+      continue;
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
       continue;
@@ -199,6 +286,10 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
     add_point_residual(cp, basis_[i], p, R);
     if (K) add_point_tangent(cp, basis_[i], p, turn_, *K);
+    if (twist_) {
+      add_twist_terms(cp, basis_[i], p, *twist_, sp, roll, R, K);
+      cp.torque = cp.law.T_vector.dot(roll.s1);
+    }
     set_frame_forces(basis_[i], p, x, cp);
   }
   // No point in contact, some a hair above the surface: the tangent gets their normal penalty
@@ -216,6 +307,14 @@ void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
     cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
     cp.x_committed = cp.x;
+    if (twist_) {  // the rolling displacement starts again from here
+      cp.frame_t_c = cp.frame_t;
+      cp.frame_d1_c = cp.frame_d1;
+      cp.normal_c = cp.law.active           ? cp.law.normal
+                    : found(cp.foot.status) ? cp.foot.normal
+                                            : Vector3d::Zero();
+      cp.spin = 0.0;
+    }
   }
   augmentation_.commit(points_);
 }

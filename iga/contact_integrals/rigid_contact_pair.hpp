@@ -47,10 +47,13 @@ class RigidContactPair : public ContactPair {
     contact_.assemble(x_, g_, K);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
     force_.setZero();
     moment_.setZero();
+    // Entries past the body's control points (a rod's twists) are no forces on the tool.
+    const auto body_points = static_cast<std::size_t>(contact_.num_body_points());
     for (std::size_t a = 0; a < x.size(); ++a) {
       const auto i = static_cast<Eigen::Index>(3 * a);
       const Vector3d ga = turn ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
       g.segment<3>(i) += ga;
+      if (a >= body_points) continue;
       force_ += ga;  // g_a = -f_a: the force on the tool
       moment_ += x[a].cross(ga);
     }

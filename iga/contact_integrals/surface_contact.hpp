@@ -165,6 +165,8 @@ class SurfaceContact {
   /// invalid parameters. `rigid` must outlive this object.
   SurfaceContact(const NurbsSurface& reference, const RigidSurface& rigid,
                  const SurfaceContactParameters& params);
+  /// Control points of the body.
+  int num_body_points() const { return ref_.num_u() * ref_.num_v(); }
 
   /// Adds the contact contributions at the current control points x (3 unknowns per control
   /// point, dof 3 a + k, a = reference.index(i, j)) to R and, if K is not null, appends the

@@ -304,6 +304,14 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
       R1 += B.dN[static_cast<std::size_t>(j)] * reference_.control_point(B.first + j);
     const double A = R1.squaredNorm();
     const Strain r = strain_at(B, (xi - el.range.lo) / h, std::sqrt(A), A);
+    if (out.spin_from) {  // the spin about t since the frame (t_c, d1_c): atan2 as for Delta_e
+      const JV carried =
+          sr(JV::constant(out.spin_from->first), r.t, JV::constant(out.spin_from->second));
+      const Jt spin = atan2(dot(cross(carried, r.d1), r.t), dot(carried, r.d1));
+      out.W = spin.v;
+      out.f = spin.g;
+      out.K = spin.H;
+    }
     TwistStrains& o = out.strains;
     o.eps = r.eps.v;
     o.axial_force = S.EA * o.eps;
@@ -410,6 +418,27 @@ void TwistingRod::knot_moment(int knot, const Vector3d& M, double Mt, std::span<
   evaluate(e, x, alpha, committed_, ev);
   f = ev.f;
   K = ev.K;
+}
+
+TwistingRod::Spin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                                          std::span<const Vector3d> x,
+                                          std::span<const double> alpha) const {
+  check(x, alpha);
+  Spin sp;
+  while (sp.element + 1 < num_elements() &&
+         xi >= elements_[static_cast<std::size_t>(sp.element)].range.hi)
+    ++sp.element;
+  Eval ev;
+  ev.xi = &xi;
+  const std::pair<Vector3d, Vector3d> from{t_c, d1_c};
+  ev.spin_from = &from;
+  evaluate(sp.element, x, alpha, committed_, ev);
+  sp.value = ev.W;
+  sp.gradient = ev.f;
+  sp.hessian = ev.K;
+  sp.t = ev.strains.t;
+  sp.d1 = ev.strains.d1;
+  return sp;
 }
 
 TwistStrains TwistingRod::strains(double xi, std::span<const Vector3d> x,

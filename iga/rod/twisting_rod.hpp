@@ -67,6 +67,7 @@
 #pragma once
 
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "iga/rod/kirchhoff_rod.hpp"
@@ -131,6 +132,21 @@ class TwistingRod {
   /// Global DOF of local DOF l of element e (the header's numbering).
   int global_dof(int e, int l) const;
 
+  /// The rotation of the section at xi about its tangent since it had the frame (t_c, d1_c)
+  /// (e.g. at the last commit): the angle from SR(t_c -> t) d1_c to d1 about t (in (-pi, pi]),
+  /// with its gradient and Hessian with respect to the DOFs of the element holding xi (local
+  /// numbering, global_dof); and the current frame there. A rope's contact point rolls by it
+  /// (iga/contact_integrals/curve_contact.hpp).
+  struct Spin {
+    int element = 0;
+    double value = 0.0;
+    Eigen::VectorXd gradient;
+    Eigen::MatrixXd hessian;
+    Vector3d t = Vector3d::Zero(), d1 = Vector3d::Zero();
+  };
+  Spin spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c, std::span<const Vector3d> x,
+                  std::span<const double> alpha) const;
+
   /// Position, frame and strains at parameter xi.
   TwistStrains strains(double xi, std::span<const Vector3d> x, std::span<const double> alpha) const;
   Vector3d point(double xi, std::span<const Vector3d> x) const;
@@ -184,6 +200,8 @@ class TwistingRod {
     int moment_side = -1;
     Vector3d M = Vector3d::Zero();
     double Mt = 0.0;
+    /// With xi: also the spin about t since the frame (t_c, d1_c) as W, f, K.
+    const std::pair<Vector3d, Vector3d>* spin_from = nullptr;
     double W = 0.0;
     Eigen::VectorXd f;
     Eigen::MatrixXd K;
@@ -222,6 +240,12 @@ class TwistingRod {
 class TwistingRodProblem : public ControlPointProblem {
  public:
   explicit TwistingRodProblem(TwistingRod rod);
+  // Contact pairs keep a pointer to rod() (CurveContact::set_twisting_rod): not copied or moved.
+  TwistingRodProblem(const TwistingRodProblem&) = delete;
+  TwistingRodProblem& operator=(const TwistingRodProblem&) = delete;
+  TwistingRodProblem(TwistingRodProblem&&) = delete;
+  TwistingRodProblem& operator=(TwistingRodProblem&&) = delete;
+  ~TwistingRodProblem() override = default;
 
   const TwistingRod& rod() const { return rod_; }
   int num_control_points() const override { return rod_.num_control_points(); }
