@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -123,6 +124,35 @@ std::vector<Case> sweeps_from(const JsonCursor& s, const Json& doc, const Pointe
   return cases;
 }
 
+/// --rod torsion: every rod body of the model becomes a rod with torsion, its material gets
+/// GJ = 0.8 EI where it has none (a circle of Poisson's ratio 0.25: GJ = EI / (1 + nu)), and the
+/// twist is held where a displacement is prescribed (the pulled end). Malformed entries are
+/// left for the model's validation.
+void make_twisting(Json& doc) {
+  if (!doc.is_object() || !doc.contains("bodies") || !doc["bodies"].is_object()) return;
+  for (auto& [name, body] : doc["bodies"].items()) {
+    if (!body.is_object() || body.value("type", "") != "rod") continue;
+    body["torsion"] = true;
+    const std::string mat = body.value("material", "");
+    if (doc.contains("materials") && doc["materials"].contains(mat)) {
+      Json& m = doc["materials"][mat];
+      if (m.is_object() && m.value("type", "") == "rod" && !m.contains("GJ") && m.contains("EI") &&
+          m["EI"].is_number())
+        m["GJ"] = 0.8 * m["EI"].get<double>();
+      if (m.is_object() && m.value("type", "") == "rod_circular" && !m.contains("G") &&
+          !m.contains("nu"))
+        m["nu"] = 0.25;
+    }
+    if (!doc.contains("boundary_conditions") || !doc["boundary_conditions"].is_array()) continue;
+    Json twists = Json::array();
+    for (const Json& bc : doc["boundary_conditions"])
+      if (bc.is_object() && bc.value("type", "") == "displacement" &&
+          bc.value("body", "") == name && bc.contains("point") && bc["point"].is_string())
+        twists.push_back({{"type", "twist"}, {"body", name}, {"at", bc["point"]}});
+    for (Json& t : twists) doc["boundary_conditions"].push_back(std::move(t));
+  }
+}
+
 }  // namespace
 
 int run_rope_app(const RopeApp& ra, int argc, char** argv) {
@@ -148,7 +178,15 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
   cli.add_flag("--profile", profile,
                "Report the time shares: assembly (rod, contact), linear solves");
   cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
+  std::string rod_kind = "plain";
+  cli.add_option("--rod", rod_kind,
+                 "The rope: plain (the torsion-free rod) or torsion (the rod with torsion: GJ from "
+                 "the material, else 0.8 EI; its twist held at the pulled end; steps.csv gets the "
+                 "friction torque)")
+      ->check(CLI::IsMember({"plain", "torsion"}))
+      ->capture_default_str();
   if (const int status = parse_command_line(cli, argc, argv); status >= 0) return status;
+  const bool torsion = rod_kind == "torsion";
 
   // 2. Model: read, override, validate once (an error names the file and the JSON path).
   Json doc = read_model(model_file, false, sets);  // --quick is the sweep's own (app/quick)
@@ -160,6 +198,7 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
       c.erase("max_augmentations");
       c.erase("slip_tol");
     }
+  if (torsion) make_twisting(doc);
   const JsonCursor root(doc, model_file);
   if (!root.has("app"))
     root.fail_plain("missing required key \"app\" (the sweep of the " + ra.name + " app)");
@@ -223,7 +262,8 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
                 "plateau_spread,status\n"
               : "case,sweep,mu,phi,T_ratio,exact,rel_error,pull,plateau_mean,plateau_spread,"
                 "status\n");
-  steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations\n";
+  steps << "case,mu,phi,pitch,t,T_ratio,active,stick,slip,iterations"
+        << (torsion ? ",friction_torque\n" : "\n");
   std::ofstream pressure(dir / (ra.name + "_pressure.csv"));
   if (!pressure) throw std::runtime_error("cannot write to " + out);
   pressure << "case,mu,phi,theta,pressure,exact\n";
@@ -248,12 +288,19 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
     AnalysisResult r;
     // The line pressure of the last full_slip_steps steps: the plateau's first one is written.
     std::deque<std::string> recent_pressure;
+    std::map<double, double> friction_torque;  // per step time (--rod torsion)
     for (;;) {
       a.emplace(Analysis::from_json(d, model_file));
       recent_pressure.clear();
       const Json& rope = d.at(ptr.phi_deg.parent_pointer());
+      friction_torque.clear();
       auto keep_pressure = [&](const VectorXd&, double t, const AnalysisStep&) {
         const CurveContactPair* rc = a->rod_contact();
+        if (rc && torsion) {  // the friction's moment about the rope's axis, integrated
+          double m = 0.0;
+          for (const CurveContactPoint& cp : rc->contact().points()) m += cp.weight * cp.torque;
+          friction_torque[t] = m;
+        }
         if (!rc || t <= a->stop_at_full_slip_after()) return true;
         std::ostringstream rows;
         write_pressure_rows(rows, c.name, c.mu, phi, T0, rho, rope, rc->contact(),
@@ -282,7 +329,11 @@ int run_rope_app(const RopeApp& ra, int argc, char** argv) {
       steps << c.name << "," << csv_number(c.mu, 10) << "," << csv_number(phi, 10) << ","
             << csv_number(c.pitch, 10) << "," << csv_number(s.t, 10) << ","
             << csv_number(s.reactions[0].norm() / T0, 10) << "," << s.contact.active << ","
-            << s.contact.stick << "," << s.contact.slip << "," << s.iterations << "\n";
+            << s.contact.stick << "," << s.contact.slip << "," << s.iterations
+            << (torsion
+                    ? "," + csv_number(friction_torque.count(s.t) ? friction_torque[s.t] : 0.0, 10)
+                    : std::string())
+            << "\n";
     steps.flush();
     const bool ok = r.full_slip && !r.steps.empty();
     // The sliding plateau: the run stops after full_slip_steps consecutive steps of steady

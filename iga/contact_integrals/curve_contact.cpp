@@ -105,6 +105,24 @@ Roll roll_of(const CurveContactPoint& cp, double R) {
   return {-R * cp.spin * b, -R * b, Vector3d::Zero()};
 }
 
+// A rod with torsion: the section's spin at the point since the commit (sp; the first
+// assembly takes the frame at rest as the committed one) and the rolling displacement.
+Roll spin_and_roll(const TwistingRod& rod, std::span<const Vector3d> x,
+                   std::span<const double> alpha, double radius, CurveContactPoint& cp,
+                   TwistingRod::Spin& sp) {
+  if (cp.frame_t_c.isZero()) {
+    const TwistStrains st = rod.strains(cp.eta, x, alpha);
+    cp.frame_t_c = st.t;
+    cp.frame_d1_c = st.d1;
+    if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
+  }
+  sp = rod.spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x, alpha);
+  cp.frame_t = sp.t;
+  cp.frame_d1 = sp.d1;
+  cp.spin = sp.value;
+  return roll_of(cp, radius);
+}
+
 // The twist part of an active point: the friction's work T.s_phi d(dphi) on the DOFs of the rod
 // element holding it (sp: the spin and its derivatives there), and the coupling blocks of the
 // tangent (see CurveContact::set_twisting_rod): with f = w T.s_phi,
@@ -261,19 +279,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       cp.foot = rigid_->closest_point(cp.x, cp.foot);
     TwistingRod::Spin sp;
     Roll roll{};
-    if (twist_) {
-      if (cp.frame_t_c.isZero()) {  // the first assembly: the frame at rest
-        const TwistStrains st = twist_->strains(cp.eta, xb, alpha);
-        cp.frame_t_c = st.t;
-        cp.frame_d1_c = st.d1;
-        if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
-      }
-      sp = twist_->spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, xb, alpha);
-      cp.frame_t = sp.t;
-      cp.frame_d1 = sp.d1;
-      cp.spin = sp.value;
-      roll = roll_of(cp, params_.radius);
-    }
+    if (twist_) roll = spin_and_roll(*twist_, xb, alpha, params_.radius, cp, sp);
     cp.torque = 0.0;
     if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
                         twist_ ? &roll.s : nullptr, cp))

@@ -46,7 +46,7 @@ std::string CurveContactPair::describe() const {
 
 void CurveContactPair::add_tool_fields(SampledMesh& body) const {
   struct Fields {
-    double pressure = 0.0, T = 0.0, B = 0.0, state = 0.0;
+    double pressure = 0.0, T = 0.0, B = 0.0, state = 0.0, torque = 0.0;
   };
   // The weighted means per element.
   std::vector<Fields> per(elements_.size());
@@ -61,32 +61,51 @@ void CurveContactPair::add_tool_fields(SampledMesh& body) const {
       f.pressure += cp.weight * -cp.N;
       f.T += cp.weight * cp.T;
       f.B += cp.weight * cp.B;
+      f.torque += cp.weight * cp.torque;
       f.state = std::max(f.state, cp.law.slip ? 2.0 : 1.0);
     }
     if (w > 0.0) {
       f.pressure /= w;
       f.T /= w;
       f.B /= w;
+      f.torque /= w;
     }
   }
+  // A rod with torsion: also the friction torque about the centre line per length.
+  const bool twist = contact().twisting_rod() != nullptr;
   PointFields c;
-  c.name({"contact_pressure", "contact_traction_T", "contact_traction_B", "contact_state"}, {});
+  if (twist)
+    c.name({"contact_pressure", "contact_traction_T", "contact_traction_B", "contact_state",
+            "contact_torque"},
+           {});
+  else
+    c.name({"contact_pressure", "contact_traction_T", "contact_traction_B", "contact_state"}, {});
   for (int e : body.elements) {
     const Fields f = e >= 0 && static_cast<std::size_t>(e) < per.size()
                          ? per[static_cast<std::size_t>(e)]
                          : Fields{};
-    c.append({f.pressure, f.T, f.B, f.state}, {});
+    if (twist)
+      c.append({f.pressure, f.T, f.B, f.state, f.torque}, {});
+    else
+      c.append({f.pressure, f.T, f.B, f.state}, {});
   }
   body.fields.add(std::move(c));
 }
 
 SampledMesh CurveContactPair::tool_points() const {
   SampledMesh m;
-  m.fields.name({"N", "T", "B", "slip"}, {"normal"});
+  const bool twist = contact().twisting_rod() != nullptr;  // then also the friction torque
+  if (twist)
+    m.fields.name({"N", "T", "B", "slip", "torque"}, {"normal"});
+  else
+    m.fields.name({"N", "T", "B", "slip"}, {"normal"});
   for (const CurveContactPoint& cp : contact().points()) {
     if (!cp.law.active) continue;
     m.points.push_back(cp.x);
-    m.fields.append({cp.N, cp.T, cp.B, cp.law.slip ? 1.0 : 0.0}, {cp.law.normal});
+    if (twist)
+      m.fields.append({cp.N, cp.T, cp.B, cp.law.slip ? 1.0 : 0.0, cp.torque}, {cp.law.normal});
+    else
+      m.fields.append({cp.N, cp.T, cp.B, cp.law.slip ? 1.0 : 0.0}, {cp.law.normal});
   }
   return m;
 }

@@ -61,7 +61,8 @@ TEST_CASE("CurveContact with torsion: tangent = d(residual)/d(points, twists), s
     cc.assemble(x0, R0, nullptr);
     cc.commit();
     std::vector<Vector3d> x = x0;
-    for (int i = 0; i < n; ++i) x[static_cast<std::size_t>(i)] += 0.002 * Vector3d(U(g), U(g), U(g));
+    for (int i = 0; i < n; ++i)
+      x[static_cast<std::size_t>(i)] += 0.002 * Vector3d(U(g), U(g), U(g));
     for (int k = 0; k < m; ++k) x[static_cast<std::size_t>(n + k)][0] = 0.05 * U(g);
     const double err = test::tangent_error(cc, x, 1e-7);
     const CurveContactCounts c = cc.counts();
@@ -137,9 +138,10 @@ TEST_CASE("CurveContact with torsion: a rope turned at both ends rolls by R thet
     for (const CurveContactPoint& cp :
          dynamic_cast<const CurveContactPair&>(P.pair(0)).contact().points())
       torque += cp.weight * cp.torque;
-    std::printf("rolling rope, mu = %.0f: centre line y in [%.5f, %.5f] (rolling: %.5f), "
-                "max twist rate %.2e, friction torque %.2e\n",
-                mu, y_min, y_max, -R * theta, kappa3, torque);
+    std::printf(
+        "rolling rope, mu = %.0f: centre line y in [%.5f, %.5f] (rolling: %.5f), "
+        "max twist rate %.2e, friction torque %.2e\n",
+        mu, y_min, y_max, -R * theta, kappa3, torque);
     if (mu > 0.0) {
       CHECK(y_min == Approx(-R * theta).epsilon(2e-3));
       CHECK(y_max == Approx(-R * theta).epsilon(2e-3));
