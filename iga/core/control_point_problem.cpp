@@ -2,6 +2,7 @@
 #include "iga/core/control_point_problem.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace iga {
@@ -161,6 +162,44 @@ std::vector<Vector3d> ControlPointProblem::nodal_residual(const VectorXd& u, dou
   std::vector<Vector3d> r(X_.size());
   for (std::size_t i = 0; i < r.size(); ++i) r[i] = g_.segment<3>(3 * static_cast<Eigen::Index>(i));
   return r;
+}
+
+void ControlPointProblem::end_symmetry(int i0, int i1, const Vector3d& normal,
+                                       const std::string& who, DofMap::FailFn fail) {
+  if (!(normal.norm() > 0.0) || !normal.allFinite())
+    fail(who + ": the plane's normal must be a non-zero vector");
+  const Vector3d n = normal.normalized();
+  const Vector3d T = reference_point(i1) - reference_point(i0);
+  if (!(std::abs(T.normalized().dot(n)) > 1.0 - 1e-9))
+    fail(who +
+         ": the rod's end tangent is not along the plane's normal (the rod must cross the "
+         "symmetry plane at right angles)");
+  int axis = -1;  // n along a coordinate axis?
+  for (int k = 0; k < 3; ++k)
+    if (std::abs(n[k]) > 1.0 - 1e-14) axis = k;
+  if (axis >= 0) {
+    if (!dofs_.rotated(i0) && !dofs_.rotated(i1)) {
+      if (!constrained(i0, axis)) fix(i0, axis);
+      for (int k = 0; k < 3; ++k)
+        if (k != axis) dofs_.tie(i1, k, i0, k);
+      return;
+    }
+  }
+  for (int i : {i0, i1})
+    for (int k = 0; k < 3; ++k)
+      if (dofs_.rotated(i) || constrained(i, k))
+        fail(who + ": control point " + std::to_string(i) +
+             " already has a local basis or constraints (a plane normal to a coordinate axis "
+             "works with them)");
+  Matrix3d Q;
+  Q.col(2) = n;
+  Q.col(0) = n.unitOrthogonal();
+  Q.col(1) = n.cross(Q.col(0));
+  set_local_basis(i0, Q);
+  set_local_basis(i1, Q);
+  fix(i0, 2);
+  dofs_.tie(i1, 0, i0, 0);
+  dofs_.tie(i1, 1, i0, 1);
 }
 
 }  // namespace iga

@@ -104,6 +104,11 @@ class ControlPointProblem : public Body {
   /// Nodal forces f_i from a dense per-point array (zero entries dropped).
   void add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve);
   const std::vector<Vector3d>& reference_points() const { return X_; }
+  /// A rod's end crossing a symmetry plane of normal n at right angles (the reference tangent
+  /// x_i1 - x_i0 along n): the end point i0 stays in the plane and its neighbour i1 moves with
+  /// it in the plane's directions (RodProblem::symmetry explains it); errors through fail,
+  /// prefixed with `who`.
+  void end_symmetry(int i0, int i1, const Vector3d& n, const std::string& who, DofMap::FailFn fail);
 
   DofMap dofs_;
 

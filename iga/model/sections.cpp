@@ -346,8 +346,9 @@ template <class P>
 void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, P& p) {
   constexpr bool kTwist = std::is_same_v<P, TwistingRodProblem>;
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = kTwist ? one_of(o["type"], {"fix", "clamp", "displacement", "twist"})
-                                  : one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
+  const std::string type =
+      kTwist ? one_of(o["type"], {"fix", "clamp", "symmetry", "displacement", "twist"})
+             : one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
   check_body(o, ctx);
   try {
     if (type == "fix") {
@@ -367,13 +368,11 @@ void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, P& p)
           p.prescribe_twist(k, angle, curve_of(o, ctx));
       }
     } else if (type == "symmetry") {  // the end crosses a symmetry plane of normal n
-      if constexpr (!kTwist) {
-        o.expect_object({"type", "body", "end", "normal", "description"});
-        const std::string e = one_of(o["end"], {"start", "end"});
-        const Vector3d n = vec3(o["normal"]);
-        if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
-        p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
-      }
+      o.expect_object({"type", "body", "end", "normal", "description"});
+      const std::string e = one_of(o["end"], {"start", "end"});
+      const Vector3d n = vec3(o["normal"]);
+      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
+      p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
     } else {
       o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
                        "motion", "description"});
@@ -412,17 +411,13 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, P& p) {
   } else if (type == "line_load") {
     o.expect_object({"type", "name", "body", "q", "curve", "description"});
     p.add_line_load(vec3(o["q"]), curve_of(o, ctx));
-  } else if constexpr (kTwist) {  // at a knot: "start", "end" or a knot index
-    try {
-      if (type == "torque") {
-        o.expect_object({"type", "name", "body", "at", "torque", "curve", "description"});
-        p.add_torque(twist_knot(o["at"], p), o["torque"].as_number(), curve_of(o, ctx));
-      } else {
-        o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
-        p.add_moment(twist_knot(o["at"], p), vec3(o["moment"]), curve_of(o, ctx));
-      }
-    } catch (const RodError& e) {
-      o.fail_plain(e.what());
+  } else if constexpr (kTwist) {
+    if (type == "torque") {
+      o.expect_object({"type", "name", "body", "at", "torque", "curve", "description"});
+      p.add_torque_at(at(o["at"]), o["torque"].as_number(), curve_of(o, ctx));
+    } else {
+      o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
+      p.add_moment_at(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
     }
   } else {
     o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});

@@ -515,42 +515,9 @@ RodProblem::RodProblem(KirchhoffRod rod)
       rod_(std::move(rod)) {}
 
 void RodProblem::symmetry(RodEnd end, const Vector3d& normal) {
-  if (!(normal.norm() > 0.0) || !normal.allFinite())
-    throw RodError("RodProblem::symmetry: the plane's normal must be a non-zero vector");
-  const Vector3d n = normal.normalized();
   const int last = num_control_points() - 1;
-  const int i0 = end == RodEnd::kStart ? 0 : last, i1 = end == RodEnd::kStart ? 1 : last - 1;
-  const Vector3d T = (rod_.reference().control_point(i1) - rod_.reference().control_point(i0));
-  if (!(std::abs(T.normalized().dot(n)) > 1.0 - 1e-9))
-    throw RodError(
-        "RodProblem::symmetry: the rod's end tangent is not along the plane's normal "
-        "(the rod must cross the symmetry plane at right angles)");
-  int axis = -1;  // n along a coordinate axis?
-  for (int k = 0; k < 3; ++k)
-    if (std::abs(n[k]) > 1.0 - 1e-14) axis = k;
-  if (axis >= 0) {
-    if (!dofs_.rotated(i0) && !dofs_.rotated(i1)) {
-      if (!constrained(i0, axis)) fix(i0, axis);
-      for (int k = 0; k < 3; ++k)
-        if (k != axis) dofs_.tie(i1, k, i0, k);
-      return;
-    }
-  }
-  for (int i : {i0, i1})
-    for (int k = 0; k < 3; ++k)
-      if (dofs_.rotated(i) || constrained(i, k))
-        throw RodError("RodProblem::symmetry: control point " + std::to_string(i) +
-                       " already has a local basis or constraints (a plane normal to a "
-                       "coordinate axis works with them)");
-  Matrix3d Q;
-  Q.col(2) = n;
-  Q.col(0) = n.unitOrthogonal();
-  Q.col(1) = n.cross(Q.col(0));
-  set_local_basis(i0, Q);
-  set_local_basis(i1, Q);
-  fix(i0, 2);
-  dofs_.tie(i1, 0, i0, 0);
-  dofs_.tie(i1, 1, i0, 1);
+  end_symmetry(end == RodEnd::kStart ? 0 : last, end == RodEnd::kStart ? 1 : last - 1, normal,
+               "RodProblem::symmetry", &rod_fail);
 }
 
 void RodProblem::clamp(RodEnd end) {

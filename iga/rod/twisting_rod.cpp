@@ -229,11 +229,10 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
   JV t0, d10, t1, d11;
   nodal(el.dN_lo, e, ia, t0, d10);
   nodal(el.dN_hi, e + 1, ia + 1, t1, d11);
-  if (out.moment_side >= 0) {
-    // Virtual work M.(t x dt) + a dd1.d2, a = M.t + Mt: f_j = sum_c v_c t_c,j + a d1_c,j d2_c
-    // with v = M x t; K_jk = d f_j / d q_k from the jets' gradients and Hessians.
-    const JV& t = out.moment_side == 0 ? t0 : t1;
-    const JV& d1 = out.moment_side == 0 ? d10 : d11;
+  // A couple and a torque on the frame (t, d1): virtual work M.(t x dt) + a dd1.d2,
+  // a = M.t + Mt: f_j = sum_c v_c t_c,j + a d1_c,j d2_c with v = M x t; K_jk = d f_j / d q_k
+  // from the jets' gradients and Hessians.
+  auto moment_terms = [&](const JV& t, const JV& d1) {
     const JV d2 = cross(t, d1);
     const JV v = cross(JV::constant(out.M), t);
     const Jt a = dot(t, out.M) + out.Mt;
@@ -245,8 +244,7 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
       out.K += (d2.c[c].v * d1.c[c].g) * a.g.transpose() + (a.v * d2.c[c].v) * d1.c[c].H;
       out.K += a.v * (d1.c[c].g * d2.c[c].g.transpose());
     }
-    return;
-  }
+  };
   // Delta_e: the angle about t1 from SR(t0 -> t1) d10 to d11, continued from the committed one.
   const JV m = sr(t0, t1, d10);
   Jt Delta = atan2(dot(cross(m, d11), t1), dot(m, d11));
@@ -304,6 +302,10 @@ void TwistingRod::kernel(int e, std::span<const Vector3d> x, std::span<const dou
       R1 += B.dN[static_cast<std::size_t>(j)] * reference_.control_point(B.first + j);
     const double A = R1.squaredNorm();
     const Strain r = strain_at(B, (xi - el.range.lo) / h, std::sqrt(A), A);
+    if (out.moment) {  // the frame at xi is the nodal triad at a knot: continuous
+      moment_terms(r.t, r.d1);
+      return;
+    }
     if (out.spin_from) {  // the spin about t since the frame (t_c, d1_c): atan2 as for Delta_e
       const JV carried =
           sr(JV::constant(out.spin_from->first), r.t, JV::constant(out.spin_from->second));
@@ -404,15 +406,18 @@ int TwistingRod::global_dof(int e, int l) const {
                     : 3 * (num_control_points() + e + l - 3 * np);
 }
 
-void TwistingRod::knot_moment(int knot, const Vector3d& M, double Mt, std::span<const Vector3d> x,
-                              std::span<const double> alpha, int& e, Eigen::VectorXd& f,
-                              Eigen::MatrixXd& K) const {
+void TwistingRod::moment_at(double xi, const Vector3d& M, double Mt, std::span<const Vector3d> x,
+                            std::span<const double> alpha, int& e, Eigen::VectorXd& f,
+                            Eigen::MatrixXd& K) const {
   check(x, alpha);
-  if (knot < 0 || knot >= num_knots())
-    throw RodError("TwistingRod::knot_moment: knot " + std::to_string(knot) + " out of range");
-  e = std::min(knot, num_elements() - 1);
+  const Interval dom = reference_.domain();
+  if (!(xi >= dom.lo && xi <= dom.hi))
+    throw RodError("TwistingRod::moment_at: parameter " + num(xi) + " outside the curve's domain");
+  e = 0;
+  while (e + 1 < num_elements() && xi >= elements_[static_cast<std::size_t>(e)].range.hi) ++e;
   Eval ev;
-  ev.moment_side = knot == e ? 0 : 1;
+  ev.xi = &xi;
+  ev.moment = true;
   ev.M = M;
   ev.Mt = Mt;
   evaluate(e, x, alpha, committed_, ev);
@@ -570,6 +575,12 @@ void TwistingRodProblem::clamp(RodEnd end) {
   fix_twist(k);
 }
 
+void TwistingRodProblem::symmetry(RodEnd end, const Vector3d& n) {
+  const int last = rod_.num_control_points() - 1;
+  end_symmetry(end == RodEnd::kStart ? 0 : last, end == RodEnd::kStart ? 1 : last - 1, n,
+               "TwistingRodProblem::symmetry", &twist_fail);
+}
+
 void TwistingRodProblem::fix_twist(int knot) {
   if (knot < 0 || knot >= rod_.num_knots())
     throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range [0, " +
@@ -609,16 +620,28 @@ void TwistingRodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve 
   add_nodal_load(std::move(forces), std::move(curve));
 }
 
-void TwistingRodProblem::add_torque(int knot, double Mt, LoadCurve curve) {
-  if (knot < 0 || knot >= rod_.num_knots())
-    throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range");
-  moments_.push_back({knot, Vector3d::Zero(), Mt, std::move(curve)});
+void TwistingRodProblem::add_torque_at(double xi, double Mt, LoadCurve curve) {
+  check_parameter(xi);
+  moments_.push_back({xi, Vector3d::Zero(), Mt, std::move(curve)});
 }
 
-void TwistingRodProblem::add_moment(int knot, const Vector3d& M, LoadCurve curve) {
+void TwistingRodProblem::add_moment_at(double xi, const Vector3d& M, LoadCurve curve) {
+  check_parameter(xi);
+  moments_.push_back({xi, M, 0.0, std::move(curve)});
+}
+
+void TwistingRodProblem::check_parameter(double xi) const {
+  const Interval dom = rod_.reference().domain();
+  if (!(xi >= dom.lo && xi <= dom.hi))
+    throw RodError("TwistingRodProblem: parameter " + num(xi) + " outside the curve's domain [" +
+                   num(dom.lo) + ", " + num(dom.hi) + "]");
+}
+
+int TwistingRodProblem::check_knot(int knot) const {
   if (knot < 0 || knot >= rod_.num_knots())
-    throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range");
-  moments_.push_back({knot, M, 0.0, std::move(curve)});
+    throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range [0, " +
+                   std::to_string(rod_.num_knots() - 1) + "]");
+  return knot;
 }
 
 void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
@@ -633,7 +656,7 @@ void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, double t, V
     const double lam = mo.curve(t);
     if (lam == 0.0) continue;
     int e = 0;
-    rod_.knot_moment(mo.knot, lam * mo.M, lam * mo.Mt, x.first(n), alpha_, e, f, Km);
+    rod_.moment_at(mo.xi, lam * mo.M, lam * mo.Mt, x.first(n), alpha_, e, f, Km);
     for (Eigen::Index i = 0; i < f.size(); ++i) {
       const int gi = rod_.global_dof(e, static_cast<int>(i));
       g[gi] -= f[i];  // g = f_int - f_ext

@@ -123,12 +123,13 @@ class TwistingRod {
                 std::vector<Triplet>* K) const;
 
   /// The generalized forces of a couple M fixed in space and a torque Mt about the current
-  /// tangent at knot k, by their virtual work M.(t x dt) + (M.t + Mt) dd1.d2 on the spin of the
-  /// nodal triad, and their derivative K = df/dq (not symmetric): the element's DOFs (e: the
-  /// element holding the knot; f, K in its local numbering).
-  void knot_moment(int knot, const Vector3d& M, double Mt, std::span<const Vector3d> x,
-                   std::span<const double> alpha, int& e, Eigen::VectorXd& f,
-                   Eigen::MatrixXd& K) const;
+  /// tangent at parameter xi, by their virtual work M.(t x dt) + (M.t + Mt) dd1.d2 on the spin
+  /// of the section's frame there (at a knot: the nodal triad), and their derivative
+  /// K = df/dq (not symmetric): the element's DOFs (e: the element holding xi; f, K in its
+  /// local numbering). Throws RodError for xi outside the domain.
+  void moment_at(double xi, const Vector3d& M, double Mt, std::span<const Vector3d> x,
+                 std::span<const double> alpha, int& e, Eigen::VectorXd& f,
+                 Eigen::MatrixXd& K) const;
   /// Global DOF of local DOF l of element e (the header's numbering).
   int global_dof(int e, int l) const;
 
@@ -194,10 +195,9 @@ class TwistingRod {
   struct Eval {
     bool derivatives = false;
     const double* xi = nullptr;
-    /// >= 0: instead, the generalized force f and its derivative K of a couple M (fixed in
-    /// space) and a torque Mt about the current tangent at the element's knot moment_side
-    /// (0 left, 1 right).
-    int moment_side = -1;
+    /// With xi: instead, the generalized force f and its derivative K of a couple M (fixed in
+    /// space) and a torque Mt about the current tangent at xi.
+    bool moment = false;
     Vector3d M = Vector3d::Zero();
     double Mt = 0.0;
     /// With xi: also the spin about t since the frame (t_c, d1_c) as W, f, K.
@@ -252,6 +252,11 @@ class TwistingRodProblem : public ControlPointProblem {
 
   /// Clamp: the end point, the neighbour's components normal to the end tangent and the twist.
   void clamp(RodEnd end);
+  /// A symmetry plane through the end, normal n, crossed at right angles: the positions as
+  /// RodProblem::symmetry; the twist stays free, since a mirror-symmetric state carries no
+  /// torque through the plane (the section moment m(-s) = M m(s) of the mirror M makes its
+  /// component along n vanish there; the bending moments may not).
+  void symmetry(RodEnd end, const Vector3d& n);
   /// The end knot's twist (0: start, num_knots() - 1: end).
   int end_knot(RodEnd end) const { return end == RodEnd::kStart ? 0 : rod_.num_knots() - 1; }
   void fix_twist(int knot);
@@ -270,10 +275,16 @@ class TwistingRodProblem : public ControlPointProblem {
   void add_line_load(const Vector3d& q, Interval range, LoadCurve curve = ramp()) {
     add_nodal_load(rod_line_load(rod_.reference(), q, range), std::move(curve));
   }
-  /// Torque M_t about the current tangent at knot k (see the class comment).
-  void add_torque(int knot, double Mt, LoadCurve curve = ramp());
-  /// Couple M, fixed in space, at knot k (see the class comment).
-  void add_moment(int knot, const Vector3d& M, LoadCurve curve = ramp());
+  /// Torque M_t about the current tangent at parameter xi / at knot k (see the class comment).
+  void add_torque_at(double xi, double Mt, LoadCurve curve = ramp());
+  void add_torque(int knot, double Mt, LoadCurve curve = ramp()) {
+    add_torque_at(rod_.knot(check_knot(knot)), Mt, std::move(curve));
+  }
+  /// Couple M, fixed in space, at parameter xi / at knot k (see the class comment).
+  void add_moment_at(double xi, const Vector3d& M, LoadCurve curve = ramp());
+  void add_moment(int knot, const Vector3d& M, LoadCurve curve = ramp()) {
+    add_moment_at(rod_.knot(check_knot(knot)), M, std::move(curve));
+  }
 
   /// Control points and twists of the state.
   void split(const VectorXd& u, double t, std::vector<Vector3d>& x,
@@ -296,8 +307,10 @@ class TwistingRodProblem : public ControlPointProblem {
                       std::vector<Triplet>* K) override;
 
  private:
+  void check_parameter(double xi) const;
+  int check_knot(int knot) const;
   struct KnotMoment {
-    int knot = 0;
+    double xi = 0.0;
     Vector3d M = Vector3d::Zero();
     double Mt = 0.0;
     LoadCurve curve;

@@ -160,14 +160,20 @@ TEST_CASE("analysis: the keys of rods with torsion are checked at their JSON pat
   CHECK_THAT(error([](Json& d) { d["bodies"]["rod"]["bending"] = "transported_frame"; }),
              Catch::Contains("m.json: /bodies/rod/bending: a rod with torsion has its section "
                              "frame"));
-  CHECK_THAT(error([](Json& d) { d["loads"][0]["at"] = 40; }),
-             Catch::Contains("m.json: /loads/0/at: knot index must be in 0..32, got 40"));
+  CHECK_THAT(error([](Json& d) { d["loads"][0]["at"] = 1.5; }),
+             Catch::Contains("m.json: /loads/0/at: parameter must lie in the curve's domain"));
+  CHECK_THAT(error([](Json& d) {
+               d["boundary_conditions"].push_back(
+                   {{"type", "twist"}, {"body", "rod"}, {"at", 40}, {"angle", 1.0}});
+             }),
+             Catch::Contains("m.json: /boundary_conditions/1/at: knot index must be in 0..32, got "
+                             "40"));
   CHECK_THAT(
       error([](Json& d) {
-        d["boundary_conditions"].push_back({{"type", "symmetry"}, {"body", "rod"}});
+        d["boundary_conditions"].push_back({{"type", "twisted"}, {"body", "rod"}});
       }),
       Catch::Contains("m.json: /boundary_conditions/1/type: expected one of \"fix\", \"clamp\", "
-                      "\"displacement\", \"twist\""));
+                      "\"symmetry\", \"displacement\", \"twist\""));
   CHECK_THAT(error([](Json& d) {
                d["bodies"]["rod"]["torsion"] = false;
                d["boundary_conditions"].push_back(
@@ -179,7 +185,7 @@ TEST_CASE("analysis: the keys of rods with torsion are checked at their JSON pat
   CHECK(error([](Json& d) {
           d["boundary_conditions"].push_back(
               {{"type", "twist"}, {"body", "rod"}, {"at", "end"}, {"angle", 1.0}});
-          d["loads"].push_back({{"type", "torque"}, {"body", "rod"}, {"at", 5}, {"torque", 0.1}});
+          d["loads"].push_back({{"type", "torque"}, {"body", "rod"}, {"at", 0.5}, {"torque", 0.1}});
         }) == "no error");
 }
 
