@@ -101,19 +101,21 @@ struct Roll {
   Vector3d s, s1, s2;
 };
 Roll roll_of(const CurveContactPoint& cp, double R) {
-  const Vector3d b = cp.frame_t_c.cross(cp.normal_c);
+  const Vector3d b = cp.tangent_c.cross(cp.normal_c);  // in the tool's frame
   return {-R * cp.spin * b, -R * b, Vector3d::Zero()};
 }
 
 // A rod with torsion: the section's spin at the point since the commit (sp; the first
-// assembly takes the frame at rest as the committed one) and the rolling displacement.
+// assembly takes the frame at rest as the committed one) and the rolling displacement. x: the
+// rod's points in world orientation; Q: the tool's turn.
 Roll spin_and_roll(const TwistingRod& rod, std::span<const Vector3d> x,
-                   std::span<const double> alpha, double radius, CurveContactPoint& cp,
-                   TwistingRod::Spin& sp) {
+                   std::span<const double> alpha, double radius, const Matrix3d& Q,
+                   CurveContactPoint& cp, TwistingRod::Spin& sp) {
   if (cp.frame_t_c.isZero()) {
     const TwistStrains st = rod.strains(cp.eta, x, alpha);
     cp.frame_t_c = st.t;
     cp.frame_d1_c = st.d1;
+    cp.tangent_c = Q.transpose() * st.t;
     if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
   }
   sp = rod.spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x, alpha);
@@ -131,15 +133,26 @@ Roll spin_and_roll(const TwistingRod& rod, std::span<const Vector3d> x,
 //   K_jk -= w [(s_phi^T dT/ds s_phi + T.s_phi2) g_j g_k + T.s_phi H_jk].
 void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, int p,
                      const TwistingRod& rod, const TwistingRod::Spin& sp, const Roll& roll,
-                     Eigen::VectorXd& R, std::vector<Eigen::Triplet<double>>* K) {
+                     const Matrix3d& Q, Eigen::VectorXd& R,
+                     std::vector<Eigen::Triplet<double>>* K) {
+  // With a moving tool (Q its turn) the law's vectors are in the tool's frame and the spin's
+  // derivatives are with respect to world positions: the residual's position entries are
+  // turned back (the pair turns them forward), the coupling blocks turned to the world.
   const Vector3d& T = cp.law.T_vector;
   const double w = cp.weight, f = T.dot(roll.s1);
   const auto ne = static_cast<int>(sp.gradient.size());
-  for (int j = 0; j < ne; ++j) R[rod.global_dof(sp.element, j)] -= w * f * sp.gradient[j];
+  const int n_pos = 3 * (rod.degree() + 1);
+  for (int j = 0; j < n_pos; j += 3) {
+    const Vector3d gt = Q.transpose() * Vector3d(sp.gradient.segment<3>(j));
+    for (int c = 0; c < 3; ++c) R[rod.global_dof(sp.element, j + c)] -= w * f * gt[c];
+  }
+  for (int j = n_pos; j < ne; ++j) R[rod.global_dof(sp.element, j)] -= w * f * sp.gradient[j];
   if (!K) return;
-  const Vector3d ks = cp.law.stiffness_roll * roll.s1;                              // dT/ds s_phi
-  const Eigen::RowVector3d sk = roll.s1.transpose() * cp.law.stiffness_tangential;  // s^T dT/dr
-  const double kss = roll.s1.dot(ks) + T.dot(roll.s2);
+  const Vector3d ks_tool = cp.law.stiffness_roll * roll.s1;  // dT/ds s_phi
+  const Vector3d ks = Q * ks_tool;                           // in the world
+  const Eigen::RowVector3d sk =
+      roll.s1.transpose() * cp.law.stiffness_tangential * Q.transpose();  // s^T dT/dr, world
+  const double kss = roll.s1.dot(ks_tool) + T.dot(roll.s2);
   for (int a = 0; a <= p; ++a) {
     const double Ra = basis.N[a];
     const int A = basis.first + a;
@@ -232,16 +245,16 @@ void CurveContact::set_twisting_rod(const TwistingRod* rod) {
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
-  // A rod with torsion: its knot twists follow the control points in x.
-  std::span<const Vector3d> xb(x);
+  // A rod with torsion: its knot twists follow the control points in x; its frames are world
+  // frames, from the points turned back to the world's orientation (xw).
   thread_local std::vector<double> alpha;
+  thread_local std::vector<Vector3d> xw;
   if (twist_) {
     const std::size_t n = static_cast<std::size_t>(ref_.num_control_points());
     if (x.size() != n + static_cast<std::size_t>(twist_->num_knots()))
       throw std::invalid_argument("CurveContact: a rod with torsion needs its points and twists");
-    if (!turn_.isIdentity(0.0))
-      throw std::invalid_argument("CurveContact: a rod with torsion on a moving tool");
-    xb = xb.first(n);
+    xw.resize(n);
+    for (std::size_t i = 0; i < n; ++i) xw[i] = turn_ * x[i];
     alpha.resize(static_cast<std::size_t>(twist_->num_knots()));
     for (std::size_t k = 0; k < alpha.size(); ++k) alpha[k] = x[n + k][0];
   }
@@ -279,7 +292,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
       cp.foot = rigid_->closest_point(cp.x, cp.foot);
     TwistingRod::Spin sp;
     Roll roll{};
-    if (twist_) roll = spin_and_roll(*twist_, xb, alpha, params_.radius, cp, sp);
+    if (twist_) roll = spin_and_roll(*twist_, xw, alpha, params_.radius, turn_, cp, sp);
     cp.torque = 0.0;
     if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
                         twist_ ? &roll.s : nullptr, cp))
@@ -293,7 +306,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     add_point_residual(cp, basis_[i], p, R);
     if (K) add_point_tangent(cp, basis_[i], p, turn_, *K);
     if (twist_) {
-      add_twist_terms(cp, basis_[i], p, *twist_, sp, roll, R, K);
+      add_twist_terms(cp, basis_[i], p, *twist_, sp, roll, turn_, R, K);
       cp.torque = cp.law.T_vector.dot(roll.s1);
     }
     set_frame_forces(basis_[i], p, x, cp);
@@ -316,6 +329,7 @@ void CurveContact::commit() {
     if (twist_) {  // the rolling displacement starts again from here
       cp.frame_t_c = cp.frame_t;
       cp.frame_d1_c = cp.frame_d1;
+      cp.tangent_c = turn_.transpose() * cp.frame_t;  // the turn of the last assembly
       cp.normal_c = cp.law.active           ? cp.law.normal
                     : found(cp.foot.status) ? cp.foot.normal
                                             : Vector3d::Zero();

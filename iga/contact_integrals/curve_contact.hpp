@@ -37,8 +37,9 @@ struct CurveContactPoint : ContactMultipliers {
   // A rod with torsion (CurveContact::set_twisting_rod):
   Vector3d frame_t = Vector3d::Zero(), frame_d1 = Vector3d::Zero();      ///< section frame now
   Vector3d frame_t_c = Vector3d::Zero(), frame_d1_c = Vector3d::Zero();  ///< and at the commit
-  Vector3d normal_c = Vector3d::Zero();  ///< the tool's normal at the commit (n_c)
-  double spin = 0.0;                     ///< the section's rotation about t since the commit (dphi)
+  Vector3d normal_c = Vector3d::Zero();   ///< the tool's normal at the commit (n_c)
+  Vector3d tangent_c = Vector3d::Zero();  ///< frame_t_c in the tool's frame (t_c)
+  double spin = 0.0;    ///< the section's rotation about t since the commit (dphi)
   double torque = 0.0;  ///< friction torque about the centre line per length: T.ds/dphi
 };
 
@@ -90,7 +91,9 @@ class CurveContact {
   /// moment ((-R n) x T).t of the friction about the centre line (the friction's moment
   /// normal to t, on the bending, is not taken). x then holds the rod's control points and
   /// its knot twists as the rod's problem numbers them (TwistingRodProblem), R and K likewise.
-  /// Null: a rod without torsion. Not with a moving tool (the integral in the tool's frame).
+  /// Null: a rod without torsion. With a moving tool (set_turn) the rod's frames are world
+  /// frames, computed from the points turned back by Q (translations do not change them), and
+  /// the slip and its moment in the tool's frame.
   void set_twisting_rod(const TwistingRod* rod);
   const TwistingRod* twisting_rod() const { return twist_; }
   /// Control points of the body (without the twist entries of a rod with torsion).

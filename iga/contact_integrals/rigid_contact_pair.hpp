@@ -38,8 +38,11 @@ class RigidContactPair : public ContactPair {
   void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
     pose_ = pose(t);
+    // Entries past the body's control points (a rod's twists) are no points: not mapped, and
+    // their residual is not turned nor a force on the tool.
+    const auto body_points = static_cast<std::size_t>(contact_.num_body_points());
     x_.resize(x.size());  // no reallocation after the first call
-    for (std::size_t a = 0; a < x.size(); ++a) x_[a] = pose_.to_tool(x[a]);
+    for (std::size_t a = 0; a < x.size(); ++a) x_[a] = a < body_points ? pose_.to_tool(x[a]) : x[a];
     g_.setZero(g.size());
     const bool turn = pose_.turns();
     contact_.set_turn(pose_.Q);    // the tangent's blocks emitted turned forward, Q K_ab Q^T
@@ -47,13 +50,13 @@ class RigidContactPair : public ContactPair {
     contact_.assemble(x_, g_, K);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
     force_.setZero();
     moment_.setZero();
-    // Entries past the body's control points (a rod's twists) are no forces on the tool.
-    const auto body_points = static_cast<std::size_t>(contact_.num_body_points());
     for (std::size_t a = 0; a < x.size(); ++a) {
       const auto i = static_cast<Eigen::Index>(3 * a);
-      const Vector3d ga = turn ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
+      const bool point = a < body_points;
+      const Vector3d ga =
+          turn && point ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
       g.segment<3>(i) += ga;
-      if (a >= body_points) continue;
+      if (!point) continue;
       force_ += ga;  // g_a = -f_a: the force on the tool
       moment_ += x[a].cross(ga);
     }

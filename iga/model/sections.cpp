@@ -874,11 +874,8 @@ void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryMode
       pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
       if (c.has("search_distance"))  // default: rope radius + the longest element chord
         pair->contact().set_search_distance(positive(c["search_distance"]));
-      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end()) {
-        if constexpr (std::is_same_v<P, TwistingRodProblem>)
-          c["rigid"].fail("a rod with torsion on a moving tool is not supported yet");
+      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
         pair->set_motion(m->second);
-      }
       if constexpr (std::is_same_v<P, TwistingRodProblem>)
         pair->contact().set_twisting_rod(&problem.rod());
       problem.attach(std::move(pair));

@@ -2,7 +2,7 @@
 // rope's surface turns with the section, so friction acts on the twist unknowns. Tests: the
 // tangent against central differences in stick and slip, and a rope rolling on a plane
 // (turned about its axis at both ends: with friction its centre line travels R theta, without
-// it only twists in place).
+// it only twists in place), and the same contact on a moving tool.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -10,12 +10,14 @@
 #include <random>
 #include <vector>
 
+#include "contact/rigid_motion.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/contact_integrals/curve_contact.hpp"
 #include "iga/contact_integrals/curve_contact_pair.hpp"
 #include "iga/rod/twisting_rod.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
+#include "tests/iga/contact_integrals/moving_pair.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
 using namespace iga;
@@ -153,5 +155,64 @@ TEST_CASE("CurveContact with torsion: a rope turned at both ends rolls by R thet
     // -5e-7 (of mu q R L = 0.05), the penalty's creep near the turned ends.
     CHECK(kappa3 < 5e-3 * theta);
     CHECK(std::abs(torque) < 1e-5);
+  }
+}
+
+TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual, turned",
+          "[iga][contact][ctrs][twist][motion]") {
+  // A rope with torsion pressed into a plane, committed, moved and twisted; the same with the
+  // plane and the rope carried by a rigid motion G (a turn by 0.9 about a skew axis, then a
+  // shift): the moving pair's residual is the still one's with its position entries turned by
+  // G's rotation (the twist entries as they are), in stick and slip, and its tangent matches
+  // central differences.
+  auto plane = std::make_shared<RigidSurface>();
+  plane->add(make_plane_patch(Vector3d(-2, -2, 0), Vector3d(4, 0, 0), Vector3d(0, 4, 0)));
+  const std::shared_ptr<RigidMotion> motion = test::skew_motion();
+  const RigidPose G = motion->pose(1.0);
+  using AtTime = test::PairAtTime;
+  const double R = 0.05;
+  std::mt19937 g(4);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (const double mu : {0.05, 5.0}) {
+    const NurbsCurve ref = straight(1.0, R - 0.004, 4);
+    std::vector<Vector3d> Pm = ref.control_points();
+    for (Vector3d& q : Pm) q = G.to_world(q);
+    const NurbsCurve ref_m(ref.degree(), ref.knots().knots(), Pm, ref.weights());
+    RodSection sec = rope_section();
+    sec.ref_direction = Vector3d(0.3, 1.0, 0.2);
+    RodSection sec_m = sec;
+    sec_m.ref_direction = G.Q * sec.ref_direction;
+    const TwistingRod rod(ref, sec), rod_m(ref_m, sec_m);
+    CurveContactPair still(ref, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
+    CurveContactPair moved(ref_m, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
+    still.contact().set_twisting_rod(&rod);
+    moved.contact().set_twisting_rod(&rod_m);
+    moved.set_motion(motion);
+    const int n = rod.num_control_points(), m = rod.num_knots();
+    std::vector<Vector3d> x0 = ref.control_points();
+    x0.resize(static_cast<std::size_t>(n + m), Vector3d::Zero());
+    std::vector<Vector3d> x = x0;
+    for (int i = 0; i < n; ++i)
+      x[static_cast<std::size_t>(i)] += 0.002 * Vector3d(U(g), U(g), U(g));
+    for (int k = 0; k < m; ++k) x[static_cast<std::size_t>(n + k)][0] = 0.05 * U(g);
+    auto carried = [&](std::vector<Vector3d> y) {
+      for (int i = 0; i < n; ++i)
+        y[static_cast<std::size_t>(i)] = G.to_world(y[static_cast<std::size_t>(i)]);
+      return y;
+    };
+    AtTime ps{still}, pm{moved};
+    test::residual(ps, x0);
+    still.commit();
+    test::residual(pm, carried(x0));
+    moved.commit();
+    const Eigen::VectorXd r = test::residual(ps, x), rm = test::residual(pm, carried(x));
+    Eigen::VectorXd turned = r;
+    for (int i = 0; i < n; ++i) turned.segment<3>(3 * i) = G.Q * r.segment<3>(3 * i);
+    double torque = 0.0;
+    for (int k = 0; k < m; ++k) torque += std::abs(r[3 * (n + k)]);
+    INFO("mu " << mu << ": " << still.status() << " / moved: " << moved.status());
+    REQUIRE(torque > 0.0);
+    CHECK((rm - turned).norm() <= 1e-9 * r.norm());
+    CHECK(test::tangent_error(pm, carried(x), 1e-7) <= 1e-6);
   }
 }

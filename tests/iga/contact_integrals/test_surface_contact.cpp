@@ -23,6 +23,7 @@
 #include "geometry/refinement.hpp"
 #include "iga/contact_integrals/surface_contact.hpp"
 #include "iga/contact_integrals/surface_contact_pair.hpp"
+#include "tests/iga/contact_integrals/moving_pair.hpp"
 #include "tests/iga/contact_integrals/pass_through_case.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
@@ -162,17 +163,9 @@ TEST_CASE(
   const double a = 0.2, h_shell = 0.1, delta = 0.02;
   auto rigid = std::make_shared<RigidSurface>();
   rigid->add(make_bilinear_hyperboloid(a, -2.0, 2.0, -2.0, 2.0));
-  auto motion = std::make_shared<RigidMotion>();
-  motion->set_rotation(Vector3d(1, -1, 2), Vector3d(1, 2, 2), 0.9, [](double) { return 1.0; });
-  motion->set_translation(Vector3d(0.3, 2.0, -1.0), [](double) { return 1.0; });
+  const std::shared_ptr<RigidMotion> motion = test::skew_motion();
   const RigidPose G = motion->pose(1.0);
-  struct AtTime {  // a pair as test::tangent_error's Contact
-    ContactPair& pair;
-    void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
-                  std::vector<Eigen::Triplet<double>>* K) {
-      pair.add(x, 1.0, R, K);
-    }
-  };
+  using AtTime = test::PairAtTime;
   for (const Strategy strategy : {Strategy::kRigidMaster, Strategy::kRigidSlave})
     for (int friction = 1; friction < 3; ++friction) {
       const NurbsSurface ref = plate(0.2, 1.2, 0.2, 1.2, 2, false, [&](double x, double y) {
