@@ -12,6 +12,7 @@
 #include "geometry/differential_geometry.hpp"
 #include "geometry/number_text.hpp"
 #include "iga/core/quadrature.hpp"
+#include "iga/rod/rod_common.hpp"
 
 namespace iga {
 
@@ -247,20 +248,8 @@ KirchhoffRod::KirchhoffRod(NurbsCurve reference, RodSection section, RodOptions 
   const int p = reference_.degree();
   if (p < 2)
     throw RodError("KirchhoffRod: the curve must be of degree >= 2 (C1), got " + std::to_string(p));
+  detail::check_rod_curve_and_section(reference_, section_, "KirchhoffRod");
   const KnotVector& U = reference_.knots();
-  for (double k : U.breaks()) {
-    const Interval dom = reference_.domain();
-    if (k > dom.lo && k < dom.hi && U.multiplicity(k) > p - 1)
-      throw RodError("KirchhoffRod: interior knot " + num(k) + " has multiplicity " +
-                     std::to_string(U.multiplicity(k)) +
-                     "; a C1 curve needs <= p - 1 = " + std::to_string(p - 1));
-  }
-  if (!(section_.EA > 0.0) || !std::isfinite(section_.EA))
-    throw RodError("KirchhoffRod: EA must be finite and > 0, got " + num(section_.EA));
-  if (!(section_.EI1 >= 0.0) || !(section_.EI2 >= 0.0) || !std::isfinite(section_.EI1) ||
-      !std::isfinite(section_.EI2))
-    throw RodError("KirchhoffRod: EI1, EI2 must be finite and >= 0, got " + num(section_.EI1) +
-                   ", " + num(section_.EI2));
   if (options_.bending == BendingMeasure::kCurvatureMagnitude && !section_.isotropic())
     throw RodError("KirchhoffRod: the curvature magnitude measure needs EI1 == EI2, got " +
                    num(section_.EI1) + ", " + num(section_.EI2));
@@ -547,12 +536,35 @@ void RodProblem::clamp(RodEnd end) {
 }
 
 void RodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve curve) {
-  const RationalBasis B = rational_basis(rod_.reference(), xi);
+  add_nodal_load(detail::rod_point_load(rod_.reference(), xi, F), std::move(curve));
+}
+
+void detail::check_rod_curve_and_section(const NurbsCurve& reference, const RodSection& section,
+                                         const std::string& who) {
+  const int p = reference.degree();
+  const KnotVector& U = reference.knots();
+  const Interval dom = reference.domain();
+  for (double k : U.breaks())
+    if (k > dom.lo && k < dom.hi && U.multiplicity(k) > p - 1)
+      throw RodError(who + ": interior knot " + num(k) + " has multiplicity " +
+                     std::to_string(U.multiplicity(k)) +
+                     "; a C1 curve needs <= p - 1 = " + std::to_string(p - 1));
+  if (!(section.EA > 0.0) || !std::isfinite(section.EA))
+    throw RodError(who + ": EA must be finite and > 0, got " + num(section.EA));
+  if (!(section.EI1 >= 0.0) || !(section.EI2 >= 0.0) || !std::isfinite(section.EI1) ||
+      !std::isfinite(section.EI2))
+    throw RodError(who + ": EI1, EI2 must be finite and >= 0, got " + num(section.EI1) + ", " +
+                   num(section.EI2));
+}
+
+std::vector<std::pair<int, Vector3d>> detail::rod_point_load(const NurbsCurve& reference, double xi,
+                                                             const Vector3d& F) {
+  const RationalBasis B = rational_basis(reference, xi);
   std::vector<std::pair<int, Vector3d>> forces;
   for (int j = 0; j < B.count; ++j)
     if (B.N[static_cast<std::size_t>(j)] != 0.0)
       forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);  // f_i = R_i F
-  add_nodal_load(std::move(forces), std::move(curve));
+  return forces;
 }
 
 void RodProblem::add_line_load(const Vector3d& q, LoadCurve curve) {

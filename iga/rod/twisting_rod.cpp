@@ -10,6 +10,7 @@
 #include "geometry/number_text.hpp"
 #include "iga/core/jet.hpp"
 #include "iga/core/quadrature.hpp"
+#include "iga/rod/rod_common.hpp"
 
 namespace iga {
 
@@ -44,19 +45,8 @@ TwistingRod::TwistingRod(NurbsCurve reference, RodSection section, RodOptions op
   const int p = reference_.degree();
   if (p < 2 || p > 5)
     throw RodError("TwistingRod: the curve must be of degree 2 to 5, got " + std::to_string(p));
+  detail::check_rod_curve_and_section(reference_, section_, "TwistingRod");
   const KnotVector& U = reference_.knots();
-  const Interval dom = reference_.domain();
-  for (double k : U.breaks())
-    if (k > dom.lo && k < dom.hi && U.multiplicity(k) > p - 1)
-      throw RodError("TwistingRod: interior knot " + num(k) + " has multiplicity " +
-                     std::to_string(U.multiplicity(k)) +
-                     "; a C1 curve needs <= p - 1 = " + std::to_string(p - 1));
-  if (!(section_.EA > 0.0) || !std::isfinite(section_.EA))
-    throw RodError("TwistingRod: EA must be finite and > 0, got " + num(section_.EA));
-  if (!(section_.EI1 >= 0.0) || !(section_.EI2 >= 0.0) || !std::isfinite(section_.EI1) ||
-      !std::isfinite(section_.EI2))
-    throw RodError("TwistingRod: EI1, EI2 must be finite and >= 0, got " + num(section_.EI1) +
-                   ", " + num(section_.EI2));
   if (!(section_.GJ > 0.0) || !std::isfinite(section_.GJ))
     throw RodError("TwistingRod: GJ must be finite and > 0, got " + num(section_.GJ));
   if (!section_.isotropic() && !(section_.ref_direction.norm() > 0.0))
@@ -612,12 +602,7 @@ double TwistingRodProblem::twist(int knot, const VectorXd& u, double t) const {
 }
 
 void TwistingRodProblem::add_point_load(double xi, const Vector3d& F, LoadCurve curve) {
-  const RationalBasis B = rational_basis(rod_.reference(), xi);
-  std::vector<std::pair<int, Vector3d>> forces;
-  for (int j = 0; j < B.count; ++j)
-    if (B.N[static_cast<std::size_t>(j)] != 0.0)
-      forces.emplace_back(B.first + j, B.N[static_cast<std::size_t>(j)] * F);
-  add_nodal_load(std::move(forces), std::move(curve));
+  add_nodal_load(detail::rod_point_load(rod_.reference(), xi, F), std::move(curve));
 }
 
 void TwistingRodProblem::add_torque_at(double xi, double Mt, LoadCurve curve) {
