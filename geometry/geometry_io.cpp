@@ -500,6 +500,30 @@ NurbsCurve construct_line(const JsonCursor& e) {
   });
 }
 
+NurbsCurve construct_arc(const JsonCursor& e) {
+  e.expect_object({"type", "shape", "center", "x_axis", "normal", "radius", "start_deg", "end_deg",
+                   "degree", "elements"});
+  const Vector3d c = e.has("center") ? parse_vec3(e["center"]) : Vector3d::Zero();
+  if (e.has("center")) check_point(e["center"]);
+  const Vector3d x = e.has("x_axis") ? parse_direction(e["x_axis"]) : Vector3d::UnitX();
+  const Vector3d nrm = e.has("normal") ? parse_direction(e["normal"]) : Vector3d::UnitZ();
+  if (!(x.cross(nrm).norm() > 1e-6)) e["normal"].fail("must not be parallel to x_axis");
+  const Vector3d y = nrm.cross(x).normalized();
+  const Vector3d xo = y.cross(nrm).normalized();  // x_axis made normal to `normal`
+  const double r = parse_positive(e["radius"]);
+  check_length(e["radius"]);
+  const double a0 = optional_number(e, "start_deg", 0.0), a1 = e["end_deg"].as_number();
+  if (!std::isfinite(a0) || std::abs(a0) > 720.0) e["start_deg"].fail("must lie within +-720");
+  if (!(a1 > a0 && a1 - a0 <= 360.0)) e["end_deg"].fail("must lie in (start_deg, start_deg + 360]");
+  const int p = e.has("degree") ? parse_count(e["degree"], 2, kMaxDegree) : 2;
+  const int n = e.has("elements") ? parse_count(e["elements"], 1, kMaxCurveElements) : 1;
+  return construct(e, [&] {
+    NurbsCurve arc = make_circular_arc(c, xo, y, r, a0 * kDeg, a1 * kDeg);
+    if (p > 2) arc = elevate_degree(arc, p - 2);
+    return n > 1 ? subdivide(arc, n) : arc;
+  });
+}
+
 NurbsCurve construct_wrap_path(const JsonCursor& e) {
   e.expect_object({"type", "shape", "center", "axis", "mid_dir", "radius", "angle_deg", "pitch",
                    "span_length", "arc_elements", "span_elements", "degree"});
@@ -534,9 +558,10 @@ GeometryEntity parse_construction(const JsonCursor& e) {
   if (shape == "hyperboloid") return construct_hyperboloid(e);
   if (shape == "line") return construct_line(e);
   if (shape == "wrap_path") return construct_wrap_path(e);
+  if (shape == "arc") return construct_arc(e);
   sc.fail(
       "unknown shape (expected one of cylinder, sphere, torus, plane, hyperboloid, line, "
-      "wrap_path)");
+      "wrap_path, arc)");
 }
 
 constexpr const char* kEntityTypes[] = {

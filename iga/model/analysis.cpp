@@ -40,6 +40,12 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     const JsonCursor lc = root["load_curves"];
     if (!lc.json().is_object()) lc.fail_type("an object of named load curves");
     for (const std::string& k : lc.keys()) {
+      // each curve is a column of steps.csv: its name must not be one of the fixed columns
+      for (const char* fixed : {"step", "t", "lambda", "iterations", "active", "stick", "slip"})
+        if (k == fixed)
+          lc[k].fail_plain("\"" + k +
+                           "\" is a column of steps.csv already: name the curve "
+                           "otherwise");
       ctx.curves[k] = parse_load_curve(lc[k]);
       a.curves_.emplace_back(k, ctx.curves[k]);
     }
@@ -267,7 +273,7 @@ AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) 
 }
 
 void Analysis::write_csv_header(std::ostream& csv) const {
-  csv << "step,t,iterations,active,stick,slip";
+  csv << "step,t,lambda,iterations,active,stick,slip";
   if (num_pairs() > 1)  // the counts of each pair
     for (const PairRef& p : pairs_)
       for (const char* c : {"active", "stick", "slip"}) csv << "," << p.name << "_" << c;
@@ -295,8 +301,9 @@ std::vector<std::string> Analysis::csv_columns() const {
 
 void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
   // csv_number: a non-finite value is an empty cell, never nan or inf.
-  csv << index << "," << csv_number(st.t) << "," << st.iterations << "," << st.contact.active << ","
-      << st.contact.stick << "," << st.contact.slip;
+  const double lambda = (st.t - settings_.t0) / (settings_.t1 - settings_.t0);  // load factor
+  csv << index << "," << csv_number(st.t) << "," << csv_number(lambda) << "," << st.iterations
+      << "," << st.contact.active << "," << st.contact.stick << "," << st.contact.slip;
   if (num_pairs() > 1)
     for (const ContactCounts& c : st.pairs)
       csv << "," << c.active << "," << c.stick << "," << c.slip;

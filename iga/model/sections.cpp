@@ -620,6 +620,18 @@ RodSection parse_rod_material(const JsonCursor& m) {
   return s;
 }
 
+namespace {
+
+// An integer entry of s, when given, at least `min`, into `out`.
+void read_int(const JsonCursor& s, const char* key, int min, int& out) {
+  if (!s.has(key)) return;
+  const JsonCursor c = s[key];
+  out = c.as_int();
+  if (out < min) c.fail("must be >= " + std::to_string(min));
+}
+
+}  // namespace
+
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
   s.expect_object({"t_end",
                    "initial_step",
@@ -640,6 +652,8 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
                    "growth_factor",
                    "cutback_factor",
                    "predictor",
+                   "control",
+                   "desired_iterations",
                    "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
@@ -653,16 +667,8 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
   n.initial_step = s.has("initial_step") ? positive(s["initial_step"]) : 0.1 * n.t1;
   n.max_step = s.has("max_step") ? positive(s["max_step"]) : n.t1;
   n.min_step = s.has("min_step") ? positive(s["min_step"]) : 1e-6 * n.t1;
-  if (s.has("max_steps")) {
-    const JsonCursor c = s["max_steps"];
-    n.max_steps = c.as_int();
-    if (n.max_steps < 1) c.fail("must be >= 1");
-  }
-  if (s.has("max_iterations")) {
-    const JsonCursor c = s["max_iterations"];
-    n.max_iterations = c.as_int();
-    if (n.max_iterations < 1) c.fail("must be >= 1");
-  }
+  read_int(s, "max_steps", 1, n.max_steps);
+  read_int(s, "max_iterations", 1, n.max_iterations);
   if (s.has("tol_residual_rel")) n.tol_residual_rel = positive(s["tol_residual_rel"]);
   if (s.has("tol_residual_abs")) n.tol_residual_abs = positive(s["tol_residual_abs"], true);
   if (s.has("tol_residual_scaled"))
@@ -673,23 +679,20 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
     n.divergence_ratio = c.as_number();
     if (!(n.divergence_ratio > 1.0)) c.fail("must be > 1");
   }
-  if (s.has("max_residual_increases")) {  // ... or |R| grew this many times in a row (0: off)
-    const JsonCursor c = s["max_residual_increases"];
-    n.max_residual_increases = c.as_int();
-    if (n.max_residual_increases < 0) c.fail("must be >= 0");
-  }
+  // ... or |R| grew this many times in a row (0: off)
+  read_int(s, "max_residual_increases", 0, n.max_residual_increases);
   if (s.has("stop_at_full_slip_after")) stop_after = positive(s["stop_at_full_slip_after"], true);
-  if (s.has("full_slip_steps")) {  // consecutive steps of steady sliding before stopping
-    const JsonCursor c = s["full_slip_steps"];
-    slip_steps = c.as_int();
-    if (slip_steps < 1) c.fail("must be >= 1");
-  }
-  if (s.has("easy_iterations")) {  // a step converged in <= this many iterations grows the next
-    const JsonCursor c = s["easy_iterations"];
-    n.easy_iterations = c.as_int();
-    if (n.easy_iterations < 0) c.fail("must be >= 0");
-  }
+  // consecutive steps of steady sliding before stopping
+  read_int(s, "full_slip_steps", 1, slip_steps);
+  // a step converged in <= this many iterations grows the next
+  read_int(s, "easy_iterations", 0, n.easy_iterations);
   if (s.has("growth_factor")) n.growth_factor = positive(s["growth_factor"]);
+  if (s.has("control"))  // load (or displacement) control, or arc length through limit points
+    n.control = one_of(s["control"], {"load", "arc_length"}) == "arc_length"
+                    ? PathControl::arc_length
+                    : PathControl::load;
+  // arc length: iterations per step the step size aims at
+  read_int(s, "desired_iterations", 1, n.desired_iterations);
   if (s.has("predictor"))
     n.secant_predictor = one_of(s["predictor"], {"none", "secant"}) == "secant";
   if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);

@@ -64,6 +64,11 @@ void NonlinearSolverSettings::validate() const {
     bad_setting("max_residual_increases", ">= 0", max_residual_increases);
   for (double h : hit_times)
     if (!(h > t0 && h < t1)) bad_setting("hit_times", "inside (t0, t1)", h);
+  if (desired_iterations < 1) bad_setting("desired_iterations", ">= 1", desired_iterations);
+}
+
+const char* to_string(PathControl c) {
+  return c == PathControl::arc_length ? "arc_length" : "load";
 }
 
 const char* to_string(NewtonOutcome o) {
@@ -103,6 +108,7 @@ const char* to_string(NonlinearSolverStatus s) {
 }
 
 struct NonlinearSolver::Workspace {
+  explicit Workspace(int size) : n(size), R(size), rhs(size), du(size) {}
   int n = 0;
   VectorXd R;    // residual at the current iterate
   VectorXd rhs;  // -R
@@ -168,6 +174,21 @@ std::string divergence(const NonlinearSolverSettings& s, int k, double rk, doubl
   return {};
 }
 
+/// Records |R_k| = rk of iteration k in a; false (a's outcome set) when the assembly failed
+/// (rk < 0, `error` says why) or rk is not finite.
+bool record_residual(double rk, int k, const std::string& error, StepAttempt& a) {
+  if (rk < 0.0) {
+    a.outcome = NewtonOutcome::assembly_failed;
+    a.message = format("iteration %d: assembly: %s", k, error.c_str());
+    return false;
+  }
+  a.residual_norms.push_back(rk);
+  if (std::isfinite(rk)) return true;
+  a.outcome = NewtonOutcome::not_finite;
+  a.message = format("iteration %d: |R| is not finite", k);
+  return false;
+}
+
 /// The end of the step from t with nominal size dt.
 double step_end(const NonlinearSolverSettings& s, double t, double dt, double t_eps) {
   // The step ends at t1 if it would leave less than min_step to go.
@@ -228,6 +249,24 @@ void add_attempt_totals(NonlinearSolverResult& r, const StepAttempt& a) {
   r.cholesky_fallbacks += a.cholesky_fallbacks;
 }
 
+/// A failed attempt a of size `size` ("dt = ..." or "arc ..."): the log line with what comes next
+/// (`next`); at the minimum size the run's status and message. Returns at_min (the run ends).
+bool report_failed_step(std::ostream* log, NonlinearSolverResult& r, const StepAttempt& a,
+                        const std::string& size, const std::string& next, bool at_min,
+                        double t_last) {
+  if (log)
+    *log << format("  step %d failed at t = %.9g (%s): %s (%d iterations): %s; ", a.step, a.t,
+                   size.c_str(), to_string(a.outcome), a.iterations, a.message.c_str())
+         << next << '\n';
+  if (!at_min) return false;
+  r.status = NonlinearSolverStatus::min_step_reached;
+  r.message = format(
+      "%s: the step from t = %.9g to %.9g (%s) failed (%s: %s); the state is the last converged "
+      "one, t = %.9g",
+      next.c_str(), a.t_start, a.t, size.c_str(), to_string(a.outcome), a.message.c_str(), t_last);
+  return true;
+}
+
 /// The progress line of converged step r.steps, at time t, lambda the fraction of the span done.
 void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const StepAttempt& a,
                         double t, double lambda, const NonlinearProblem& problem) {
@@ -237,6 +276,7 @@ void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const
       "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
       "|R0| = %.3e  |R| = %.3e  E = %.3e",
       r.steps, t, a.dt, lambda, a.iterations, a.residual_norms.front(), rn, en);
+  if (a.arc_length > 0.0) log << format("  arc %.3e", a.arc_length) << (a.landed ? " landed" : "");
   if (a.augmentations > 0) log << "  augmentations " << a.augmentations;
   if (a.cholesky_fallbacks > 0) log << "  lu-fallbacks " << a.cholesky_fallbacks;
   const std::string status = problem.status();
@@ -319,12 +359,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
       u -= w.du;
       rk = assemble();
     }
-    if (rk < 0.0)
-      return finish(NewtonOutcome::assembly_failed,
-                    format("iteration %d: assembly: %s", k, error.c_str()));
-    a.residual_norms.push_back(rk);
-    if (!std::isfinite(rk))
-      return finish(NewtonOutcome::not_finite, format("iteration %d: |R| is not finite", k));
+    if (!record_residual(rk, k, error, a)) return;
 
     const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * std::max(r0, r0_step);
     const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
@@ -352,14 +387,11 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
   if (u.size() != n)
     throw std::invalid_argument("NonlinearSolver::solve: u has size " + std::to_string(u.size()) +
                                 ", the problem has " + std::to_string(n) + " unknowns");
+  if (s.control == PathControl::arc_length) return solve_arc_length(problem, u, on_step);
 
   NonlinearSolverResult r;
   r.t = s.t0;
-  Workspace w;
-  w.n = n;
-  w.R.resize(n);
-  w.rhs.resize(n);
-  w.du.resize(n);
+  Workspace w(n);
   VectorXd u_last = u;  // the last converged state
   VectorXd u_prev;      // the one before it (secant predictor), at t_prev
   double t_prev = s.t0;
@@ -437,19 +469,9 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       const double dt_tried = std::min(dt, a.dt);
       const bool at_min = dt_tried <= s.min_step * (1.0 + 1e-12);
       const double dt_next = std::max(dt_tried * s.cutback_factor, s.min_step);
-      if (log_)
-        *log_ << format("  step %d failed at t = %.9g (dt = %.3e): %s (%d iterations): %s; ",
-                        a.step, a.t, a.dt, to_string(a.outcome), a.iterations, a.message.c_str())
-              << (at_min ? std::string("minimum step reached") : format("dt -> %.3e", dt_next))
-              << '\n';
-      if (at_min) {
-        r.status = NonlinearSolverStatus::min_step_reached;
-        r.message = format(
-            "minimum step reached: the step from t = %.9g to %.9g (dt = %.3e) failed (%s: %s); "
-            "the state is the last converged one, t = %.9g",
-            a.t_start, a.t, a.dt, to_string(a.outcome), a.message.c_str(), t);
-        ended = true;
-      }
+      ended = report_failed_step(log_, r, a, format("dt = %.3e", a.dt),
+                                 at_min ? "minimum step reached" : format("dt -> %.3e", dt_next),
+                                 at_min, t);
       dt = dt_next;
       r.attempts.push_back(std::move(a));
     }
@@ -486,6 +508,352 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
                  r.augmentations);
   os << format("  factorizations: CHOLMOD %d, UMFPACK %d (Cholesky fallbacks %d)\n",
                r.cholmod_factorizations, r.umfpack_factorizations, r.cholesky_fallbacks);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Arc length [Cri81]
+
+struct NonlinearSolver::ArcState {
+  VectorXd u_last;      // the last converged state u_n
+  double t = 0.0;       // its t_n
+  VectorXd du_prev;     // the last converged step's increment (empty before the first)
+  double dl = 0.0;      // the arc length of the next step (0: not yet set)
+  double dl_min = 0.0;  // bounds of dl, set with it
+  double dl_max = 0.0;
+  VectorXd R_h, R_t, du_R, du_t, du;  // workspace
+};
+
+namespace {
+
+/// dR/dt at (u, t) by a one-sided difference of step h (exact where the loads and prescribed
+/// values are linear in t) into R_t, then R and K at (u, t), so that the last assembly is the
+/// state's own. Returns |R|, or -1 with `error` set.
+double assemble_with_rate(NonlinearProblem& problem, const VectorXd& u, double t, double h, int n,
+                          VectorXd& R_h, VectorXd& R, SparseMatrix& K, VectorXd& R_t,
+                          NonlinearSolverResult& r, std::string& error) {
+  const Clock::time_point t0 = Clock::now();
+  try {
+    problem.assemble(u, t + h, R_h, nullptr);
+  } catch (const std::exception& e) {
+    error = e.what();
+    r.time_assembly += seconds_since(t0);
+    ++r.assemblies;
+    return -1.0;
+  }
+  r.time_assembly += seconds_since(t0);
+  ++r.assemblies;
+  const double rn = assemble_residual(problem, u, t, n, R, K, r, error);
+  if (rn >= 0.0) R_t = (R_h - R) / h;
+  return rn;
+}
+
+/// The load increment dt of a correction from the cylindrical constraint
+/// |base + dt du_t|^2 = dl^2 (base = Delta u + du_R): a dt^2 + b dt + c = 0 [Cri81], the root
+/// whose new increment is nearest the current Du. Returns why there is none, or an empty string.
+std::string constraint_root(const VectorXd& base, const VectorXd& du_t, const VectorXd& Du,
+                            double dl, double& dt) {
+  const double qa = du_t.squaredNorm();
+  const double qb = 2.0 * du_t.dot(base);
+  const double qc = base.squaredNorm() - dl * dl;
+  const double disc = qb * qb - 4.0 * qa * qc;
+  if (!std::isfinite(disc)) return "the constraint's coefficients are not finite";
+  if (disc < 0.0) return "the arc-length constraint has no real root";
+  // Roots without cancellation.
+  const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
+  const double root1 = q / qa, root2 = q != 0.0 ? qc / q : root1;
+  const double score1 = (base + root1 * du_t).dot(Du);
+  const double score2 = (base + root2 * du_t).dot(Du);
+  dt = score1 >= score2 ? root1 : root2;
+  return {};
+}
+
+}  // namespace
+
+bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcState& arc,
+                                    Workspace& w, StepAttempt& a, NonlinearSolverResult& r,
+                                    double& Dt) {
+  const NonlinearSolverSettings& s = settings_;
+  std::string error;
+  const auto finish = [&a](NewtonOutcome outcome, std::string message) {
+    a.outcome = outcome;
+    a.message = std::move(message);
+    return false;
+  };
+  const double h = 1e-7 * (s.t1 - s.t0);
+  // Predictor: K du_t = -dR/dt at the converged state, Delta t = +-Delta l / |du_t|.
+  u = arc.u_last;
+  a.t = arc.t;
+  if (assemble_with_rate(problem, u, arc.t, h, w.n, arc.R_h, w.R, w.K, arc.R_t, r, error) < 0.0)
+    return finish(NewtonOutcome::assembly_failed, "assembly at the step's start: " + error);
+  w.rhs = -arc.R_t;
+  const LinearSolveStatus ls = solve_correction(linear_, w.K, w.rhs, arc.du_t, a, r);
+  if (ls != LinearSolveStatus::success)
+    return finish(
+        NewtonOutcome::linear_solve_failed,
+        format("predictor: linear solve %s: %s", to_string(ls), linear_.message().c_str()));
+  const double nt = arc.du_t.norm();
+  if (!std::isfinite(nt))
+    return finish(NewtonOutcome::not_finite, "predictor: the tangent solution is not finite");
+  if (!(nt > 0.0))
+    throw std::invalid_argument(
+        "NonlinearSolver (arc length): the residual does not depend on t (no load or prescribed "
+        "value changes with t): nothing to follow");
+  if (arc.dl == 0.0) {
+    arc.dl = s.initial_step * nt;
+    arc.dl_min = arc.dl * s.min_step / s.initial_step;
+    arc.dl_max = arc.dl * s.max_step / s.initial_step;
+  }
+  a.arc_length = arc.dl;
+  // Forward at the first step; then on the side of the previous increment.
+  const double side = arc.du_prev.size() == w.n && arc.du_t.dot(arc.du_prev) < 0.0 ? -1.0 : 1.0;
+  Dt = side * arc.dl / nt;
+  arc.du = Dt * arc.du_t;
+  return true;
+}
+
+void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcState& arc,
+                                 Workspace& w, StepAttempt& a, NonlinearSolverResult& r) {
+  const NonlinearSolverSettings& s = settings_;
+  linear_.set_symmetric(problem.symmetric());
+  a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
+  std::string error;
+  const auto finish = [&a](NewtonOutcome outcome, std::string message) {
+    a.outcome = outcome;
+    a.message = std::move(message);
+  };
+  const double h_base = 1e-7 * (s.t1 - s.t0);
+  const auto assemble = [&](double t, double direction) {
+    return assemble_with_rate(problem, u, t, direction < 0.0 ? -h_base : h_base, w.n, arc.R_h, w.R,
+                              w.K, arc.R_t, r, error);
+  };
+  // K x = b with the current factorization (factorized by the caller).
+  const auto solve = [&](const VectorXd& b, VectorXd& x) {
+    const Clock::time_point t0 = Clock::now();
+    const LinearSolveStatus ls = linear_.solve(b, x);
+    r.time_linear_solve += seconds_since(t0);
+    return ls;
+  };
+
+  double Dt = 0.0;
+  if (!arc_predictor(problem, u, arc, w, a, r, Dt)) return;
+  VectorXd& Du = arc.du;
+  LinearSolveStatus ls = LinearSolveStatus::success;
+
+  double r0 = 0.0, scale = 0.0, e1 = 0.0, r_prev = 0.0;
+  int increases = 0;
+  const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
+  const auto r_abs = [&] {
+    return std::max(
+        {s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
+  };
+  for (int k = 0;; ++k) {
+    u = arc.u_last + Du;
+    a.t = arc.t + Dt;
+    a.dt = Dt;
+    const double rk = assemble(a.t, Dt);
+    if (!record_residual(rk, k, error, a)) return;
+    if (k == 0) {
+      r0 = rk;
+      // The force scale of the step: the load increment along the predictor, not only the
+      // predictor's residual (small by construction).
+      scale = std::max(r0, std::abs(Dt) * arc.R_t.norm());
+      w.r0_max = std::max(w.r0_max, scale);
+      if (rk <= r_abs()) return finish(NewtonOutcome::converged, {});
+    } else {
+      const double e = a.energy_norms.back();
+      const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * scale;
+      const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
+      if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
+      if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
+        return finish(NewtonOutcome::converged, {});
+      if (std::string why =
+              divergence(s, k, rk, r_prev, s.divergence_ratio * w.r0_max, w.r0_max, increases);
+          !why.empty())
+        return finish(NewtonOutcome::diverged, std::move(why));
+    }
+    r_prev = rk;
+    if (k == s.max_iterations) break;
+
+    // K du_R = -R, K du_t = -dR/dt (one factorization), then the load increment from the
+    // constraint |Du + du_R + dt du_t|^2 = Delta l^2: a dt^2 + b dt + c = 0 [Cri81].
+    w.rhs = -w.R;
+    ls = solve_correction(linear_, w.K, w.rhs, arc.du_R, a, r);
+    if (ls == LinearSolveStatus::success) {
+      w.rhs = -arc.R_t;
+      ls = solve(w.rhs, arc.du_t);
+    }
+    if (ls != LinearSolveStatus::success)
+      return finish(NewtonOutcome::linear_solve_failed,
+                    format("iteration %d: linear solve %s: %s", k + 1, to_string(ls),
+                           linear_.message().c_str()));
+    a.iterations = k + 1;
+    double dt = 0.0;
+    if (std::string why = constraint_root(Du + arc.du_R, arc.du_t, Du, arc.dl, dt); !why.empty())
+      return finish(NewtonOutcome::diverged, format("iteration %d: %s", k + 1, why.c_str()));
+    w.du = arc.du_R + dt * arc.du_t;
+    const double e = std::abs(w.du.dot(w.R));
+    a.energy_norms.push_back(e);
+    if (!std::isfinite(e))
+      return finish(NewtonOutcome::not_finite, format("iteration %d: E is not finite", k + 1));
+    if (k == 0) e1 = e;
+    Du += w.du;
+    Dt += dt;
+  }
+  finish(NewtonOutcome::max_iterations,
+         format("no convergence in %d iterations (|R| = %.3e, |R|/|R_0| = %.3e)", s.max_iterations,
+                a.residual_norms.back(), a.residual_norms.back() / std::max(scale, 1e-300)));
+}
+
+int NonlinearSolver::solve_fixed(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w,
+                                 StepAttempt& a, NonlinearSolverResult& r) {
+  newton(problem, u, t, w, a, r);
+  const int first_solve = a.iterations;
+  const auto resolve = [&](StepAttempt& b, double r0_step) {
+    newton(problem, u, t, w, b, r, /*break_cycles=*/true, r0_step);
+  };
+  return std::max(first_solve, augment_until_satisfied(problem, u, t, a, resolve));
+}
+
+void NonlinearSolver::land(NonlinearProblem& problem, VectorXd& u, const ArcState& arc,
+                           Workspace& w, StepAttempt& a, NonlinearSolverResult& r, int& hardest) {
+  const NonlinearSolverSettings& s = settings_;
+  const double t_eps = 1e-12 * (s.t1 - s.t0);
+  const double lo = std::min(arc.t, a.t), hi = std::max(arc.t, a.t);
+  double target = NAN;  // the first time crossed
+  const auto consider = [&](double tau) {
+    if (tau > lo + t_eps && tau < hi - t_eps &&
+        (std::isnan(target) || std::abs(tau - arc.t) < std::abs(target - arc.t)))
+      target = tau;
+  };
+  for (double h : s.hit_times) consider(h);
+  if (a.t > s.t1 - t_eps && arc.t < s.t1 - t_eps) {
+    if (a.t < s.t1 + t_eps)
+      a.t = s.t1;  // on t1 already
+    else
+      consider(s.t1);
+  }
+  if (std::isnan(target)) return;
+  const VectorXd u_arc = u;
+  const double t_arc = a.t;
+  problem.restore();
+  u = arc.u_last + ((target - arc.t) / (t_arc - arc.t)) * (u_arc - arc.u_last);
+  StepAttempt b;
+  const int it = solve_fixed(problem, u, target, w, b, r);
+  append_resolve(a, b);
+  a.augmentations += b.augmentations;
+  if (b.outcome == NewtonOutcome::converged) {
+    a.t = target;
+    a.landed = true;
+    hardest = std::max(hardest, it);
+    return;
+  }
+  // Keep the arc state: solved again at its t (a few iterations at most).
+  problem.restore();
+  u = u_arc;
+  StepAttempt c;
+  solve_fixed(problem, u, t_arc, w, c, r);
+  append_resolve(a, c);
+  a.augmentations += c.augmentations;
+  a.outcome = c.outcome;
+  a.message = c.message;
+}
+
+NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& problem, VectorXd& u,
+                                                        const StepCallback& on_step) {
+  const Clock::time_point start = Clock::now();
+  const NonlinearSolverSettings& s = settings_;
+  const int n = problem.num_dofs();
+  NonlinearSolverResult r;
+  r.t = s.t0;
+  Workspace w(n);
+  ArcState arc;
+  arc.u_last = u;
+  arc.t = s.t0;
+  const double span = s.t1 - s.t0;
+  const double t_eps = 1e-12 * span;
+  int attempted = 0;
+  bool ended = false;
+
+  while (!ended) {
+    if (attempted >= s.max_steps) {
+      r.status = NonlinearSolverStatus::max_steps_reached;
+      r.message =
+          format("%d steps attempted (max_steps); last converged t = %.9g", attempted, arc.t);
+      break;
+    }
+    ++attempted;
+    StepAttempt a;
+    a.step = r.steps + 1;
+    a.t_start = arc.t;
+    int hardest_solve = 0;
+    try {
+      arc_newton(problem, u, arc, w, a, r);
+      hardest_solve = a.iterations;
+      if (a.outcome == NewtonOutcome::converged) {
+        const double t_arc = a.t;
+        const auto resolve = [&](StepAttempt& b, double r0_step) {
+          newton(problem, u, t_arc, w, b, r, /*break_cycles=*/true, r0_step);
+        };
+        hardest_solve =
+            std::max(hardest_solve, augment_until_satisfied(problem, u, t_arc, a, resolve));
+      }
+      if (a.outcome == NewtonOutcome::converged) land(problem, u, arc, w, a, r, hardest_solve);
+    } catch (...) {
+      u = arc.u_last;
+      problem.restore();
+      throw;
+    }
+    add_attempt_totals(r, a);
+    a.dt = a.t - arc.t;
+
+    if (a.outcome == NewtonOutcome::converged) {
+      arc.du_prev = u - arc.u_last;
+      arc.u_last = u;
+      arc.t = a.t;
+      ++r.steps;
+      r.t = arc.t;
+      r.step_iterations.push_back(a.iterations);
+      const Clock::time_point t0 = Clock::now();
+      problem.commit(u, arc.t);
+      r.time_callback += seconds_since(t0);
+      if (log_) log_converged_step(*log_, r, a, arc.t, (arc.t - s.t0) / span, problem);
+      bool go_on = true;
+      if (on_step) {
+        const Clock::time_point tc = Clock::now();
+        go_on = on_step(u, arc.t, a);
+        r.time_callback += seconds_since(tc);
+      }
+      // [Cri81]: Delta l sqrt(desired / N), within the growth and cutback factors.
+      const double f =
+          std::sqrt(static_cast<double>(s.desired_iterations) / std::max(hardest_solve, 1));
+      arc.dl = std::clamp(arc.dl * std::clamp(f, s.cutback_factor, s.growth_factor), arc.dl_min,
+                          arc.dl_max);
+      r.attempts.push_back(std::move(a));
+      if (arc.t >= s.t1 - t_eps) {
+        ended = true;
+      } else if (!go_on) {
+        r.status = NonlinearSolverStatus::stopped;
+        r.message = format("stopped by the step callback at t = %.9g", arc.t);
+        ended = true;
+      }
+    } else {
+      u = arc.u_last;
+      problem.restore();
+      ++r.cutbacks;
+      const bool at_min = arc.dl <= arc.dl_min * (1.0 + 1e-12);
+      const double dl_next = std::max(arc.dl * s.cutback_factor, arc.dl_min);
+      ended = report_failed_step(
+          log_, r, a, format("arc %.3e", arc.dl),
+          at_min ? "minimum arc length reached" : format("arc -> %.3e", dl_next), at_min, arc.t);
+      arc.dl = dl_next;
+      r.attempts.push_back(std::move(a));
+    }
+  }
+  if (r.status == NonlinearSolverStatus::converged)
+    r.message = format("reached t1 = %.9g in %d arc-length steps", s.t1, r.steps);
+  r.time_total = seconds_since(start);
+  if (log_) write_summary(*log_, r);
+  return r;
 }
 
 }  // namespace iga

@@ -3,13 +3,23 @@
 // adaptive steps (growth on easy steps, cutback on divergence), residual and energy convergence
 // tests, a progress line per step, timings of assembly and linear solves. Non-convergence is a
 // status, never an exception.
+// Arc length (PathControl::arc_length): [Cri81] M. A. Crisfield, A fast incremental/iterative
+// solution procedure that handles "snap-through", Computers & Structures 13 (1981) 55-62: the
+// cylindrical constraint |Delta u| = Delta l on the step's increment, the load increment from
+// its quadratic equation in each iteration, the root nearest to the previous increment; the
+// predictor's sign from the previous step's increment (the angle criterion, as in Feng, Peric &
+// Owen, CMAME 137, 1996). dR/dt by a one-sided difference in t (exact for loads and prescribed
+// values linear in t, the model's load curves between their points).
 // References: [KS15] see ../shared/paper/EQUATIONS.md; [Wri08] P. Wriggers, Nonlinear Finite
 // Element Methods, Springer 2008 (Newton-Raphson, load stepping); the energy test as in FEAP
 // (R. L. Taylor): |du . R| relative to its value in the first iteration of the step.
 //
 // Notation (code -> meaning): R_k = R(u_k, t), the residual after k Newton corrections of the
 // step; du_k = -K(u_{k-1})^-1 R_{k-1}; E_k = |du_k . R_{k-1}| the energy norm of correction k;
-// lambda = (t - t0) / (t1 - t0), the fraction of the pseudo-time span done.
+// lambda = (t - t0) / (t1 - t0), the fraction of the pseudo-time span done (the load factor of
+// linear load curves). Arc length: Delta u = u - u_n, Delta t = t - t_n the step's increments
+// from the converged (u_n, t_n); du_t = -K^-1 dR/dt the tangent solution; du_R = -K^-1 R;
+// Delta l the arc length.
 #pragma once
 
 #include <functional>
@@ -22,10 +32,29 @@
 
 namespace iga {
 
+/// How the steps advance along the equilibrium path.
+enum class PathControl {
+  load,        ///< t advances by dt each step (load control, or displacement control when t
+               ///< drives prescribed displacements); stops at a limit point of t
+  arc_length,  ///< t is an unknown of each step, the step's length is measured in u: Crisfield's
+               ///< cylindrical arc length [Cri81], through limit points and snap-backs
+};
+
 /// Step control and convergence tests. validate() names the offending field.
 struct NonlinearSolverSettings {
-  double t0 = 0.0;            ///< start of the pseudo-time span (u is converged there)
-  double t1 = 1.0;            ///< end of the span
+  /// Load control (default) or arc length. With arc length the sizes below keep their meaning
+  /// in units of t for the first step: the arc length is Delta l_0 = initial_step |du_t| (du_t
+  /// the tangent solution K du_t = -dR/dt at the start), and min_step, max_step bound it as
+  /// Delta l_0 min_step / initial_step and Delta l_0 max_step / initial_step.
+  PathControl control = PathControl::load;
+  /// Arc length: after a converged step of N iterations the next arc length is
+  /// Delta l sqrt(desired_iterations / N) [Cri81], the factor within [cutback_factor,
+  /// growth_factor].
+  int desired_iterations = 5;
+  double t0 = 0.0;  ///< start of the pseudo-time span (u is converged there)
+  /// End of the span. With arc length the run ends when the path reaches t1 (the step that
+  /// crosses it is repeated under load control to land on t1); t may go down and up before.
+  double t1 = 1.0;
   double initial_step = 0.1;  ///< first step size in t
   double min_step = 1e-6;     ///< a failed step of this size ends the run (min_step_reached)
   double max_step = 1.0;      ///< steps never grow beyond this
@@ -96,6 +125,7 @@ enum class NonlinearSolverStatus {
 
 const char* to_string(NewtonOutcome o);
 const char* to_string(NonlinearSolverStatus s);
+const char* to_string(PathControl c);
 
 /// One attempted step, converged or not, with the history of its Newton iterations.
 struct StepAttempt {
@@ -104,9 +134,12 @@ struct StepAttempt {
   double t = 0.0;        ///< target time of the step
   double dt = 0.0;       ///< t - t_start
   NewtonOutcome outcome = NewtonOutcome::max_iterations;
-  int iterations = 0;                  ///< Newton corrections computed (linear solves), the
-                                       ///< re-solves after multiplier updates included
-  int augmentations = 0;               ///< multiplier updates (re-solves) of the step
+  int iterations = 0;       ///< Newton corrections computed (linear solves), the
+                            ///< re-solves after multiplier updates included
+  int augmentations = 0;    ///< multiplier updates (re-solves) of the step
+  double arc_length = 0.0;  ///< arc length Delta l of the step (0 under load control)
+  bool landed = false;      ///< arc length: the step was repeated under load control to land
+                            ///< on t1 or a hit time it crossed
   std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms); after
                                        ///< an augmentation the re-solve's |R_0|, |R_1|, ...
   std::vector<double> energy_norms;    ///< E_1, ..., E_iterations
@@ -160,6 +193,22 @@ using StepCallback = std::function<bool(const VectorXd& u, double t, const StepA
 /// std::exception, e.g. the contact search meeting a non-finite state) fails the attempt
 /// (outcome assembly_failed, its message kept) and the step is cut back; exceptions of
 /// commit() and of the step callback propagate, with u restored to the last converged state.
+///
+/// Arc length (settings.control == arc_length): t is an unknown of each step. From the
+/// converged (u_n, t_n) the predictor goes along the tangent du_t = -K^-1 dR/dt by Delta l,
+/// forward (towards t1) at the first step and then on the side of the previous increment;
+/// each correction solves K du_R = -R and K du_t = -dR/dt with one factorization and takes
+/// the load increment dt from |Delta u + du_R + dt du_t| = Delta l, the root whose increment
+/// is nearest the one before (no real root: the step fails and is cut back). The residual and
+/// energy tests are those of load control, the relative one against the larger of |R_0| and
+/// |Delta t dR/dt| (the predictor's residual is small by construction). Contact whose active
+/// set changes within a step is handled as under load control: the contact search and the
+/// stick/slip states are part of every assembly, so Newton's iterate changes its active set
+/// as it goes; a step whose set does not settle fails (divergence, max_iterations) and is cut
+/// back; multiplier updates (augment) re-solve at the step's t. A step that crosses t1 or a
+/// hit time is repeated under load control from the state interpolated at that time (when that
+/// fails, the arc state is kept). NonlinearProblem::commit and the step callback see every
+/// converged state, with t going down after a limit point.
 class NonlinearSolver {
  public:
   /// Throws std::invalid_argument for invalid settings.
@@ -186,6 +235,28 @@ class NonlinearSolver {
   /// against the larger of it and its own |R_0| (which is only the multipliers' jump).
   void newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
               NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0);
+  /// The arc-length run (settings.control == arc_length).
+  NonlinearSolverResult solve_arc_length(NonlinearProblem& problem, VectorXd& u,
+                                         const StepCallback& on_step);
+  struct ArcState;
+  /// One arc-length step from the converged (u_last, t) of the ArcState: the tangent
+  /// predictor, then corrections on the cylindrical constraint |Delta u| = Delta l. On return
+  /// u and a.t hold the state reached (converged or not).
+  void arc_newton(NonlinearProblem& problem, VectorXd& u, ArcState& arc, Workspace& w,
+                  StepAttempt& a, NonlinearSolverResult& r);
+  /// The tangent predictor of arc_newton: Delta t = +-Delta l / |du_t| into Dt, arc.du; false
+  /// (a's outcome set) when it fails.
+  bool arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcState& arc, Workspace& w,
+                     StepAttempt& a, NonlinearSolverResult& r, double& Dt);
+  /// Newton at a fixed t from u, then the multiplier updates (augment); returns the most
+  /// iterations of one solve.
+  int solve_fixed(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
+                  NonlinearSolverResult& r);
+  /// After a converged arc-length step in a: when it crossed t1 or a hit time, the step again
+  /// under load control, landing on it (a.landed), else the arc state kept; `hardest` the most
+  /// iterations of one solve of the step.
+  void land(NonlinearProblem& problem, VectorXd& u, const ArcState& arc, Workspace& w,
+            StepAttempt& a, NonlinearSolverResult& r, int& hardest);
 
   NonlinearSolverSettings settings_;
   std::ostream* log_ = nullptr;

@@ -756,3 +756,36 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
   CHECK(static_cast<long>(shell.num_u()) * shell.num_v() <= kMaxSurfaceControlPoints);
   CHECK(static_cast<long>(shell.num_u()) * shell.num_v() > kMaxSurfaceControlPoints * 9 / 10);
 }
+
+TEST_CASE("construction arc: exact circle in its plane, elevated and split, errors located",
+          "[geometry][constructions][io]") {
+  const GeometryModel m =
+      parse_geometry(parse_json_text(
+                         R"({"a": {"type": "construction", "shape": "arc", "center": [1, 2, 3],
+      "x_axis": [0, 1, 0], "normal": [1, 0, 0], "radius": 2, "start_deg": 30, "end_deg": 150,
+      "degree": 3, "elements": 5}})",
+                         "g.json"),
+                     "g.json", JsonPointer("/geometry"));
+  const auto& c = std::get<NurbsCurve>(m.entities.at(0).second);
+  CHECK(c.degree() == 3);
+  const Vector3d center(1, 2, 3), x(0, 1, 0), y(0, 0, 1);  // y = normal x x_axis
+  double worst = 0.0;
+  for (int k = 0; k <= 100; ++k) {
+    const Vector3d p = c.point(k / 100.0) - center;
+    worst = std::max({worst, std::abs(p.norm() - 2.0), std::abs(p.x())});
+  }
+  CHECK(worst < 1e-12);  // on the circle, in the plane x = 1
+  const double deg = std::numbers::pi / 180.0;
+  CHECK((c.point(0.0) - center - 2.0 * (std::cos(30 * deg) * x + std::sin(30 * deg) * y)).norm() <
+        1e-12);
+  CHECK((c.point(1.0) - center - 2.0 * (std::cos(150 * deg) * x + std::sin(150 * deg) * y)).norm() <
+        1e-12);
+  auto e = iga::test::geometry_error(
+      R"({"a": {"type": "construction", "shape": "arc", "radius": 1, "start_deg": 10,
+      "end_deg": 5}})");
+  CHECK(e.pointer() == "/geometry/a/end_deg");
+  e = iga::test::geometry_error(
+      R"({"a": {"type": "construction", "shape": "arc", "radius": 1, "end_deg": 90,
+      "normal": [1, 0, 0]}})");
+  CHECK(e.pointer() == "/geometry/a/normal");
+}

@@ -234,7 +234,7 @@ TEST_CASE("many bodies: references between bodies, conditions, pairs and output 
              Catch::Contains("m.json: /bodies: expected an object of named bodies (at least one)"));
   CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["y"] = "0.1*Rrope_c_52_norm"; }),
              Catch::Contains("m.json: /output/plots/0/y: \"Rrope_c_52_norm\" is no column of "
-                             "steps.csv (step, t, iterations"));
+                             "steps.csv (step, t, lambda, iterations"));
   CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["x"] = "x*t"; }),
              Catch::Contains("m.json: /output/plots/0/x: a term is [factor*]column"));
   CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["x"] = "t;t"; }),

@@ -16,6 +16,7 @@
 #include <Eigen/LU>
 
 #include "iga/solvers/nonlinear_solver.hpp"
+#include "von_mises_truss.hpp"
 
 using namespace iga;
 
@@ -23,57 +24,7 @@ namespace {
 
 using Eigen::Matrix2d;
 using Eigen::Vector2d;
-
-/// Shallow von Mises truss: two St. Venant-Kirchhoff bars from the supports (-a, 0) and (a, 0)
-/// to the apex (0, h), which carries the dead load (0, -t P). Unknowns: apex displacement
-/// (u_x, u_y). Bar b: d = X_apex + u - X_b, Green strain E = (d.d - L0^2) / (2 L0^2), energy
-/// EA L0 E^2 / 2, so R = sum_b EA E d / L0 - f and K = sum_b EA / L0 (d d^T / L0^2 + E I).
-/// Closed form with the deflection w = -u_y: P = EA / L0^3 w (2h - w)(h - w), u_x = 0; the limit
-/// point is at w = h (1 - 1/sqrt 3), P_max = 2 EA h^3 / (3 sqrt(3) L0^3).
-class VonMisesTruss : public NonlinearProblem {
- public:
-  VonMisesTruss(double a, double h, double EA, double P) : a_(a), h_(h), EA_(EA), P_(P) {}
-  int num_dofs() const override { return 2; }
-  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override {
-    const double L0sq = a_ * a_ + h_ * h_;
-    const double L0 = std::sqrt(L0sq);
-    Vector2d r = Vector2d(0.0, t * P_);  // -f_ext
-    Matrix2d k = Matrix2d::Zero();
-    for (const double xb : {-a_, a_}) {
-      const Vector2d d(-xb + u(0), h_ + u(1));
-      const double E = (d.squaredNorm() - L0sq) / (2.0 * L0sq);
-      r.noalias() += EA_ * E / L0 * d;
-      k.noalias() += EA_ / L0 * (d * d.transpose() / L0sq + E * Matrix2d::Identity());
-    }
-    R = r;
-    if (K) {
-      K->resize(2, 2);
-      std::vector<Eigen::Triplet<double>> tr;
-      for (int i = 0; i < 2; ++i)
-        for (int j = 0; j < 2; ++j) tr.emplace_back(i, j, k(i, j));
-      K->setFromTriplets(tr.begin(), tr.end());
-    }
-  }
-  std::string status() const override { return "truss"; }
-
-  double L0() const { return std::sqrt(a_ * a_ + h_ * h_); }
-  /// The closed form P(w).
-  double load(double w) const { return EA_ / std::pow(L0(), 3) * w * (2.0 * h_ - w) * (h_ - w); }
-  double w_limit() const { return h_ * (1.0 - 1.0 / std::sqrt(3.0)); }
-  double P_max() const { return load(w_limit()); }
-  /// The deflection w in [0, w_limit] under the load P (bisection on the closed form).
-  double deflection(double P) const {
-    double lo = 0.0, hi = w_limit();
-    for (int i = 0; i < 200; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (load(mid) < P ? lo : hi) = mid;
-    }
-    return 0.5 * (lo + hi);
-  }
-
- private:
-  double a_, h_, EA_, P_;
-};
+using iga::test::VonMisesTruss;
 
 /// A chain of n springs, node 0 fixed, the end node loaded by t F; spring i joins nodes i-1
 /// and i with the force s_i(D) = k_i g(D) of its elongation D = u_i - u_{i-1}. Every spring

@@ -1,0 +1,95 @@
+// Arc-length path following through a snap-through (issue 17): data/arch_snap.json, a shallow
+// pinned circular arch (R = 100, half-angle 10 degrees, EI = 1, EA = 10, half model with a
+// symmetry plane) under a central point load, against the same extensible Kirchhoff elastica
+// solved by shooting and continuation (scripts/arch_snap_reference.py): the limit points
+// P_max = 4.441629e-3 at an apex deflection of 0.86309 and P_min = -1.366476e-3 at 2.42704, and
+// the apex deflection 3.523344 under P = 0.01 on the far branch. Load control stops at the first
+// limit point.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "iga/model/analysis.hpp"
+
+using namespace iga;
+
+namespace {
+
+const std::string kModel = std::string(IGA_SOURCE_DIR) + "/data/arch_snap.json";
+constexpr double kLoadAtT1 = 0.01;  // P at t = 1 (twice the half model's apex force)
+
+/// The extremum of P(delta) near path point k: the vertex of the parabola through points
+/// k - 1, k, k + 1.
+std::pair<double, double> vertex(const std::vector<double>& d, const std::vector<double>& P,
+                                 std::size_t k) {
+  Eigen::Matrix3d A;
+  Eigen::Vector3d b;
+  for (int i = 0; i < 3; ++i) {
+    const double x = d[k - 1 + static_cast<std::size_t>(i)];
+    A.row(i) << x * x, x, 1.0;
+    b(i) = P[k - 1 + static_cast<std::size_t>(i)];
+  }
+  const Eigen::Vector3d c = A.partialPivLu().solve(b);
+  const double x = -c(1) / (2.0 * c(0));
+  return {x, (c(0) * x + c(1)) * x + c(2)};
+}
+
+}  // namespace
+
+TEST_CASE("Arc length: the shallow arch snaps through both limit points (shooting reference)",
+          "[iga][model][arc_length]") {
+  Analysis a = Analysis::load(kModel);
+  std::vector<double> delta, P;
+  const AnalysisResult res =
+      a.run(nullptr, "", [&](const VectorXd&, double t, const AnalysisStep& st) {
+        delta.push_back(-st.displacements.at(0).y());
+        P.push_back(kLoadAtT1 * t);
+        // the support carries the load: its vertical reaction is P/2 on the half model
+        CHECK(st.reactions.at(0).y() == Approx(0.5 * kLoadAtT1 * t).margin(1e-12));
+        return true;
+      });
+  REQUIRE(res.solver.converged());
+  REQUIRE(P.size() > 10);
+  // The apex deflection grows along the whole path (no snap-back in it), the load does not.
+  CHECK(std::is_sorted(delta.begin(), delta.end()));
+  std::vector<std::pair<double, double>> extrema;
+  for (std::size_t k = 1; k + 1 < P.size(); ++k)
+    if ((P[k] - P[k - 1]) * (P[k + 1] - P[k]) < 0.0) extrema.push_back(vertex(delta, P, k));
+  REQUIRE(extrema.size() == 2);
+  std::printf(
+      "arch snap-through, 16 cubic elements, %d arc-length steps, %d Newton iterations:\n"
+      "  maximum P = %.6e at delta = %.4f (reference 4.441629e-3 at 0.86309)\n"
+      "  minimum P = %.6e at delta = %.4f (reference -1.366476e-3 at 2.42704)\n"
+      "  delta under P = 0.01: %.6f (reference 3.523344)\n",
+      res.solver.steps, res.solver.total_iterations, extrema[0].second, extrema[0].first,
+      extrema[1].second, extrema[1].first, delta.back());
+  // The limit loads within 0.2 % of P_max (the parabola through three arc-length steps), their
+  // deflections within 2 % of the rise (flat there: P changes little with delta).
+  CHECK(std::abs(extrema[0].second - 4.441629e-3) < 2e-3 * 4.441629e-3);
+  CHECK(std::abs(extrema[1].second - -1.366476e-3) < 2e-3 * 4.441629e-3);
+  CHECK(std::abs(extrema[0].first - 0.86309) < 0.03);
+  CHECK(std::abs(extrema[1].first - 2.42704) < 0.03);
+  CHECK(delta.back() == Approx(3.523344).epsilon(1e-4));
+  CHECK(P.back() == Approx(kLoadAtT1).epsilon(1e-12));  // landed on t = 1
+
+  // Load control: the run cannot pass the first limit point (a step jumps or fails there).
+  Analysis b = Analysis::load(kModel);
+  b.solver_settings().control = PathControl::load;
+  b.solver_settings().min_step = 1e-4;
+  double P_reached = 0.0, delta_before = 0.0, widest_jump = 0.0;
+  (void)b.run(nullptr, "", [&](const VectorXd&, double t, const AnalysisStep& st) {
+    const double d = -st.displacements.at(0).y();
+    widest_jump = std::max(widest_jump, d - delta_before);
+    delta_before = d;
+    P_reached = kLoadAtT1 * t;
+    return true;
+  });
+  // Either it stops below P_max or it jumps over the falling branch to the far one.
+  CHECK((P_reached < 4.441629e-3 || widest_jump > 2.42704 - 0.86309));
+}
