@@ -94,7 +94,7 @@ std::vector<Vector3d> ControlPointProblem::reactions(const VectorXd& u, double t
   std::swap(pairs_, copies);
   std::vector<Vector3d> r;
   try {
-    r = nodal_residual(u, t);
+    r = dofs_.constraint_forces(nodal_residual(u, t));
   } catch (...) {
     std::swap(pairs_, copies);
     throw;

@@ -69,7 +69,9 @@ class ControlPointProblem : public Body {
   int num_pairs() const override { return static_cast<int>(pairs_.size()); }
   const ContactPair& pair(int i) const override { return *pairs_.at(static_cast<std::size_t>(i)); }
   ContactPair& pair(int i) override { return *pairs_.at(static_cast<std::size_t>(i)); }
-  /// nodal_residual with the pairs' state kept: nodal_residual re-evaluates the contact, and
+  /// The forces the constraints carry (DofMap::constraint_forces of nodal_residual: a point
+  /// with tied neighbours reports theirs too, a tied point 0 along its tied components), with
+  /// the pairs' state kept: nodal_residual re-evaluates the contact, and
   /// right after commit() the increments are zero, so points that slipped sit on the slip
   /// surface (Phi = 0 up to round-off) and their stick/slip flags become arbitrary.
   std::vector<Vector3d> reactions(const VectorXd& u, double t) override;

@@ -62,6 +62,39 @@ void DofMap::renumber() const {
     }
 }
 
+std::vector<Vector3d> DofMap::constraint_forces(const std::vector<Vector3d>& g) const {
+  const std::size_t n = points_.size();
+  if (g.size() != n)
+    throw std::invalid_argument(owner_ + "::constraint_forces: " + std::to_string(g.size()) +
+                                " forces for " + std::to_string(n) + " points");
+  // Generalized force of each component, moved along the tie chains to their ends.
+  std::vector<std::array<double, 3>> F(n, {0.0, 0.0, 0.0});
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointDofs& P = points_[i];
+    for (int c = 0; c < 3; ++c) {
+      double f = 0.0;
+      for (int a = 0; a < 3; ++a) f += g[i][a] * axis(P, a, c);
+      std::size_t m = i;
+      int mc = c;
+      double sign = 1.0;
+      const Component* k = &P.c[static_cast<std::size_t>(c)];
+      while (k->prescribed < 0 && k->tie_point >= 0) {  // a tied component: to its master
+        sign *= k->tie_sign;
+        m = static_cast<std::size_t>(k->tie_point);
+        mc = k->tie_component;
+        k = &points_[m].c[static_cast<std::size_t>(mc)];
+      }
+      F[m][static_cast<std::size_t>(mc)] += sign * f;
+    }
+  }
+  std::vector<Vector3d> r(n, Vector3d::Zero());
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c)
+      for (int a = 0; a < 3; ++a)
+        r[i][a] += F[i][static_cast<std::size_t>(c)] * axis(points_[i], a, c);
+  return r;
+}
+
 void DofMap::constrain(int point, int component, Prescribed p) {
   check_point(point, "constrain");
   check_component(component);

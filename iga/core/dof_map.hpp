@@ -78,6 +78,14 @@ class DofMap {
                       std::vector<Vector3d>& x) const;
   /// R = P^T g (resized to num_free()).
   void reduce(const VectorXd& g, VectorXd& R) const;
+  /// The forces the constraints carry, from the Cartesian nodal forces g_i (one per point, e.g.
+  /// f_int - f_ext at an equilibrium state): per point, the sum over its local components c of
+  /// F_ic Q_i(:, c), where F_ic is the generalized force of the component, g_i . Q_i(:, c), plus
+  /// that of every component tied to it (times the tie's sign: a tie moves its force to the end
+  /// of its chain); a tied component's own entry is 0. So a prescribed point whose neighbours
+  /// are tied to it reports the whole force its prescription carries, free components report ~0
+  /// at equilibrium, and the sum over all points keeps the sum of g (tied axes are parallel).
+  std::vector<Vector3d> constraint_forces(const std::vector<Vector3d>& g) const;
   /// K_free = P^T K_cart P, triplet by triplet (appended to `free`).
   void reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const;
 

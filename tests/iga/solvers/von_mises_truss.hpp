@@ -77,7 +77,6 @@ class VonMisesTruss : public NonlinearProblem {
   double a_, h_, EA_, P_;
 };
 
-
 /// The truss loaded through a linear spring of stiffness k_s above the apex: unknowns (u_x, u_y,
 /// v), v the vertical displacement of the loaded point, which carries (0, -t P). The spring
 /// carries t P, so P(w) = t P as for the truss and the loaded point's deflection is
