@@ -1,12 +1,14 @@
-// `iga run MODEL.json [--out DIR] [--set /ptr=value]...`: runs any analysis model (rod or shell,
-// with or without contact) (docs/model_format.md, analysis sections): progress line per step, the
-// solver's summary, and in DIR steps.csv, summary.json, ParaView files, model_used.json. Exit
-// status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the solver stopped early
-// (or a bad command line, from iga_main.cpp).
+// `iga run MODEL.json [--out DIR] [--set /ptr=value]... [--threads N]`: runs any analysis model
+// (rod or shell, with or without contact) (docs/model_format.md, analysis sections): progress line
+// per step, the solver's summary, and in DIR steps.csv, summary.json, ParaView files,
+// model_used.json. Exit status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the
+// solver stopped early (or a bad command line, from iga_main.cpp).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+
+#include <omp.h>
 
 #include "apps/common/app_common.hpp"
 #include "apps/common/resources.hpp"
@@ -21,6 +23,7 @@ struct RunOptions {
   std::string file, out;
   std::vector<std::string> sets;
   bool quiet = false;
+  int threads = 0;  // 0: OpenMP's default (OMP_NUM_THREADS, else every core)
 };
 
 int run_model(const RunOptions& o) {
@@ -30,7 +33,9 @@ int run_model(const RunOptions& o) {
       o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
   std::filesystem::create_directories(out);
   std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
-  std::cout << "iga run: " << o.file << ": " << a.describe() << "\n";
+  if (o.threads > 0) omp_set_num_threads(o.threads);
+  std::cout << "iga run: " << o.file << ": " << a.describe() << " (" << omp_get_max_threads()
+            << " threads)\n";
   const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out);
   std::cout << "iga run: results in " << out << " (steps.csv, summary.json";
   if (a.output().vtk != AnalysisOutput::Vtk::kNone)  // one series per body (write_output)
@@ -63,6 +68,9 @@ Action add_run_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "Output folder (default out/<model name>)");
   cmd->add_option("--set", o->sets, "Override a model value: /json/pointer=value (repeatable)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress lines");
+  cmd->add_option("--threads,-j", o->threads,
+                  "Threads of the element loops (default: OMP_NUM_THREADS, else every core)")
+      ->check(CLI::Range(1, 1024));
   return [o]() { return run_model(*o); };
 }
 

@@ -344,28 +344,41 @@ void KirchhoffLoveShell::element_tangent(int e, std::span<const Vector3d> x, She
 
 void KirchhoffLoveShell::assemble(std::span<const Vector3d> x, Eigen::VectorXd& f_int,
                                   std::vector<Triplet>* K) const {
-  f_int.setZero(num_dofs());
-  ShellElementVector fe;
-  ShellElementMatrix Ke;
+  // Elements in parallel (OpenMP), each writing its own slots: its force vector into fe_all and
+  // its triplets into the block of K reserved for it, in element order. The forces are then
+  // added in element order by one thread, so f_int and K are the same, bit for bit, for any
+  // number of threads.
+  const int ne = num_elements();
   const int np = (reference_.degree_u() + 1) * (reference_.degree_v() + 1);
-  if (K) K->reserve(K->size() + static_cast<std::size_t>(num_elements()) * 9 * np * np);
-  std::array<int, kMaxShellElementPoints> idx{};
-  for (int e = 0; e < num_elements(); ++e) {
-    if (K)
-      element_tangent(e, x, fe, Ke);
-    else
+  const std::size_t per_element = static_cast<std::size_t>(9 * np * np);
+  const std::size_t base = K ? K->size() : 0;
+  if (K) K->resize(base + static_cast<std::size_t>(ne) * per_element);
+  std::vector<ShellElementVector> fe_all(static_cast<std::size_t>(ne));
+  // Small meshes stay on one thread (the pool's start costs more than they do).
+#pragma omp parallel for schedule(static) if (ne >= kParallelElements)
+  for (int e = 0; e < ne; ++e) {
+    ShellElementVector& fe = fe_all[static_cast<std::size_t>(e)];
+    if (!K) {
       element_forces(e, x, fe);
+      continue;
+    }
+    ShellElementMatrix Ke;
+    element_tangent(e, x, fe, Ke);
+    std::array<int, kMaxShellElementPoints> idx{};
     for (int k = 0; k < np; ++k) idx[static_cast<std::size_t>(k)] = 3 * element_point(e, k);
-    for (int k = 0; k < np; ++k)
-      f_int.segment<3>(idx[static_cast<std::size_t>(k)]) += fe.segment<3>(3 * k);
-    if (!K) continue;
+    Triplet* out = K->data() + base + static_cast<std::size_t>(e) * per_element;
     for (int l = 0; l < np; ++l)
       for (int b = 0; b < 3; ++b)
         for (int k = 0; k < np; ++k)
           for (int a = 0; a < 3; ++a)
-            K->emplace_back(idx[static_cast<std::size_t>(k)] + a,
-                            idx[static_cast<std::size_t>(l)] + b, Ke(3 * k + a, 3 * l + b));
+            *out++ = Triplet(idx[static_cast<std::size_t>(k)] + a,
+                             idx[static_cast<std::size_t>(l)] + b, Ke(3 * k + a, 3 * l + b));
   }
+  f_int.setZero(num_dofs());
+  for (int e = 0; e < ne; ++e)
+    for (int k = 0; k < np; ++k)
+      f_int.segment<3>(3 * element_point(e, k)) +=
+          fe_all[static_cast<std::size_t>(e)].segment<3>(3 * k);
 }
 
 Vector3d KirchhoffLoveShell::point(double u, double v, std::span<const Vector3d> x) const {

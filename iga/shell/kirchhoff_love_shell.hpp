@@ -74,6 +74,9 @@ struct ShellOptions {
 
 /// Largest degree per direction of a shell patch (fixed-capacity element arrays).
 inline constexpr int kMaxShellDegree = kMaxSurfaceBasisDegree;
+/// Meshes with at least this many elements are assembled in parallel (KirchhoffLoveShell::
+/// assemble).
+inline constexpr int kParallelElements = 64;
 inline constexpr int kMaxShellElementPoints = (kMaxShellDegree + 1) * (kMaxShellDegree + 1);
 inline constexpr int kMaxShellElementDofs = 3 * kMaxShellElementPoints;
 using ShellElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxShellElementDofs, 1>;
@@ -130,7 +133,10 @@ class KirchhoffLoveShell {
   /// Global control point of local function k of element e.
   int element_point(int e, int k) const;
   /// Global internal forces (resized to num_dofs()) and, if K != nullptr, the tangent as
-  /// triplets appended to *K (duplicates are to be summed).
+  /// triplets appended to *K (duplicates are to be summed), element by element in element
+  /// order. Meshes of kParallelElements elements or more are assembled on all OpenMP threads
+  /// (OMP_NUM_THREADS, omp_set_num_threads); the result is the same bit for bit for any number
+  /// of threads.
   void assemble(std::span<const Vector3d> x, Eigen::VectorXd& f_int, std::vector<Triplet>* K) const;
 
   /// Current point, unit normal a_3 and stresses at (u, v).

@@ -19,8 +19,8 @@ constexpr double kLoad = 2500.0;  // P/4 on the octant: w ~ 0.05 h, round-off of
 
 /// The octant of make_pinched_cylinder (8 x 8 cubic elements), without its load.
 ShellProblem octant() {
-  ShellProblem q(KirchhoffLoveShell(make_pinched_cylinder(8, 3).problem.shell().reference(),
-                                    {3e6, 0.3, 3.0}));
+  ShellProblem q(
+      KirchhoffLoveShell(make_pinched_cylinder(8, 3).problem.shell().reference(), {3e6, 0.3, 3.0}));
   q.symmetry(SurfaceEdge::kVMax, Vector3d::UnitY());  // mid-section
   q.symmetry(SurfaceEdge::kUMin, Vector3d::UnitX());  // top generator
   q.symmetry(SurfaceEdge::kUMax, Vector3d::UnitZ());  // side generator

@@ -1,0 +1,44 @@
+// The shell's assembly on several OpenMP threads (issue 17, item 4): the same internal forces and
+// tangent triplets, bit for bit, with 1 and 2 threads (each element writes its own slots, the
+// forces are summed in element order by one thread), on a mesh above the parallel threshold.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include <omp.h>
+
+#include "geometry/constructions.hpp"
+#include "geometry/refinement.hpp"
+#include "iga/shell/kirchhoff_love_shell.hpp"
+
+using namespace iga;
+
+TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for bit",
+          "[iga][shell][threads]") {
+  NurbsSurface s = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
+                                 0.0, 1.5);
+  s = subdivide(elevate_degree(s, 1, 2), 12, 12);
+  const KirchhoffLoveShell shell(s, {1e4, 0.3, 0.02});
+  REQUIRE(shell.num_elements() >= kParallelElements);
+  std::vector<Vector3d> x = shell.reference_points();
+  for (std::size_t i = 0; i < x.size(); ++i)  // a deformed state
+    x[i] += 0.01 * Vector3d(std::sin(1.0 + i), std::cos(2.0 * i), std::sin(0.5 * i));
+  const int saved = omp_get_max_threads();
+  Eigen::VectorXd f1, f2;
+  std::vector<Triplet> T1, T2;
+  omp_set_num_threads(1);
+  shell.assemble(x, f1, &T1);
+  omp_set_num_threads(2);
+  shell.assemble(x, f2, &T2);
+  omp_set_num_threads(saved);
+  REQUIRE(f1.size() == f2.size());
+  REQUIRE(T1.size() == T2.size());
+  CHECK(f1.norm() > 0.0);
+  int differ = 0;
+  for (Eigen::Index i = 0; i < f1.size(); ++i) differ += f1[i] != f2[i];
+  for (std::size_t k = 0; k < T1.size(); ++k)
+    differ += T1[k].row() != T2[k].row() || T1[k].col() != T2[k].col() ||
+              T1[k].value() != T2[k].value();
+  CHECK(differ == 0);
+}
