@@ -520,6 +520,8 @@ struct NonlinearSolver::ArcState {
   double dl = 0.0;      // the arc length of the next step (0: not yet set)
   double dl_min = 0.0;  // bounds of dl, set with it
   double dl_max = 0.0;
+  bool flat = false;     // the last predictor found dR/dt = 0: a load step instead
+  double dt_flat = 0.0;  // the size of such load steps (initial_step, cut back on failure)
   VectorXd R_h, R_t, du_R, du_t, du;  // workspace
 };
 
@@ -594,10 +596,13 @@ bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcS
   const double nt = arc.du_t.norm();
   if (!std::isfinite(nt))
     return finish(NewtonOutcome::not_finite, "predictor: the tangent solution is not finite");
-  if (!(nt > 0.0))
-    throw std::invalid_argument(
-        "NonlinearSolver (arc length): the residual does not depend on t (no load or prescribed "
-        "value changes with t): nothing to follow");
+  arc.flat = !(nt > 0.0);
+  if (arc.flat) {
+    // Nothing depends on t here (e.g. a tool still away from the body): a load step of dt_flat.
+    Dt = std::min(arc.dt_flat, s.t1 - arc.t);
+    arc.du.setZero(w.n);
+    return true;
+  }
   if (arc.dl == 0.0) {
     arc.dl = s.initial_step * nt;
     arc.dl_min = arc.dl * s.min_step / s.initial_step;
@@ -636,6 +641,12 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
 
   double Dt = 0.0;
   if (!arc_predictor(problem, u, arc, w, a, r, Dt)) return;
+  if (arc.flat) {  // a load-controlled step
+    a.t = arc.t + Dt;
+    a.dt = Dt;
+    u = arc.u_last;
+    return newton(problem, u, a.t, w, a, r);
+  }
   VectorXd& Du = arc.du;
   LinearSolveStatus ls = LinearSolveStatus::success;
 
@@ -769,6 +780,7 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
   ArcState arc;
   arc.u_last = u;
   arc.t = s.t0;
+  arc.dt_flat = s.initial_step;
   const double span = s.t1 - s.t0;
   const double t_eps = 1e-12 * span;
   int attempted = 0;
@@ -826,8 +838,11 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
       // [Cri81]: Delta l sqrt(desired / N), within the growth and cutback factors.
       const double f =
           std::sqrt(static_cast<double>(s.desired_iterations) / std::max(hardest_solve, 1));
-      arc.dl = std::clamp(arc.dl * std::clamp(f, s.cutback_factor, s.growth_factor), arc.dl_min,
-                          arc.dl_max);
+      if (!arc.flat)
+        arc.dl = std::clamp(arc.dl * std::clamp(f, s.cutback_factor, s.growth_factor), arc.dl_min,
+                            arc.dl_max);
+      else if (hardest_solve <= s.easy_iterations)  // load steps grow as under load control
+        arc.dt_flat = std::min(arc.dt_flat * s.growth_factor, s.max_step);
       r.attempts.push_back(std::move(a));
       if (arc.t >= s.t1 - t_eps) {
         ended = true;
@@ -840,12 +855,21 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
       u = arc.u_last;
       problem.restore();
       ++r.cutbacks;
-      const bool at_min = arc.dl <= arc.dl_min * (1.0 + 1e-12);
-      const double dl_next = std::max(arc.dl * s.cutback_factor, arc.dl_min);
-      ended = report_failed_step(
-          log_, r, a, format("arc %.3e", arc.dl),
-          at_min ? "minimum arc length reached" : format("arc -> %.3e", dl_next), at_min, arc.t);
-      arc.dl = dl_next;
+      if (arc.flat) {  // a load step failed
+        const bool at_min = arc.dt_flat <= s.min_step * (1.0 + 1e-12);
+        const double dt_next = std::max(arc.dt_flat * s.cutback_factor, s.min_step);
+        ended = report_failed_step(log_, r, a, format("dt = %.3e", a.dt),
+                                   at_min ? "minimum step reached" : format("dt -> %.3e", dt_next),
+                                   at_min, arc.t);
+        arc.dt_flat = dt_next;
+      } else {
+        const bool at_min = arc.dl <= arc.dl_min * (1.0 + 1e-12);
+        const double dl_next = std::max(arc.dl * s.cutback_factor, arc.dl_min);
+        ended = report_failed_step(
+            log_, r, a, format("arc %.3e", arc.dl),
+            at_min ? "minimum arc length reached" : format("arc -> %.3e", dl_next), at_min, arc.t);
+        arc.dl = dl_next;
+      }
       r.attempts.push_back(std::move(a));
     }
   }

@@ -207,8 +207,10 @@ using StepCallback = std::function<bool(const VectorXd& u, double t, const StepA
 /// as it goes; a step whose set does not settle fails (divergence, max_iterations) and is cut
 /// back; multiplier updates (augment) re-solve at the step's t. A step that crosses t1 or a
 /// hit time is repeated under load control from the state interpolated at that time (when that
-/// fails, the arc state is kept). NonlinearProblem::commit and the step callback see every
-/// converged state, with t going down after a limit point.
+/// fails, the arc state is kept). Where dR/dt = 0 (nothing depends on t, e.g. a tool still away
+/// from the body) the step is a load step of initial_step (grown and cut back as under load
+/// control). NonlinearProblem::commit and the step callback see every converged state, with t
+/// going down after a limit point.
 class NonlinearSolver {
  public:
   /// Throws std::invalid_argument for invalid settings.

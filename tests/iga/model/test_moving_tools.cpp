@@ -341,3 +341,31 @@ TEST_CASE("moving tools: the rigid_motions section is checked with file, path an
               Json::parse(R"({"vector": [0, 0, 0.1], "curve": "turn"})");
         }) == "no error");
 }
+
+TEST_CASE("moving tools: arc length through contact changes ends where load control does",
+          "[iga][analysis][moving_tools][arc_length]") {
+  // The ring crushed between plates (data/ring_between_plates.json) driven by the plate's motion:
+  // no dR/dt until the plate touches (load steps), then arc length while the contact zone grows
+  // point by point (active sets change inside the steps); the force on the plate at t = 1 is
+  // the load-controlled run's.
+  Json doc = read_json_file(kData + "ring_between_plates.json");
+  doc["output"]["vtk"] = "none";
+  doc["solver"].erase("hit_times");
+  Analysis load = Analysis::from_json(doc, "ring_between_plates.json");
+  const AnalysisResult rl = load.run();
+  REQUIRE(rl.solver.converged());
+  doc["solver"]["control"] = "arc_length";
+  Analysis arc = Analysis::from_json(doc, "ring_between_plates.json");
+  const AnalysisResult ra = arc.run();
+  REQUIRE(ra.solver.converged());
+  CHECK(ra.solver.t == 1.0);
+  CHECK(ra.steps.size() < rl.steps.size());
+  int changes = 0;  // steps whose active set differs from the step before
+  for (std::size_t k = 1; k < ra.steps.size(); ++k)
+    changes += ra.steps[k].contact.active != ra.steps[k - 1].contact.active;
+  CHECK(changes >= 3);
+  const double Fl = rl.steps.back().tool_loads.at(0).first.y();
+  const double Fa = ra.steps.back().tool_loads.at(0).first.y();
+  CHECK(Fa == Approx(Fl).epsilon(1e-6));
+  CHECK(ra.steps.back().contact.active == rl.steps.back().contact.active);
+}

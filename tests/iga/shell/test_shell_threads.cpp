@@ -16,8 +16,8 @@ using namespace iga;
 
 TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for bit",
           "[iga][shell][threads]") {
-  NurbsSurface s = make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
-                                 0.0, 1.5);
+  NurbsSurface s =
+      make_cylinder(Vector3d::Zero(), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0, 0.0, 1.5);
   s = subdivide(elevate_degree(s, 1, 2), 12, 12);
   const KirchhoffLoveShell shell(s, {1e4, 0.3, 0.02});
   REQUIRE(shell.num_elements() >= kParallelElements);
@@ -38,7 +38,7 @@ TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for b
   int differ = 0;
   for (Eigen::Index i = 0; i < f1.size(); ++i) differ += f1[i] != f2[i];
   for (std::size_t k = 0; k < T1.size(); ++k)
-    differ += T1[k].row() != T2[k].row() || T1[k].col() != T2[k].col() ||
-              T1[k].value() != T2[k].value();
+    differ +=
+        T1[k].row() != T2[k].row() || T1[k].col() != T2[k].col() || T1[k].value() != T2[k].value();
   CHECK(differ == 0);
 }
