@@ -218,6 +218,25 @@ NurbsSurface make_sphere(const Vector3d& center, double r) {
   return make_revolution(half, center, ez);
 }
 
+NurbsSurface make_sphere_zone(const Vector3d& center, const Vector3d& axis, const Vector3d& ref_dir,
+                              double r, double lat0, double lat1, double lon0, double lon1) {
+  check_positive("make_sphere_zone: radius", r);
+  if (!(lat0 >= -0.5 * kPi && lat1 <= 0.5 * kPi && lat1 > lat0))
+    throw std::invalid_argument(
+        "make_sphere_zone: latitudes must satisfy -pi/2 <= lat0 < lat1 "
+        "<= pi/2");
+  if (!(lon1 > lon0 && lon1 - lon0 <= 2.0 * kPi * (1.0 + 1e-12)))
+    throw std::invalid_argument(
+        "make_sphere_zone: longitudes must satisfy lon0 < lon1 <= lon0 "
+        "+ 2 pi");
+  const Vector3d ez = axis.normalized();
+  const Vector3d e0 = (ref_dir - ref_dir.dot(ez) * ez).normalized();
+  // The profile at longitude lon0, from lat0 to lat1, revolved about the axis as in make_sphere.
+  const Vector3d ex = std::cos(lon0) * e0 + std::sin(lon0) * ez.cross(e0);
+  const NurbsCurve arc = make_circular_arc(center, ex, ez, r, lat0, lat1);
+  return make_revolution(arc, center, ez, lon1 - lon0);
+}
+
 NurbsSurface make_torus(const Vector3d& center, const Vector3d& axis, double R, double r) {
   check_positive("make_torus: major radius R", R);
   check_positive("make_torus: minor radius r", r);

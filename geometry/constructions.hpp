@@ -66,6 +66,12 @@ NurbsSurface make_cylinder(const Vector3d& base, const Vector3d& axis, const Vec
 /// Sphere of radius r (revolution of a half circle); u around the axis, v from south to north
 /// pole; outward normal.
 NurbsSurface make_sphere(const Vector3d& center, double r);
+/// A zone of a sphere: latitudes [lat0, lat1] (radians, in [-pi/2, pi/2], from the plane normal
+/// to `axis`) and longitudes [lon0, lon1] (from ref_dir, counter-clockwise about `axis`,
+/// lon1 - lon0 <= 2 pi). u along the longitude, v from lat0 to lat1; outward normal as
+/// make_sphere. Exact (rational quadratic in both directions).
+NurbsSurface make_sphere_zone(const Vector3d& center, const Vector3d& axis, const Vector3d& ref_dir,
+                              double r, double lat0, double lat1, double lon0, double lon1);
 
 /// Torus about the axis through center: major radius R (tube centre circle), minor radius
 /// r < R; full in both directions; outward normal.

@@ -437,13 +437,41 @@ NurbsSurface construct_cylinder(const JsonCursor& e) {
                         }));
 }
 
+// A [lo, hi] pair of angles in degrees within [min, max], lo < hi.
+std::pair<double, double> angle_range(const JsonCursor& c, double min, double max) {
+  const std::vector<double> a = c.as_numbers();
+  if (a.size() != 2) c.fail("expected [low, high] in degrees");
+  if (!(a[0] >= min && a[1] <= max && a[1] > a[0]))
+    c.fail("needs " + num(min) + " <= low < high <= " + num(max) + ", got [" + num(a[0]) + ", " +
+           num(a[1]) + "]");
+  return {a[0], a[1]};
+}
+
 NurbsSurface construct_sphere(const JsonCursor& e) {
-  e.expect_object({"type", "shape", "center", "radius", "refine", "normal"});
+  e.expect_object({"type", "shape", "center", "radius", "axis", "ref_dir", "lat_deg", "lon_deg",
+                   "refine", "normal"});
   const Vector3d c = parse_vec3(e["center"]);
   const double r = parse_positive(e["radius"]);
   check_length(e["radius"]);
   check_point(e["center"]);
-  return finish_surface(e, construct(e, [&] { return make_sphere(c, r); }));
+  if (!e.has("axis") && !e.has("ref_dir") && !e.has("lat_deg") && !e.has("lon_deg"))
+    return finish_surface(e, construct(e, [&] { return make_sphere(c, r); }));
+  // A zone: latitudes and longitudes about an axis.
+  const Vector3d axis = e.has("axis") ? parse_direction(e["axis"]) : Vector3d::UnitZ();
+  const Vector3d ref = e.has("ref_dir") ? parse_direction(e["ref_dir"]) : Vector3d::UnitX();
+  if (!(ref.cross(axis).norm() > 1e-6)) e["ref_dir"].fail("must not be parallel to axis");
+  const std::pair<double, double> lat =
+      e.has("lat_deg") ? angle_range(e["lat_deg"], -90.0, 90.0) : std::pair{-90.0, 90.0};
+  const std::pair<double, double> lon = e.has("lon_deg")
+                                            ? angle_range(e["lon_deg"], -kMaxAngleDeg, kMaxAngleDeg)
+                                            : std::pair{0.0, 360.0};
+  if (lon.second - lon.first > 360.0 * (1.0 + 1e-12))
+    e["lon_deg"].fail("spans more than 360 degrees");
+  return finish_surface(e, construct(e, [&] {
+                          return make_sphere_zone(c, axis, ref, r, lat.first * kDeg,
+                                                  lat.second * kDeg, lon.first * kDeg,
+                                                  lon.second * kDeg);
+                        }));
 }
 
 NurbsSurface construct_torus(const JsonCursor& e) {

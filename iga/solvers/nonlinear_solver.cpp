@@ -194,8 +194,8 @@ double step_end(const NonlinearSolverSettings& s, double t, double dt, double t_
   // The step ends at t1 if it would leave less than min_step to go.
   double t_new = t + dt;
   if (t_new > s.t1 - t_eps || s.t1 - t_new < s.min_step) t_new = s.t1;
-  for (double h : s.hit_times)  // land on requested times
-    if (h > t + t_eps && h < t_new - t_eps) t_new = h;
+  for (double h : s.hit_times)  // land on requested times (also one the step ends next to)
+    if (h > t + t_eps && h < t_new + t_eps) t_new = h;
   return t_new;
 }
 

@@ -789,3 +789,44 @@ TEST_CASE("construction arc: exact circle in its plane, elevated and split, erro
       "normal": [1, 0, 0]}})");
   CHECK(e.pointer() == "/geometry/a/normal");
 }
+
+TEST_CASE("construction sphere zone: exact, its corners at the given latitudes and longitudes",
+          "[geometry][constructions][io]") {
+  const GeometryModel m =
+      parse_geometry(parse_json_text(
+                         R"({"s": {"type": "construction", "shape": "sphere", "center": [1, 0, 0],
+      "radius": 10, "lat_deg": [0, 72], "lon_deg": [30, 120]}})",
+                         "g.json"),
+                     "g.json", JsonPointer("/geometry"));
+  const auto& s = std::get<NurbsSurface>(m.entities.at(0).second);
+  const Vector3d c(1, 0, 0);
+  const double deg = std::numbers::pi / 180.0;
+  const auto on = [&](double lat, double lon) -> Vector3d {
+    return c + 10.0 * Vector3d(std::cos(lat * deg) * std::cos(lon * deg),
+                               std::cos(lat * deg) * std::sin(lon * deg), std::sin(lat * deg));
+  };
+  const Domain2 d = s.domain();
+  CHECK((s.point(d.u.lo, d.v.lo) - on(0, 30)).norm() < 1e-12);
+  CHECK((s.point(d.u.hi, d.v.lo) - on(0, 120)).norm() < 1e-12);
+  CHECK((s.point(d.u.lo, d.v.hi) - on(72, 30)).norm() < 1e-12);
+  CHECK((s.point(d.u.hi, d.v.hi) - on(72, 120)).norm() < 1e-12);
+  double worst = 0.0;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j) {
+      const double u = d.u.lo + (d.u.hi - d.u.lo) * i / 20.0,
+                   v = d.v.lo + (d.v.hi - d.v.lo) * j / 20.0;
+      const SurfaceDerivs sd = s.derivs(u, v, 1);
+      worst = std::max(worst, std::abs((sd.S - c).norm() - 10.0));
+      if (i > 0 && j > 0 && j < 20)  // outward normal
+        CHECK(sd.Su.cross(sd.Sv).dot(sd.S - c) > 0.0);
+    }
+  CHECK(worst < 1e-12);
+  auto e = iga::test::geometry_error(
+      R"({"s": {"type": "construction", "shape": "sphere", "center": [0, 0, 0], "radius": 1,
+      "lat_deg": [10, 95]}})");
+  CHECK(e.pointer() == "/geometry/s/lat_deg");
+  e = iga::test::geometry_error(
+      R"({"s": {"type": "construction", "shape": "sphere", "center": [0, 0, 0], "radius": 1,
+      "axis": [0, 0, 1], "ref_dir": [0, 0, 2]}})");
+  CHECK(e.pointer() == "/geometry/s/ref_dir");
+}
