@@ -378,7 +378,11 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   std::string error = out_dir.empty() ? std::string() : open_output(out_dir, csv);
   // One ParaView series (<series>.pvd) per body, pair and piece of a tool (write_output).
   std::map<std::string, VtkCollection> pvd;
+  // The series' time of a snapshot: t, or under arc length (t falls after a limit point and
+  // comes back: ParaView orders a series by its times) the number of the step.
+  const bool by_step = settings_.control == PathControl::arc_length;
   auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
+    const double key = by_step ? static_cast<double>(res.steps.size()) : t;
     for (const OutputFile& f : write_output(out_dir, stem, u, t)) {
       if (f.series.empty()) continue;
       auto it = pvd.find(f.series);
@@ -386,7 +390,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
         it =
             pvd.emplace(f.series, VtkCollection((fs::path(out_dir) / (f.series + ".pvd")).string()))
                 .first;
-      it->second.add(t, f.file);
+      it->second.add(key, f.file);
     }
   };
   VectorXd u = VectorXd::Zero(system_->num_dofs());

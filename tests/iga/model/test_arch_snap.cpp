@@ -15,7 +15,9 @@
 
 #include <Eigen/Dense>
 
+#include "geometry/json_reader.hpp"
 #include "iga/model/analysis.hpp"
+#include "tests/support/files.hpp"
 
 using namespace iga;
 
@@ -44,10 +46,13 @@ std::pair<double, double> vertex(const std::vector<double>& d, const std::vector
 
 TEST_CASE("Arc length: the shallow arch snaps through both limit points (shooting reference)",
           "[iga][model][arc_length]") {
-  Analysis a = Analysis::load(kModel);
+  Json doc = read_json_file(kModel);
+  doc["output"]["vtk"] = "all";
+  Analysis a = Analysis::from_json(doc, kModel);
+  const std::string dir = test::fresh_out_dir("arch_snap", "arc");
   std::vector<double> delta, P;
   const AnalysisResult res =
-      a.run(nullptr, "", [&](const VectorXd&, double t, const AnalysisStep& st) {
+      a.run(nullptr, dir, [&](const VectorXd&, double t, const AnalysisStep& st) {
         delta.push_back(-st.displacements.at(0).y());
         P.push_back(kLoadAtT1 * t);
         // the support carries the load: its vertical reaction is P/2 on the half model
@@ -77,6 +82,10 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   CHECK(std::abs(extrema[1].first - 2.42704) < 0.03);
   CHECK(delta.back() == Approx(3.523344).epsilon(1e-4));
   CHECK(P.back() == Approx(kLoadAtT1).epsilon(1e-12));  // landed on t = 1
+  // ParaView's series runs by step (t falls and rises along the path): step k at time k.
+  const std::string pvd = test::slurp(dir + "/rod.pvd");
+  CHECK(pvd.find("timestep=\"" + std::to_string(P.size()) + "\" part=\"0\" file=\"step" +
+                 std::to_string(P.size()) + "_rod.vtk\"") != std::string::npos);
 
   // Load control: the run cannot pass the first limit point (a step jumps or fails there).
   Analysis b = Analysis::load(kModel);
