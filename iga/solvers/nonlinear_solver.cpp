@@ -421,13 +421,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     if (s.secant_predictor && u_prev.size() == n && t > t_prev)
       u = u_last + (a.dt / (t - t_prev)) * (u_last - u_prev);
     try {
-      newton(problem, u, t_new, w, a, r);
-      const int first_solve = a.iterations;
-      // Exact enforcement: update multipliers and solve again until the constraints hold.
-      const auto resolve = [&](StepAttempt& b, double r0_step) {
-        newton(problem, u, t_new, w, b, r, /*break_cycles=*/true, r0_step);
-      };
-      hardest_solve = std::max(first_solve, augment_until_satisfied(problem, u, t_new, a, resolve));
+      // Newton, then exact enforcement: multiplier updates and re-solves until they hold.
+      hardest_solve = solve_fixed(problem, u, t_new, w, a, r);
     } catch (...) {
       u = u_last;
       problem.restore();
