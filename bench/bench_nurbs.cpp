@@ -1,13 +1,15 @@
 // Benchmarks of the NURBS kernel: basis functions with derivatives (A2.3), bicubic rational
-// surface evaluation with second derivatives (A4.4), and the least-squares fit of a rope's
-// wrap path (constructions.hpp) against its element count. Items per second = evaluations
-// (fits: elements) per second. Run: build/release/bench/bench_nurbs --benchmark_repetitions=5
+// surface evaluation with second derivatives (A4.4; knot spans or Bezier elements), and the
+// least-squares fit of a rope's wrap path (constructions.hpp) against its element count. Items per
+// second = evaluations (fits: elements) per second. Run: build/release/bench/bench_nurbs
+// --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
 #include <random>
 #include <vector>
 
+#include "geometry/bezier_surface.hpp"
 #include "geometry/bspline_basis.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/nurbs_curve.hpp"
@@ -51,9 +53,12 @@ void BM_DersBasisFuns(benchmark::State& state) {
 }
 BENCHMARK(BM_DersBasisFuns)->ArgsProduct({{2, 3, 5}, {0, 2}});
 
-// Bicubic rational 8x8 patch with non-uniform knots: point + first + second derivatives.
+// Bicubic rational 8x8 patch with non-uniform knots: point + first + second derivatives, by the
+// B-spline basis of the knot spans (NurbsSurface, arg 1 = 0) or the Bernstein polynomials of
+// the Bezier elements (BezierSurface, arg 1 = 1).
 void BM_BicubicSurfaceDerivs(benchmark::State& state) {
   const int order = static_cast<int>(state.range(0));
+  const bool bezier = state.range(1) != 0;
   const std::vector<double> U = {0, 0, 0, 0, 0.1, 0.3, 0.45, 0.7, 1, 1, 1, 1};
   std::mt19937 rng(2);
   std::uniform_real_distribution<double> c(-1, 1), w(0.7, 1.3);
@@ -64,7 +69,9 @@ void BM_BicubicSurfaceDerivs(benchmark::State& state) {
       P.emplace_back(i + 0.2 * c(rng), j + 0.2 * c(rng), c(rng));
       W.push_back(w(rng));
     }
-  const NurbsSurface s(3, U, 3, U, P, W);
+  const NurbsSurface nurbs(3, U, 3, U, P, W);
+  const BezierSurface elements(nurbs);
+  const Surface& s = bezier ? static_cast<const Surface&>(elements) : nurbs;
   const std::vector<double> u = random_params(4096, 3), v = random_params(4096, 4);
   std::size_t k = 0;
   for (auto _ : state) {
@@ -74,7 +81,7 @@ void BM_BicubicSurfaceDerivs(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
-BENCHMARK(BM_BicubicSurfaceDerivs)->Arg(0)->Arg(1)->Arg(2);
+BENCHMARK(BM_BicubicSurfaceDerivs)->ArgsProduct({{0, 1, 2}, {0, 1}});
 
 // Cubic rational curve, derivatives up to order 3.
 void BM_CubicCurveDerivs(benchmark::State& state) {

@@ -141,13 +141,13 @@ ProjectionStatus boundary_status(const Surface& s, const Vector2d& uv) {
 // PatchProjector
 
 PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
-    : s_(s), elements_(bezier_extract(s)), samples_per_dir_(std::clamp(samples_per_dir, 2, 8)) {
+    : s_(s), bez_(s), samples_per_dir_(std::clamp(samples_per_dir, 2, 8)) {
   const int n = samples_per_dir_;
-  boxes_.reserve(elements_.size());
-  samples_.resize(elements_.size());
+  boxes_.reserve(bez_.elements().size());
+  samples_.resize(bez_.elements().size());
   hull_offset_.push_back(0);
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    const BezierPatch& b = elements_[e];
+  for (std::size_t e = 0; e < bez_.elements().size(); ++e) {
+    const BezierPatch& b = bez_.elements()[e];
     for (const Vector4d& q : b.pw) hull_.push_back(q.head<3>() / q.w());
     hull_offset_.push_back(hull_.size());
     boxes_.push_back(bounding_box(b));
@@ -160,18 +160,11 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
         samples_[e].push_back({uv, s_.point(uv[0], uv[1])});
       }
   }
-  breaks_u_ = s_.knots_u().breaks();
-  breaks_v_ = s_.knots_v().breaks();
   build_tree();
 }
 
 int PatchProjector::element_of(const Vector2d& uv) const {
-  auto index = [](const std::vector<double>& b, double t) {
-    const auto it = std::upper_bound(b.begin() + 1, b.end() - 1, t);
-    return static_cast<int>(it - b.begin()) - 1;
-  };
-  return index(breaks_u_, uv[0]) +
-         (static_cast<int>(breaks_u_.size()) - 1) * index(breaks_v_, uv[1]);
+  return bez_.element_of(uv[0], uv[1]);
 }
 
 namespace {
@@ -324,11 +317,11 @@ void set_near_lists(std::vector<N>& tree, std::size_t n_el) {
 }  // namespace
 
 void PatchProjector::build_tree() {
-  const int nu = static_cast<int>(breaks_u_.size()) - 1,
-            nv = static_cast<int>(breaks_v_.size()) - 1;
-  const std::size_t n_el = elements_.size();
+  const int nu = static_cast<int>(bez_.breaks_u().size()) - 1,
+            nv = static_cast<int>(bez_.breaks_v().size()) - 1;
+  const std::size_t n_el = bez_.elements().size();
   if (static_cast<std::size_t>(nu * nv) != n_el) return;
-  for (const BezierPatch& b : elements_)
+  for (const BezierPatch& b : bez_.elements())
     if (b.degree_u > detail::kMaxNetDegree || b.degree_v > detail::kMaxNetDegree) return;
   // Depth: as deep as the budget allows, at most 3 (64 leaves per element).
   int depth = 0;
@@ -347,12 +340,12 @@ void PatchProjector::build_tree() {
   tree_.resize(n_el);
   grid[0].assign(n_el, -1);
   for (std::size_t e = 0; e < n_el; ++e) {
-    detail::to_net(elements_[e], tree_[e].net);
+    detail::to_net(bez_.elements()[e], tree_[e].net);
     make(tree_[e]);
-    cell.push_back({elements_[e].element_u, elements_[e].element_v});
+    cell.push_back({bez_.elements()[e].element_u, bez_.elements()[e].element_v});
     level.push_back(0);
-    grid[0][static_cast<std::size_t>(elements_[e].element_u + nu * elements_[e].element_v)] =
-        static_cast<int>(e);
+    grid[0][static_cast<std::size_t>(bez_.elements()[e].element_u +
+                                     nu * bez_.elements()[e].element_v)] = static_cast<int>(e);
   }
   std::size_t first = 0, last = n_el;  // nodes of the current level
   for (int l = 1; l <= depth; ++l) {
@@ -378,7 +371,7 @@ void PatchProjector::build_tree() {
     first = last;
     last = tree_.size();
   }
-  set_regions(tree_, s_, breaks_u_, breaks_v_, grid, cell, level);
+  set_regions(tree_, s_, bez_.breaks_u(), bez_.breaks_v(), grid, cell, level);
   set_gaps(tree_, n_el);
   set_near_lists(tree_, n_el);
 }
@@ -443,7 +436,7 @@ ProjectionResult far_result() {
 template <class Node, class Sample, int MaxSamples, class ChordRegion>
 struct CertifiedSearch {
   // The projector's
-  const NurbsSurface& surface;
+  const Surface& surface;  // the patch (by its Bezier elements)
   const std::vector<BezierPatch>& elements;
   const std::vector<std::vector<Sample>>& samples;  // per element
   int samples_per_dir;
@@ -774,8 +767,8 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     return chord_region(uv, r_star);
   };
   CertifiedSearch<Node, Sample, kMaxSamples, decltype(region_of)> cs{
-      .surface = s_,
-      .elements = elements_,
+      .surface = bez_,
+      .elements = bez_.elements(),
       .samples = samples_,
       .samples_per_dir = samples_per_dir_,
       .tree = tree_,
@@ -873,7 +866,7 @@ const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
 bool PatchProjector::ball_clear(const Vector3d& x, double radius, const Domain2& region) const {
   if (!(radius > 0.0)) return false;
   const double r2 = radius * radius;
-  for (std::size_t e = 0; e < elements_.size(); ++e)
+  for (std::size_t e = 0; e < bez_.elements().size(); ++e)
     if (!clear_of(tree_[e], x, r2, region)) return false;
   return true;
 }
@@ -896,7 +889,7 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOpti
       const double d2 = (smp.x - x).squaredNorm();
       if (d2 < seed2) seed2 = d2, seed = &smp;
     }
-    ProjectionResult r = closest_point_local(s_, x, seed->uv, opt);
+    ProjectionResult r = closest_point_local(bez_, x, seed->uv, opt);
     if (found(r.status) && proves_global(x, r)) {
       r.certified = true;
       return r;
@@ -916,7 +909,7 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& gues
                                          const ProjectionOptions& opt) const {
   // The local Newton from the guess, then the certified search bounded by its answer: it
   // either proves that answer global or finds the closer foot (the true foot may have jumped).
-  ProjectionResult r = closest_point_local(s_, x, guess, opt);
+  ProjectionResult r = closest_point_local(bez_, x, guess, opt);
   if (opt.certify) {
     if (found(r.status) && proves_global(x, r)) {
       r.certified = true;

@@ -16,6 +16,7 @@
 
 #include "contact/patch_bounds.hpp"
 #include "contact/projection.hpp"
+#include "geometry/bezier_surface.hpp"
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/nurbs_surface.hpp"
 #include "geometry/refinement.hpp"
@@ -44,7 +45,7 @@ class PatchProjector {
   const NurbsSurface& surface() const { return s_; }
   /// Box of the whole patch (union of the element boxes).
   const Box3& box() const { return box_; }
-  const std::vector<BezierPatch>& elements() const { return elements_; }
+  const std::vector<BezierPatch>& elements() const { return bez_.elements(); }
   const std::vector<Box3>& element_boxes() const { return boxes_; }
 
   /// Cold start: the global minimum (certified branch and bound over the elements).
@@ -73,7 +74,7 @@ class PatchProjector {
                           const ProjectionResult* start = nullptr) const;
   static constexpr int kMaxSamples = 64;  // 8 x 8
   NurbsSurface s_;
-  std::vector<BezierPatch> elements_;
+  BezierSurface bez_;  // the same patch by its Bezier elements: what the Newtons evaluate
   int samples_per_dir_ = 8;
   std::vector<Box3> boxes_;
   std::vector<std::vector<Sample>> samples_;  // per element
@@ -107,7 +108,6 @@ class PatchProjector {
   };
   static constexpr std::size_t kTreeNodes = 4096;
   std::vector<Node> tree_;
-  std::vector<double> breaks_u_, breaks_v_;  // element borders
   void build_tree();
   // The certificate of a foot r that satisfies the optimality conditions of the patch, without
   // a search: the chord test on the coarsest region holding it that passes, and x no farther
