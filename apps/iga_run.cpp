@@ -1,8 +1,10 @@
-// `iga run MODEL.json [--out DIR] [--set /ptr=value]... [--threads N]`: runs any analysis model
-// (rod or shell, with or without contact) (docs/model_format.md, analysis sections): progress line
-// per step, the solver's summary, and in DIR steps.csv, summary.json, ParaView files,
-// model_used.json. Exit status: 0 converged (or stopped at full slip as asked), 1 bad input, 2 the
-// solver stopped early (or a bad command line, from iga_main.cpp).
+// `iga run MODEL.json [--out DIR] [--set /ptr=value]... [--threads N] [--restart FILE]`: runs any
+// analysis model (rod or shell, with or without contact) (docs/model_format.md, analysis
+// sections): progress line per step, the solver's summary, and in DIR steps.csv, summary.json,
+// ParaView files, model_used.json, restart.bin (output.restart_every, or a run that stops early);
+// --restart continues the run of a restart file. Exit status: 0 converged (or stopped at full
+// slip as asked), 1 bad input (a restart file of another model too), 2 the solver stopped early
+// (or a bad command line, from iga_main.cpp).
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -20,7 +22,7 @@ namespace iga::app {
 namespace {
 
 struct RunOptions {
-  std::string file, out;
+  std::string file, out, restart;
   std::vector<std::string> sets;
   bool quiet = false;
   int threads = 0;  // 0: OpenMP's default (OMP_NUM_THREADS, else every core)
@@ -36,7 +38,7 @@ int run_model(const RunOptions& o) {
   if (o.threads > 0) omp_set_num_threads(o.threads);
   std::cout << "iga run: " << o.file << ": " << a.describe() << " (" << omp_get_max_threads()
             << " threads)\n";
-  const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out);
+  const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out, {}, o.restart);
   std::cout << "iga run: results in " << out << " (steps.csv, summary.json";
   if (a.output().vtk != AnalysisOutput::Vtk::kNone)  // one series per body (write_output)
     for (int b = 0; b < a.num_bodies(); ++b)
@@ -68,6 +70,9 @@ Action add_run_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "Output folder (default out/<model name>)");
   cmd->add_option("--set", o->sets, "Override a model value: /json/pointer=value (repeatable)");
   cmd->add_flag("--quiet,-q", o->quiet, "No progress lines");
+  cmd->add_option(
+      "--restart", o->restart,
+      "Continue the run of a restart file (restart.bin of an earlier run of this model)");
   cmd->add_option("--threads,-j", o->threads,
                   "Threads of the element loops (default: OMP_NUM_THREADS, else every core)")
       ->check(CLI::Range(1, 1024));

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "geometry/differential_geometry.hpp"
+#include "iga/contact_integrals/contact_state.hpp"
 #include "iga/contact_integrals/pass_through.hpp"
 #include "iga/core/quadrature.hpp"
 
@@ -365,6 +366,33 @@ void CurveContact::predict(double t) {
 
 void CurveContact::restore() {
   augmentation_.restore(points_);
+}
+
+void CurveContact::archive(StateArchive& a) {
+  iga::archive(a, augmentation_);
+  a.io(anchored_start_);
+  a.items(
+      points_,
+      [&](CurveContactPoint& p) {
+        iga::archive(a, static_cast<ContactMultipliers&>(p));
+        a.io(p.x);
+        iga::archive(a, p.foot);
+        iga::archive(a, p.law);
+        iga::archive(a, p.history);
+        a.io(p.x_committed);
+        a.io(p.N);
+        a.io(p.T);
+        a.io(p.B);
+        a.io(p.frame_t);
+        a.io(p.frame_d1);
+        a.io(p.frame_t_c);
+        a.io(p.frame_d1_c);
+        a.io(p.normal_c);
+        a.io(p.tangent_c);
+        a.io(p.spin);
+        a.io(p.torque);
+      },
+      "contact points", /*resize=*/false);
 }
 
 double CurveContact::roundoff() const {

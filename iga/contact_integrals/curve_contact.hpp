@@ -20,6 +20,7 @@
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/rational_basis.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
+#include "iga/core/state_archive.hpp"
 #include "iga/rod/twisting_rod.hpp"
 
 namespace iga {
@@ -118,6 +119,10 @@ class CurveContact {
   void predict(double t);
   /// Multipliers back to the last commit (a step cut back).
   void restore();
+  /// The points' state (history, multipliers, last feet, law and frames) and the multipliers'
+  /// bookkeeping, written to or read from a restart archive (iga/core/state_archive.hpp); a
+  /// reader checks the number of points.
+  void archive(StateArchive& a);
   /// Multiplier updates and the last largest penetration (augmented Lagrange).
   const NormalAugmentation& augmentation() const { return augmentation_; }
 

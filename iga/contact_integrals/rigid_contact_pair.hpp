@@ -68,6 +68,7 @@ class RigidContactPair : public ContactPair {
   /// solver's converged u) and updates its multipliers (Uzawa); penalty: always satisfied.
   AugmentResult augment() override { return contact_.augment(); }
   void restore() override { contact_.restore(); }
+  void archive(StateArchive& a) override { contact_.archive(a); }
   double roundoff() const override { return contact_.roundoff(); }
   double time() const override { return time_; }
   double mu() const override { return contact_.parameters().mu; }

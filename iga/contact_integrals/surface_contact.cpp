@@ -16,6 +16,7 @@
 #include "contact/contact_search.hpp"
 #include "contact/ray_projection.hpp"
 #include "geometry/differential_geometry.hpp"
+#include "iga/contact_integrals/contact_state.hpp"
 #include "iga/contact_integrals/pass_through.hpp"
 #include "iga/core/quadrature.hpp"
 
@@ -629,6 +630,31 @@ void SurfaceContact::predict(double t) {
 
 void SurfaceContact::restore() {
   augmentation_.restore(points_);
+}
+
+void SurfaceContact::archive(StateArchive& a) {
+  iga::archive(a, augmentation_);
+  a.io(anchored_start_);
+  a.items(
+      points_,
+      [&](SurfaceContactPoint& p) {
+        iga::archive(a, static_cast<ContactMultipliers&>(p));
+        a.io(p.x);
+        a.io(p.normal);
+        iga::archive(a, p.foot);
+        a.io(p.gap);
+        a.io(p.N);
+        a.io(p.T);
+        a.io(p.T_vector);
+        a.io(p.phi);
+        a.io(p.active);
+        a.io(p.slip);
+        a.io(p.first_contact);
+        iga::archive(a, p.history);
+        a.io(p.x_committed);
+        a.io(p.slip_distance);
+      },
+      "contact points", /*resize=*/false);
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {

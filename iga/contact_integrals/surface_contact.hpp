@@ -103,6 +103,7 @@
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_surface.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
+#include "iga/core/state_archive.hpp"
 
 namespace iga {
 
@@ -182,6 +183,8 @@ class SurfaceContact {
   AugmentResult augment();
   void predict(double t);
   void restore();
+  /// The points' state and the multipliers' bookkeeping for a restart, as CurveContact.
+  void archive(StateArchive& a);
   const NormalAugmentation& augmentation() const { return augmentation_; }
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }

@@ -2,6 +2,9 @@
 #include "iga/core/body_system.hpp"
 
 #include <algorithm>
+#include <string>
+
+#include "iga/core/state_archive.hpp"
 
 namespace iga {
 
@@ -55,6 +58,24 @@ AugmentResult BodySystem::augment(const VectorXd& u, double t) {
 
 void BodySystem::restore() {
   for (Body* b : bodies_) b->restore();
+}
+
+void BodySystem::archive(StateArchive& a) {
+  int n = num_bodies();
+  a.section("bodies");
+  a.io(n);
+  if (a.loading() && n != num_bodies())
+    a.fail("the file has " + std::to_string(n) + " bodies, the model " +
+           std::to_string(num_bodies()));
+  for (int b = 0; b < num_bodies(); ++b) {
+    a.section("body " + std::to_string(b));
+    int dofs = body(b).num_dofs();
+    a.io(dofs);
+    if (a.loading() && dofs != body(b).num_dofs())
+      a.fail("the file's body has " + std::to_string(dofs) + " unknowns, the model's " +
+             std::to_string(body(b).num_dofs()));
+    body(b).archive(a);
+  }
 }
 
 double BodySystem::residual_roundoff() const {

@@ -32,6 +32,8 @@ class BodySystem : public NonlinearProblem {
   /// The worst of the bodies' (failed > updated > satisfied), messages joined.
   AugmentResult augment(const VectorXd& u, double t) override;
   void restore() override;
+  /// Each body's state in its section ("body b", with its number of unknowns checked).
+  void archive(StateArchive& a) override;
   double residual_roundoff() const override;
   /// The bodies' status lines, joined by "; " (empty ones left out).
   std::string status() const override;

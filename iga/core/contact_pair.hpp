@@ -56,6 +56,8 @@ class ContactPair {
   virtual AugmentResult augment() = 0;
   /// Multipliers back to the last commit (a step is cut back).
   virtual void restore() = 0;
+  /// The pair's history and contact points' state for a restart (NonlinearProblem::archive).
+  virtual void archive(StateArchive& a) = 0;
   /// Round-off in |g| of the contact forces at the last assembly (NonlinearProblem).
   virtual double roundoff() const = 0;
   /// Whether the contribution to the tangent is symmetric (false with friction).

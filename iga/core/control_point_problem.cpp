@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "iga/core/state_archive.hpp"
 
 namespace iga {
 
@@ -53,6 +56,18 @@ AugmentResult ControlPointProblem::augment(const VectorXd& u, double t) {
 
 void ControlPointProblem::restore() {
   for (const auto& p : pairs_) p->restore();
+}
+
+void ControlPointProblem::archive(StateArchive& a) {
+  int n = num_pairs();
+  a.io(n);
+  if (a.loading() && n != num_pairs())
+    a.fail("the file has " + std::to_string(n) + " contact pairs, the body " +
+           std::to_string(num_pairs()));
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    a.section("pair " + std::to_string(k));
+    pairs_[k]->archive(a);
+  }
 }
 
 double ControlPointProblem::residual_roundoff() const {

@@ -59,6 +59,8 @@ class ControlPointProblem : public Body {
   /// `updated` if one updated its multipliers (messages joined), else `satisfied`.
   AugmentResult augment(const VectorXd& u, double t) override;
   void restore() override;
+  /// The pairs' state, each in its section ("pair k").
+  void archive(StateArchive& a) override;
   /// The largest of the pairs' round-off.
   double residual_roundoff() const override;
   /// The pairs' status lines, joined by "; ".

@@ -12,6 +12,8 @@
 
 namespace iga {
 
+class StateArchive;  // iga/core/state_archive.hpp
+
 using Eigen::VectorXd;
 using SparseMatrix = Eigen::SparseMatrix<double>;  // column major
 
@@ -63,6 +65,11 @@ class NonlinearProblem {
   /// Called when an attempted step is undone (cutback): multipliers go back to their values at
   /// the last commit.
   virtual void restore() {}
+  /// The state a restart needs besides u and t (history, multipliers, contact points' last
+  /// feet), written to a writer archive after a converged step (after commit) and read from a
+  /// reader archive before a resumed run: the same routine for both directions
+  /// (iga/core/state_archive.hpp). Default: no such state.
+  virtual void archive(StateArchive& a) { (void)a; }
   /// The round-off in |R| at the last assembly, where forces are large stiffnesses times small
   /// differences of coordinates (contact: eps_N xi3 with xi3 = (r - rho).n - R): Newton cannot
   /// go below it, so the solver accepts |R| at or below it. Default 0.

@@ -345,6 +345,7 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
     pairs.push_back(p);
   }
   s["pairs"] = pairs;
+  if (!res.restart_file.empty()) s["restart_file"] = res.restart_file;
   s["time_total_s"] = json_number(res.solver.time_total);
   s["time_assembly_s"] = json_number(res.solver.time_assembly);
   s["time_contact_s"] = json_number(res.contact_time);
@@ -366,81 +367,234 @@ std::string Analysis::open_output(const std::string& out_dir, std::ofstream& csv
   return {};
 }
 
-AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
-                             const AnalysisStepCallback& user_callback) {
-  AnalysisResult res;
-  NonlinearSolver solver(settings_);
-  solver.set_log(log);
+void Analysis::archive_run(StateArchive& a, RunState& s) {
+  a.section("analysis");
+  // What must not change between the run that wrote the file and the one that reads it.
+  const auto same = [&](auto value, auto&& name_of) {
+    auto stored = value;
+    a.io(stored);
+    if (a.loading() && stored != value) a.fail(name_of(stored, value));
+  };
+  same(system_->num_dofs(), [](int f, int m) {
+    return "the file's model has " + std::to_string(f) + " unknowns, this one " + std::to_string(m);
+  });
+  same(std::string(to_string(settings_.control)), [](const std::string& f, const std::string& m) {
+    return "the file's run uses " + f + " control, this one " + m +
+           " (the path control cannot change in a restart)";
+  });
+  std::ostringstream header;
+  write_csv_header(header);
+  same(header.str(), [](const std::string& f, const std::string& m) {
+    return "the file's steps.csv has other columns (" + f.substr(0, f.size() - 1) +
+           "), this model's: " + m.substr(0, m.size() - 1);
+  });
+  a.io(s.steps);
+  a.io(s.sliding_steps);
+  a.io(s.csv_rows);
+  a.items(
+      s.series,
+      [&](std::pair<std::string, VtkCollection::Entries>& e) {
+        a.io(e.first);
+        a.items(
+            e.second,
+            [&](std::pair<double, std::string>& f) {
+              a.io(f.first);
+              a.io(f.second);
+            },
+            "series entries");
+      },
+      "ParaView series");
+  a.section("state");
+  a.io(s.u);
+  if (a.loading() && s.u.size() != system_->num_dofs()) a.fail("the state has another size");
+  s.solver.archive(a);
+  system_->archive(a);
+}
+
+// The output side of one run(): steps.csv, the ParaView series, restart files, the error that
+// ends the run.
+struct Analysis::RunContext {
+  RunContext(Analysis& a, std::ostream* l, std::string dir, AnalysisResult& r)
+      : an(a), log(l), out_dir(std::move(dir)), res(r) {}
+  Analysis& an;
+  std::ostream* log;
+  std::string out_dir;
+  AnalysisResult& res;
+  RunState rs;  // a restart's state; then the rows and series so far
   std::ofstream csv;
   // An error after the start (output of a converged step, the problem's history update, the
-  // user's callback, the last ParaView files) ends the run with status `failed` and this message;
-  // summary.json and the rows written so far stay.
-  std::string error = out_dir.empty() ? std::string() : open_output(out_dir, csv);
+  // user's callback, the last ParaView files) ends the run with status `failed` and this
+  // message; summary.json and the rows written so far stay.
+  std::string error;
   // One ParaView series (<series>.pvd) per body, pair and piece of a tool (write_output).
   std::map<std::string, VtkCollection> pvd;
-  // The series' time of a snapshot: t, or under arc length (t falls after a limit point and
-  // comes back: ParaView orders a series by its times) the number of the step.
-  const bool by_step = settings_.control == PathControl::arc_length;
-  auto vtk = [&](const VectorXd& u, double t, const std::string& stem) {
-    const double key = by_step ? static_cast<double>(res.steps.size()) : t;
-    for (const OutputFile& f : write_output(out_dir, stem, u, t)) {
+  std::string restart_path;  // empty: no output folder
+  int restart_step = -1;     // the step of the last restart file written
+  int sliding_steps = 0;     // consecutive steps of steady sliding (the plateau so far)
+
+  // The number of the step that converged last (the rows before a restart included).
+  int step_number() const { return rs.steps + static_cast<int>(res.steps.size()); }
+
+  std::string series_file(const std::string& series) const {
+    return (fs::path(out_dir) / (series + ".pvd")).string();
+  }
+
+  // steps.csv with its header and a restart's rows, the series of a restart, the rigid tools.
+  void open() {
+    if (out_dir.empty()) return;
+    restart_path = (fs::path(out_dir) / "restart.bin").string();
+    error = an.open_output(out_dir, csv);
+    csv << rs.csv_rows << std::flush;
+    for (auto& [series, entries] : rs.series) {
+      auto it = pvd.emplace(series, VtkCollection(series_file(series), std::move(entries))).first;
+      if (!error.empty()) continue;
+      try {
+        it->second.write();
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    }
+  }
+
+  // The ParaView files of (u, t); the series' time of a snapshot: t, or under arc length (t
+  // falls after a limit point and comes back: ParaView orders a series by its times) the step.
+  void vtk(const VectorXd& u, double t, const std::string& stem) {
+    const bool by_step = an.settings_.control == PathControl::arc_length;
+    const double key = by_step ? static_cast<double>(step_number()) : t;
+    for (const OutputFile& f : an.write_output(out_dir, stem, u, t)) {
       if (f.series.empty()) continue;
       auto it = pvd.find(f.series);
-      if (it == pvd.end())
-        it =
-            pvd.emplace(f.series, VtkCollection((fs::path(out_dir) / (f.series + ".pvd")).string()))
-                .first;
+      if (it == pvd.end()) it = pvd.emplace(f.series, VtkCollection(series_file(f.series))).first;
       it->second.add(key, f.file);
     }
-  };
-  VectorXd u = VectorXd::Zero(system_->num_dofs());
-  int sliding_steps = 0;  // consecutive steps of steady sliding (the plateau so far)
-  auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
+  }
+
+  // The restart file of the converged state (u, checkpoint): the run's and the bodies' state.
+  void write_restart(const VectorXd& u, const SolverCheckpoint& checkpoint) {
+    RunState w;
+    w.solver = checkpoint;
+    w.u = u;
+    w.steps = step_number();
+    w.sliding_steps = sliding_steps;
+    w.csv_rows = rs.csv_rows;
+    for (const auto& [series, c] : pvd) w.series.emplace_back(series, c.entries());
+    StateArchive a = StateArchive::writer();
+    an.archive_run(a, w);
+    a.save(restart_path);
+    res.restart_file = restart_path;
+    restart_step = w.steps;
+  }
+
+  // After a converged step: its record, row, files, the caller's callback, the plateau test,
+  // the restart file every restart_every steps. False: stop.
+  bool step(const VectorXd& u, double t, const StepAttempt& at, const SolverCheckpoint& checkpoint,
+            const AnalysisStepCallback& user_callback) {
     try {
-      const AnalysisStep st = record_step(uc, t, at.iterations);
+      const AnalysisStep st = an.record_step(u, t, at.iterations);
       res.steps.push_back(st);
+      const int k = step_number();
       if (csv.is_open()) {
-        write_csv_row(csv, static_cast<int>(res.steps.size()), st);
-        if (output_.vtk == AnalysisOutput::Vtk::kAll)
-          vtk(uc, t, "step" + std::to_string(res.steps.size()));
+        std::ostringstream row;
+        an.write_csv_row(row, k, st);
+        rs.csv_rows += row.str();
+        csv << row.str() << std::flush;  // a run that stops midway keeps its rows
+        if (an.output_.vtk == AnalysisOutput::Vtk::kAll) vtk(u, t, "step" + std::to_string(k));
       }
       // The caller sees every converged step, the one that completes the plateau too.
-      if (user_callback && !user_callback(uc, t, st)) return false;
-      if (plateau_complete(t, sliding_steps)) {
+      bool go_on = !user_callback || user_callback(u, t, st);
+      if (go_on && an.plateau_complete(t, sliding_steps)) {
         res.full_slip = true;
         if (log) *log << "full slip at t = " << t << ": stopping\n";
-        return false;
+        go_on = false;
       }
-      return true;
+      const int every = an.output_.restart_every;
+      if (!restart_path.empty() && every > 0 && k % every == 0) write_restart(u, checkpoint);
+      return go_on;
     } catch (const std::exception& e) {
       error = "output of the step at t = " + fmt(t) + ": " + e.what();
       return false;
     }
-  };
-  if (error.empty()) {
+  }
+
+  // A run that stopped before t1 (not at full slip as asked): the restart file of its last
+  // converged state (u), unless the last one written is that state's.
+  void restart_at_stop(const VectorXd& u, const SolverCheckpoint& checkpoint, bool resumed) {
+    const bool early = !res.solver.converged() && !res.full_slip;
+    if (!early || restart_path.empty() || (res.steps.empty() && !resumed) ||
+        restart_step == step_number())
+      return;
     try {
-      res.solver = solver.solve(*system_, u, on_step);
+      // After failed attempts the contact points' current state (their last feet, the warm
+      // start of the next search) is theirs: one assembly at the converged state makes it that
+      // state's again (the history is the committed one), up to the round-off of the feet
+      // found from other starts. Without failed attempts (stopped by max_steps or the caller)
+      // the state is the converged step's as it is.
+      const auto& attempts = res.solver.attempts;
+      if (!attempts.empty() && attempts.back().outcome != NewtonOutcome::converged) {
+        VectorXd R(an.system_->num_dofs());
+        an.system_->assemble(u, checkpoint.t, R, nullptr);
+      }
+      write_restart(u, checkpoint);
+    } catch (const std::exception& e) {
+      if (log) *log << "warning: no restart file: " << e.what() << "\n";
+    }
+  }
+};
+
+AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
+                             const AnalysisStepCallback& user_callback,
+                             const std::string& restart_file) {
+  AnalysisResult res;
+  NonlinearSolver solver(settings_);
+  solver.set_log(log);
+  RunContext run{*this, log, out_dir, res};
+  // A restart: the state of the run that wrote the file (RestartError if it does not fit).
+  VectorXd u = VectorXd::Zero(system_->num_dofs());
+  const bool resumed = !restart_file.empty();
+  if (resumed) {
+    StateArchive a = StateArchive::reader(restart_file);
+    archive_run(a, run.rs);
+    a.finish();
+    u = run.rs.u;
+    run.sliding_steps = run.rs.sliding_steps;
+    if (log)
+      *log << "restart from " << restart_file << ": step " << run.rs.steps
+           << ", t = " << run.rs.solver.t << "\n";
+  }
+  run.open();
+  auto on_step = [&](const VectorXd& uc, double t, const StepAttempt& at) {
+    return run.step(uc, t, at, solver.checkpoint(), user_callback);
+  };
+  if (run.error.empty()) {
+    try {
+      res.solver = solver.solve(*system_, u, on_step, resumed ? &run.rs.solver : nullptr);
     } catch (const std::exception& e) {  // from commit(): u is the last converged state
-      error = e.what();
-      res.solver.t = res.steps.empty() ? settings_.t0 : res.steps.back().t;
-      res.solver.steps = static_cast<int>(res.steps.size());
+      run.error = e.what();
+      res.solver.t = !res.steps.empty() ? res.steps.back().t
+                     : resumed          ? run.rs.solver.t
+                                        : settings_.t0;
+      res.solver.steps = run.step_number();
     }
   }
   res.u = u;
   res.contact_time = contact_time();
-  if (!out_dir.empty() && error.empty() && output_.vtk == AnalysisOutput::Vtk::kLast &&
+  if (!out_dir.empty() && run.error.empty() && output_.vtk == AnalysisOutput::Vtk::kLast &&
       !res.steps.empty()) {
     try {
-      vtk(u, res.solver.t, "last");
+      run.vtk(u, res.solver.t, "last");
     } catch (const std::exception& e) {
-      error = std::string("writing the ParaView files of the last step: ") + e.what();
+      run.error = std::string("writing the ParaView files of the last step: ") + e.what();
     }
   }
-  if (!error.empty()) {
+  if (!run.error.empty()) {
     res.solver.status = NonlinearSolverStatus::failed;
-    res.solver.message = error + "; the state is the last converged one, t = " + fmt(res.solver.t);
+    res.solver.message =
+        run.error + "; the state is the last converged one, t = " + fmt(res.solver.t);
     if (log) *log << "run failed: " << res.solver.message << "\n";
   }
+  run.restart_at_stop(u, res.steps.empty() ? run.rs.solver : solver.checkpoint(), resumed);
+  if (log && !res.restart_file.empty())
+    *log << "restart file: " << res.restart_file << " (step " << run.step_number() << ")\n";
   if (!out_dir.empty()) write_summary(out_dir, res);
   return res;
 }

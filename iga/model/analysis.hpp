@@ -22,6 +22,8 @@
 #include "iga/contact_integrals/rod_contact_problem.hpp"
 #include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/core/body_system.hpp"
+#include "iga/core/state_archive.hpp"
+#include "iga/output/vtk_writer.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
 namespace iga {
@@ -57,6 +59,10 @@ struct AnalysisOutput {
     std::string x, y, file, title;
   };
   std::vector<Plot> plots;
+  /// A restart file (restart.bin in the output folder) every this many converged steps
+  /// (0: none on the way); one is always written when the run stops before t1 (the state of
+  /// its last converged step). Analysis::run with `restart_file` continues from one.
+  int restart_every = 0;
 };
 
 /// One converged step as recorded by Analysis::run.
@@ -82,6 +88,7 @@ struct AnalysisResult {
   VectorXd u;                 ///< state at the last converged step (time solver.t)
   bool full_slip = false;     ///< the run stopped at the onset of full slip
   double contact_time = 0.0;  ///< seconds in the contact integrals (part of the assembly)
+  std::string restart_file;   ///< the last restart file written (empty: none)
 };
 
 class Analysis {
@@ -158,8 +165,20 @@ class Analysis {
   /// result.solver.message, the state and rows of the converged steps kept. Numbers that are
   /// not finite never reach the files (empty CSV cells, JSON null, VTK flag non_finite).
   /// `on_step` (optional) is called after each converged step.
+  /// Restart: with output.restart_every = N the run writes <out_dir>/restart.bin every N
+  /// converged steps, and always when it stops before t1 (min_step, max_steps, an error: the
+  /// state of its last converged step): the solver's state (time, step size, arc-length
+  /// state), u, every body's history (a rod's triads and twists, the contact points' history,
+  /// multipliers, active sets and last feet), the rows of steps.csv and the ParaView series
+  /// so far. `restart_file` (non-empty) continues such a run: steps.csv starts with the rows
+  /// written before, step numbers and series go on, and with the same settings every later
+  /// step is that of the uninterrupted run. Solver settings may change between the runs (e.g.
+  /// min_step, max_steps, t1); the model itself must not (a restart file of another model,
+  /// other unknowns, pairs or contact points, another path control or other steps.csv
+  /// columns, is refused: RestartError naming the file and what differs).
   AnalysisResult run(std::ostream* log = nullptr, const std::string& out_dir = {},
-                     const AnalysisStepCallback& on_step = {});
+                     const AnalysisStepCallback& on_step = {},
+                     const std::string& restart_file = {});
 
   /// A file written by write_output and the ParaView series (.pvd) it belongs to (empty: none).
   struct OutputFile {
@@ -203,6 +222,20 @@ class Analysis {
   /// After a converged step at t: counts the consecutive steps of steady sliding past
   /// stop_at_full_slip_after (sliding_steps) and tells whether they complete the plateau.
   bool plateau_complete(double t, int& sliding_steps) const;
+  /// What a restart of run() needs besides the bodies' state.
+  struct RunState {
+    SolverCheckpoint solver;
+    VectorXd u;             ///< the converged state
+    int steps = 0;          ///< converged steps (rows of steps.csv)
+    int sliding_steps = 0;  ///< consecutive steps of steady sliding (plateau_complete)
+    std::string csv_rows;   ///< steps.csv after its header
+    std::vector<std::pair<std::string, VtkCollection::Entries>> series;  ///< .pvd series
+  };
+  /// The output side of one run (analysis.cpp).
+  struct RunContext;
+  /// Writes the run's state and the bodies' to a restart archive, or reads them back
+  /// (StateArchive; checks that the file is of this model).
+  void archive_run(StateArchive& a, RunState& s);
   /// The record of a converged step at (u, t): counts, reactions, monitored displacements.
   AnalysisStep record_step(const VectorXd& u, double t, int iterations);
   /// Creates out_dir, opens steps.csv (csv) with its header (failure: std::runtime_error) and

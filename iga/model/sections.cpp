@@ -727,8 +727,15 @@ const Context& body_of_entry(const JsonCursor& e, const std::vector<Context>& bo
 }
 
 AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies) {
-  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "plots", "description"});
+  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "plots", "restart_every",
+                   "description"});
   AnalysisOutput out;
+  if (o.has("restart_every")) {
+    const JsonCursor c = o["restart_every"];
+    out.restart_every = c.as_int();
+    if (out.restart_every < 0)
+      c.fail("must be >= 0 (0: a restart file only when the run stops early)");
+  }
   if (o.has("plots")) {  // [{"x", "y", "file", ["title"]}], drawn by iga run
     const JsonCursor pl = o["plots"];
     pl.expect_array();

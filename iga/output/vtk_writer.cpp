@@ -118,6 +118,10 @@ void write_vtk_grid(const std::string& path, const std::vector<Eigen::Vector3d>&
 
 void VtkCollection::add(double time, const std::string& file) {
   entries_.emplace_back(time, file);
+  write();
+}
+
+void VtkCollection::write() const {
   std::ofstream os(path_);
   if (!os) throw std::runtime_error("cannot write " + path_);
   os << std::setprecision(12);

@@ -39,14 +39,20 @@ void write_vtk(const std::string& path, const SampledMesh& mesh, const std::stri
 /// A ParaView collection (.pvd): (time, file) pairs, files relative to the .pvd's folder.
 class VtkCollection {
  public:
-  explicit VtkCollection(std::string path) : path_(std::move(path)) {}
+  using Entries = std::vector<std::pair<double, std::string>>;
+  /// A collection at `path` with the given entries (a restarted run's series), not yet written.
+  explicit VtkCollection(std::string path, Entries entries = {})
+      : path_(std::move(path)), entries_(std::move(entries)) {}
   /// Adds an entry and rewrites the .pvd at once, so that a run that stops midway leaves a
   /// valid collection of what it wrote.
   void add(double time, const std::string& file);
+  /// Writes the .pvd of the entries so far (std::runtime_error if it cannot).
+  void write() const;
+  const Entries& entries() const { return entries_; }
 
  private:
   std::string path_;
-  std::vector<std::pair<double, std::string>> entries_;
+  Entries entries_;
 };
 
 }  // namespace iga

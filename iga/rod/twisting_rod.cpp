@@ -10,6 +10,7 @@
 #include "geometry/number_text.hpp"
 #include "iga/core/jet.hpp"
 #include "iga/core/quadrature.hpp"
+#include "iga/core/state_archive.hpp"
 #include "iga/rod/rod_common.hpp"
 
 namespace iga {
@@ -659,6 +660,24 @@ void TwistingRodProblem::commit(const VectorXd& u, double t) {
   split(u, t, x, alpha);
   rod_.commit(x, alpha);
   ControlPointProblem::commit(u, t);
+}
+
+void TwistingRodProblem::archive(StateArchive& a) {
+  TwistingRod::History h = rod_.history();
+  a.section("twisting rod");
+  const auto vec3 = [&](Vector3d& v) { a.io(v); };
+  a.items(h.t, vec3, "knot tangents", /*resize=*/false);
+  a.items(h.d1, vec3, "knot directors", /*resize=*/false);
+  a.io(h.alpha);
+  a.io(h.Delta);
+  if (a.loading()) {
+    try {
+      rod_.set_history(h);
+    } catch (const RodError& e) {
+      a.fail(e.what());
+    }
+  }
+  ControlPointProblem::archive(a);
 }
 
 std::string TwistingRodProblem::describe() const {

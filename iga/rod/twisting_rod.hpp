@@ -297,6 +297,8 @@ class TwistingRodProblem : public ControlPointProblem {
   Vector3d displacement(double pu, double pv, const VectorXd& u, double t) const override;
   /// Re-centres the rod's triads (TwistingRod::commit), then the pairs' history.
   void commit(const VectorXd& u, double t) override;
+  /// The rod's committed triads and twists (TwistingRod::history), then the pairs'.
+  void archive(StateArchive& a) override;
 
  protected:
   bool model_symmetric() const override { return moments_.empty(); }

@@ -2,6 +2,8 @@
 // ../shared/paper/EQUATIONS.md). Notation as in nonlinear_solver.hpp.
 #include "iga/solvers/nonlinear_solver.hpp"
 
+#include "iga/core/state_archive.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -379,15 +381,72 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
                 e1 > 0.0 ? e_last / e1 : 0.0));
 }
 
+namespace {
+
+/// A checkpoint that cannot be resumed with n unknowns: std::invalid_argument.
+void check_resume(const SolverCheckpoint& c, int n) {
+  const auto bad = [](const std::string& what) {
+    throw std::invalid_argument("NonlinearSolver::solve: resume: " + what);
+  };
+  if (c.u_prev.size() != 0 && c.u_prev.size() != n)
+    bad("u_prev has size " + std::to_string(c.u_prev.size()) + ", the problem has " +
+        std::to_string(n) + " unknowns");
+  if (c.du_prev.size() != 0 && c.du_prev.size() != n)
+    bad("du_prev has size " + std::to_string(c.du_prev.size()) + ", the problem has " +
+        std::to_string(n) + " unknowns");
+  if (!std::isfinite(c.t) || c.steps < 0 || c.attempted < c.steps || !(c.force_scale >= 0.0) ||
+      !(c.dl >= 0.0) || !(c.dl_min >= 0.0) || !(c.dl_max >= c.dl_min) || !std::isfinite(c.dt))
+    bad("its values are not those of a converged step (t " + format("%.9g", c.t) + ", steps " +
+        std::to_string(c.steps) + ")");
+}
+
+/// The counts of a resumed run: its time, steps, attempts and force scale from the checkpoint
+/// (none: a fresh run, nothing changed).
+void resume_counts(const SolverCheckpoint* resume, NonlinearSolverResult& r, int& attempted,
+                   double& force_scale) {
+  if (resume == nullptr) return;
+  const SolverCheckpoint& c = *resume;
+  r.t = c.t;
+  r.steps = c.steps;
+  attempted = c.attempted;
+  force_scale = c.force_scale;
+}
+
+/// A saved step size within the (possibly new) bounds, or `fallback` where none was saved.
+double resumed_step(double saved, double fallback, const NonlinearSolverSettings& s) {
+  return saved > 0.0 ? std::clamp(saved, s.min_step, s.max_step) : fallback;
+}
+
+}  // namespace
+
+void SolverCheckpoint::archive(StateArchive& a) {
+  a.section("solver");
+  a.io(t);
+  a.io(steps);
+  a.io(attempted);
+  a.io(force_scale);
+  a.io(dt);
+  a.io(u_prev);
+  a.io(t_prev);
+  a.io(du_prev);
+  a.io(dl);
+  a.io(dl_min);
+  a.io(dl_max);
+  a.io(flat);
+  a.io(dt_flat);
+}
+
 NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd& u,
-                                             const StepCallback& on_step) {
+                                             const StepCallback& on_step,
+                                             const SolverCheckpoint* resume) {
   const Clock::time_point start = Clock::now();
   const NonlinearSolverSettings& s = settings_;
   const int n = problem.num_dofs();
   if (u.size() != n)
     throw std::invalid_argument("NonlinearSolver::solve: u has size " + std::to_string(u.size()) +
                                 ", the problem has " + std::to_string(n) + " unknowns");
-  if (s.control == PathControl::arc_length) return solve_arc_length(problem, u, on_step);
+  if (resume) check_resume(*resume, n);
+  if (s.control == PathControl::arc_length) return solve_arc_length(problem, u, on_step, resume);
 
   NonlinearSolverResult r;
   r.t = s.t0;
@@ -402,6 +461,14 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
   double dt = std::clamp(s.initial_step, s.min_step, s.max_step);
   int attempted = 0;
   bool ended = false;
+  if (resume) {
+    resume_counts(resume, r, attempted, w.r0_max);
+    t = resume->t;
+    dt = resumed_step(resume->dt, dt, s);
+    u_prev = resume->u_prev;
+    t_prev = resume->t_prev;
+  }
+  checkpoint_ = {};
 
   while (!ended && s.t1 - t > t_eps) {
     if (attempted >= s.max_steps) {
@@ -442,13 +509,21 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       problem.commit(u, t);
       r.time_callback += seconds_since(t0);
       if (log_) log_converged_step(*log_, r, a, t, (t - s.t0) / span, problem);
+      if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
+      checkpoint_ = SolverCheckpoint{};
+      checkpoint_.t = t;
+      checkpoint_.steps = r.steps;
+      checkpoint_.attempted = attempted;
+      checkpoint_.force_scale = w.r0_max;
+      checkpoint_.dt = dt;
+      checkpoint_.u_prev = u_prev;
+      checkpoint_.t_prev = t_prev;
       bool go_on = true;
       if (on_step) {
         const Clock::time_point tc = Clock::now();
         go_on = on_step(u, t, a);
         r.time_callback += seconds_since(tc);
       }
-      if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
       r.attempts.push_back(std::move(a));
       if (!go_on) {
         r.status = NonlinearSolverStatus::stopped;
@@ -518,6 +593,36 @@ struct NonlinearSolver::ArcState {
   bool flat = false;     // the last predictor found dR/dt = 0: a load step instead
   double dt_flat = 0.0;  // the size of such load steps (initial_step, cut back on failure)
   VectorXd R_h, R_t, du_R, du_t, du;  // workspace
+
+  // A resumed run: the state of the checkpoint; the arc length and its bounds as the first
+  // run set them (from its first tangent). None: a fresh run, nothing changed.
+  void resume_from(const SolverCheckpoint* resume, const NonlinearSolverSettings& s) {
+    if (resume == nullptr) return;
+    const SolverCheckpoint& c = *resume;
+    t = c.t;
+    du_prev = c.du_prev;
+    dl = c.dl;
+    dl_min = c.dl_min;
+    dl_max = c.dl_max;
+    flat = c.flat;
+    if (c.dt_flat > 0.0) dt_flat = std::clamp(c.dt_flat, s.min_step, s.max_step);
+  }
+  // The checkpoint after a converged step (the step sizes of the next one).
+  SolverCheckpoint checkpoint(const NonlinearSolverResult& r, int attempted,
+                              double force_scale) const {
+    SolverCheckpoint c;
+    c.t = t;
+    c.steps = r.steps;
+    c.attempted = attempted;
+    c.force_scale = force_scale;
+    c.du_prev = du_prev;
+    c.dl = dl;
+    c.dl_min = dl_min;
+    c.dl_max = dl_max;
+    c.flat = flat;
+    c.dt_flat = dt_flat;
+    return c;
+  }
 };
 
 namespace {
@@ -765,7 +870,8 @@ void NonlinearSolver::land(NonlinearProblem& problem, VectorXd& u, const ArcStat
 }
 
 NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& problem, VectorXd& u,
-                                                        const StepCallback& on_step) {
+                                                        const StepCallback& on_step,
+                                                        const SolverCheckpoint* resume) {
   const Clock::time_point start = Clock::now();
   const NonlinearSolverSettings& s = settings_;
   const int n = problem.num_dofs();
@@ -780,6 +886,9 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
   const double t_eps = 1e-12 * span;
   int attempted = 0;
   bool ended = false;
+  resume_counts(resume, r, attempted, w.r0_max);
+  arc.resume_from(resume, s);
+  checkpoint_ = {};
 
   while (!ended) {
     if (attempted >= s.max_steps) {
@@ -824,12 +933,6 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
       problem.commit(u, arc.t);
       r.time_callback += seconds_since(t0);
       if (log_) log_converged_step(*log_, r, a, arc.t, (arc.t - s.t0) / span, problem);
-      bool go_on = true;
-      if (on_step) {
-        const Clock::time_point tc = Clock::now();
-        go_on = on_step(u, arc.t, a);
-        r.time_callback += seconds_since(tc);
-      }
       // [Cri81]: Delta l sqrt(desired / N), within the growth and cutback factors.
       const double f =
           std::sqrt(static_cast<double>(s.desired_iterations) / std::max(hardest_solve, 1));
@@ -838,6 +941,13 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
                             arc.dl_max);
       else if (hardest_solve <= s.easy_iterations)  // load steps grow as under load control
         arc.dt_flat = std::min(arc.dt_flat * s.growth_factor, s.max_step);
+      checkpoint_ = arc.checkpoint(r, attempted, w.r0_max);
+      bool go_on = true;
+      if (on_step) {
+        const Clock::time_point tc = Clock::now();
+        go_on = on_step(u, arc.t, a);
+        r.time_callback += seconds_since(tc);
+      }
       r.attempts.push_back(std::move(a));
       if (arc.t >= s.t1 - t_eps) {
         ended = true;

@@ -172,6 +172,27 @@ struct NonlinearSolverResult {
   bool converged() const { return status == NonlinearSolverStatus::converged; }
 };
 
+/// The solver's state after a converged step: what a resumed run needs, besides u and the
+/// problem's own state (NonlinearProblem::archive), to go on as the uninterrupted run would
+/// (NonlinearSolver::checkpoint, NonlinearSolver::solve with `resume`).
+struct SolverCheckpoint {
+  double t = 0.0;            ///< the converged time
+  int steps = 0;             ///< converged steps so far
+  int attempted = 0;         ///< attempted steps so far (settings.max_steps counts them)
+  double force_scale = 0.0;  ///< the largest |R_0| so far (residual and divergence tests)
+  // Load control
+  double dt = 0.0;         ///< the next step's size
+  Eigen::VectorXd u_prev;  ///< the converged state before (secant predictor; empty: none)
+  double t_prev = 0.0;     ///< and its time
+  // Arc length
+  Eigen::VectorXd du_prev;  ///< the step's increment (the next predictor's side; empty: none)
+  double dl = 0.0, dl_min = 0.0, dl_max = 0.0;  ///< the next arc length and its bounds
+  bool flat = false;                            ///< load steps while dR/dt = 0
+  double dt_flat = 0.0;                         ///< their size
+  /// Writes it to or reads it from a restart archive (iga/core/state_archive.hpp).
+  void archive(StateArchive& a);
+};
+
 /// Called after each converged step (after NonlinearProblem::commit) with the converged state,
 /// its time and the attempt that reached it; return false to stop the run (status stopped).
 using StepCallback = std::function<bool(const VectorXd& u, double t, const StepAttempt& step)>;
@@ -225,8 +246,18 @@ class NonlinearSolver {
 
   /// Solves from t0 to t1. u: on entry the converged state at t0 (size problem.num_dofs(), else
   /// std::invalid_argument), on return the state at result.t.
+  /// `resume`: a restart; u is the converged state at resume->t (the problem's state read back
+  /// with it) and the run goes on from there as the run that wrote the checkpoint would have
+  /// (bit for bit with the same settings; step sizes are clamped to new min_step and max_step).
+  /// The result's steps count from the start of the whole run, its other counts and times from
+  /// the resume.
   [[nodiscard]] NonlinearSolverResult solve(NonlinearProblem& problem, VectorXd& u,
-                                            const StepCallback& on_step = {});
+                                            const StepCallback& on_step = {},
+                                            const SolverCheckpoint* resume = nullptr);
+  /// Inside the step callback: the state after the step it reports, with the size of the next
+  /// step (what a restart file written there needs). After solve(): that of the last converged
+  /// step.
+  const SolverCheckpoint& checkpoint() const { return checkpoint_; }
 
  private:
   struct Workspace;
@@ -239,7 +270,9 @@ class NonlinearSolver {
               NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0);
   /// The arc-length run (settings.control == arc_length).
   NonlinearSolverResult solve_arc_length(NonlinearProblem& problem, VectorXd& u,
-                                         const StepCallback& on_step);
+                                         const StepCallback& on_step,
+                                         const SolverCheckpoint* resume);
+  SolverCheckpoint checkpoint_;
   struct ArcState;
   /// One arc-length step from the converged (u_last, t) of the ArcState: the tangent
   /// predictor, then corrections on the cylindrical constraint |Delta u| = Delta l. On return

@@ -790,3 +790,33 @@ TEST_CASE(
   CHECK(run.err.empty());
   fs::remove_all(d);
 }
+
+TEST_CASE("iga run --restart continues a run that stopped early, as the uninterrupted run",
+          "[apps][iga][run][restart]") {
+  const fs::path whole = scratch("restart_whole"), parts = scratch("restart_parts");
+  const Run full = run_iga("run \"" + kCapstan + "\" --quiet --out " + quoted(whole));
+  REQUIRE(full.status == 0);
+  CHECK_FALSE(fs::exists(whole / "restart.bin"));  // reached its end: none unless asked
+  // Stopped after 5 attempted steps: exit 2, a restart file of the last converged step.
+  const Run first =
+      run_iga("run \"" + kCapstan + "\" --out " + quoted(parts) + " --set /solver/max_steps=5");
+  INFO(first.out << first.err);
+  CHECK(first.status == 2);
+  CHECK_THAT(first.out, Catch::Contains("restart file: " + (parts / "restart.bin").string()));
+  CHECK_THAT(slurp(parts / "summary.json"), Catch::Contains("\"restart_file\""));
+  const Run rest = run_iga("run \"" + kCapstan + "\" --out " + quoted(parts) + " --restart " +
+                           quoted(parts / "restart.bin"));
+  INFO(rest.out << rest.err);
+  CHECK(rest.status == 0);
+  CHECK_THAT(rest.out, Catch::Contains("restart from " + (parts / "restart.bin").string()));
+  // steps.csv: the rows before the restart and after it, those of the whole run (the same
+  // computation on the same machine; test_restart.cpp compares with a tolerance)
+  CHECK(slurp(parts / "steps.csv") == slurp(whole / "steps.csv"));
+  // A restart file of another model: bad input, exit 1, naming the file.
+  const Run wrong =
+      run_iga("run \"" + std::string(IGA_SOURCE_DIR) + "/data/two_ropes.json\" --quiet --out " +
+              quoted(scratch("wrong")) + " --restart " + quoted(parts / "restart.bin"));
+  CHECK(wrong.status == 1);
+  CHECK_THAT(wrong.err, Catch::Contains("iga: error: " + (parts / "restart.bin").string()) &&
+                            Catch::Contains("unknowns"));
+}
