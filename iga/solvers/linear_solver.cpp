@@ -43,6 +43,39 @@ class Cholmod : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
   int library_status() { return cholmod().status; }
 };
 
+/// CHOLMOD simplicial LDL^T, for symmetric indefinite matrices: no pivoting, so it factorizes
+/// any matrix whose leading minors (after the fill-reducing permutation) are not singular; its
+/// solutions are checked (LinearSolver::solve).
+class CholmodLdlt : public Eigen::CholmodDecomposition<SparseMatrix, Eigen::Lower> {
+ public:
+  CholmodLdlt() {
+    cholmod().supernodal = CHOLMOD_SIMPLICIAL;
+    cholmod().final_asis = 1;
+    cholmod().final_ll = 0;  // LDL^T
+    cholmod().print = 0;
+  }
+  bool factorized() const {
+    return m_cholmodFactor && m_cholmodFactor->minor == m_cholmodFactor->n &&
+           m_cholmodFactor->is_ll == 0 && m_cholmodFactor->is_super == 0;
+  }
+  /// The number of negative entries of D, or -1 if one is zero or not finite.
+  int negative_pivots() const {
+    const cholmod_factor* L = m_cholmodFactor;
+    const auto* p = static_cast<const int*>(L->p);
+    const auto* x = static_cast<const double*>(L->x);
+    int negative = 0;
+    for (std::size_t j = 0; j < L->n; ++j) {
+      const double d = x[p[j]];  // the first entry of column j of the unit L holds D_jj
+      if (!std::isfinite(d) || d == 0.0) return -1;
+      negative += d < 0.0 ? 1 : 0;
+    }
+    return negative;
+  }
+  int library_status() { return cholmod().status; }
+  /// CHOLMOD's estimate from D, (min |D_jj| / max |D_jj|).
+  double rcond() { return m_cholmodFactor ? cholmod_rcond(m_cholmodFactor, &cholmod()) : 0.0; }
+};
+
 /// UMFPACK with access to its status code and statistics.
 class UmfPack : public Eigen::UmfPackLU<SparseMatrix> {
  public:
@@ -83,6 +116,8 @@ const char* to_string(LinearBackend b) {
       return "none";
     case LinearBackend::cholmod:
       return "cholmod";
+    case LinearBackend::ldlt:
+      return "ldlt";
     case LinearBackend::umfpack:
       return "umfpack";
   }
@@ -109,6 +144,10 @@ struct LinearSolver::Impl {
   bool has_pattern = false;
   Cholmod llt;
   bool llt_analyzed = false;  // llt holds the analysis of A's pattern
+  CholmodLdlt ldl;
+  bool ldl_analyzed = false;
+  bool prefer_ldlt = false;  // the last LDL^T had negative pivots: try it first
+  int negative = 0;          // negative pivots of the current factorization (-1: unknown)
   UmfPack lu;
   bool lu_analyzed = false;
   LinearBackend backend = LinearBackend::none;
@@ -125,23 +164,33 @@ struct LinearSolver::Impl {
     return s;
   }
 
-  /// CHOLMOD LL^T of A; false (with the reason in `why`) if it is not positive definite.
-  bool factorize_cholmod(std::string& why) {
-    if (!llt_analyzed) {
+  /// The symbolic analysis of A's pattern by a CHOLMOD factorization `d` (LL^T or LDL^T), unless
+  /// it has it (`analyzed`); then its numeric factorization of A, timed and counted. false
+  /// (with the reason in `why`) if the analysis failed.
+  template <class Decomposition>
+  bool cholmod_factorize(Decomposition& d, bool& analyzed, const char* name, std::string& why) {
+    if (!analyzed) {
       const Clock::time_point t0 = Clock::now();
-      llt.analyzePattern(A);
+      d.analyzePattern(A);
       stats.time_analyze += seconds_since(t0);
       ++stats.analyses;
-      if (llt.library_status() < CHOLMOD_OK) {
-        why = "CHOLMOD analysis failed (status " + std::to_string(llt.library_status()) + ")";
+      if (d.library_status() < CHOLMOD_OK) {
+        why = std::string(name) + " analysis failed (status " + std::to_string(d.library_status()) +
+              ")";
         return false;
       }
-      llt_analyzed = true;
+      analyzed = true;
     }
     const Clock::time_point t0 = Clock::now();
-    llt.factorize(A);
+    d.factorize(A);
     stats.time_factorize += seconds_since(t0);
     ++stats.factorizations;
+    return true;
+  }
+
+  /// CHOLMOD LL^T of A; false (with the reason in `why`) if it is not positive definite.
+  bool factorize_cholmod(std::string& why) {
+    if (!cholmod_factorize(llt, llt_analyzed, "CHOLMOD", why)) return false;
     if (llt.info() == Eigen::Success) return true;
     ++stats.cholesky_failures;
     if (llt.library_status() < CHOLMOD_OK) {
@@ -151,6 +200,19 @@ struct LinearSolver::Impl {
       why = "CHOLMOD: not positive definite (pivot " + std::to_string(llt.minor_column() + 1) +
             " of " + std::to_string(A.rows()) + ")";
     }
+    return false;
+  }
+
+  /// CHOLMOD simplicial LDL^T of A; false (with the reason in `why`) on a zero pivot or a
+  /// pivot that is not finite.
+  bool factorize_ldlt(std::string& why) {
+    if (!cholmod_factorize(ldl, ldl_analyzed, "CHOLMOD LDL^T", why)) return false;
+    ++stats.ldlt_factorizations;
+    negative = ldl.factorized() ? ldl.negative_pivots() : -1;
+    if (negative >= 0) return true;
+    ++stats.ldlt_rejected;
+    if (ldl.library_status() < CHOLMOD_OK) ldl_analyzed = false;
+    why = "CHOLMOD LDL^T: a zero pivot";
     return false;
   }
 
@@ -180,8 +242,32 @@ struct LinearSolver::Impl {
           prefix + "UMFPACK factorization failed (status " + std::to_string(lu.code()) + ")");
     }
     backend = LinearBackend::umfpack;
+    negative = -1;
     status = LinearSolveStatus::success;
     return status;
+  }
+
+  /// The LDL^T solution of A x = b, refined once where its residual is above round-off;
+  /// false if it stays above 1e-10 (|A| |x| + |b|) (max norms): the factorization without
+  /// pivoting has grown, UMFPACK must do it.
+  bool solve_ldlt(const VectorXd& b, VectorXd& x) {
+    x = ldl.solve(b);
+    if (ldl.info() != Eigen::Success || !x.allFinite()) return false;
+    double a_norm = 0.0;  // max row sum = max column sum (symmetric)
+    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+      double col = 0.0;
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it) col += std::abs(it.value());
+      a_norm = std::max(a_norm, col);
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      const VectorXd r = b - A * x;
+      const double scale = a_norm * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff();
+      if (r.cwiseAbs().maxCoeff() <= 1e-14 * scale) return true;
+      if (pass == 1) return r.cwiseAbs().maxCoeff() <= 1e-10 * scale;
+      x += ldl.solve(r);  // one step of iterative refinement
+      if (!x.allFinite()) return false;
+    }
+    return true;
   }
 };
 
@@ -210,6 +296,9 @@ LinearBackend LinearSolver::backend() const {
 bool LinearSolver::fell_back() const {
   return impl_->fell_back;
 }
+int LinearSolver::negative_pivots() const {
+  return impl_->negative;
+}
 bool LinearSolver::reused_analysis() const {
   return impl_->reused;
 }
@@ -221,6 +310,7 @@ double LinearSolver::rcond() const {
   Impl& m = *impl_;
   if (m.backend == LinearBackend::none) return 0.0;
   if (m.A.rows() == 0) return 1.0;
+  if (m.backend == LinearBackend::ldlt) return m.ldl.rcond();
   return m.backend == LinearBackend::cholmod ? m.llt.rcond() : m.lu.rcond();
 }
 
@@ -258,6 +348,7 @@ LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
     m.A = A;
     m.has_pattern = true;
     m.llt_analyzed = false;
+    m.ldl_analyzed = false;
     m.lu_analyzed = false;
   }
 
@@ -271,14 +362,27 @@ LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
   std::string prefix;
   if (m.symmetric) {
     std::string why;
-    if (m.factorize_cholmod(why)) {
+    if (!m.prefer_ldlt) {
+      if (m.factorize_cholmod(why)) {
+        m.reused = m.stats.analyses == analyses_before;
+        m.backend = LinearBackend::cholmod;
+        m.negative = 0;
+        m.status = LinearSolveStatus::success;
+        return m.status;
+      }
+      m.fell_back = true;
+      prefix = why + "; ";
+    }
+    if (m.factorize_ldlt(why)) {
       m.reused = m.stats.analyses == analyses_before;
-      m.backend = LinearBackend::cholmod;
+      m.backend = LinearBackend::ldlt;
+      m.prefer_ldlt = m.negative > 0;
       m.status = LinearSolveStatus::success;
+      if (m.fell_back) m.message = prefix + "factorized by LDL^T";
       return m.status;
     }
-    m.fell_back = true;
-    prefix = why + "; ";
+    m.prefer_ldlt = false;
+    prefix += why + "; ";
   }
   const LinearSolveStatus s = m.factorize_umfpack(prefix);
   m.reused = m.stats.analyses == analyses_before;
@@ -308,10 +412,21 @@ LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
   }
   const Clock::time_point t0 = Clock::now();
   bool ok = true;
+  if (m.backend == LinearBackend::ldlt && !m.solve_ldlt(b, x)) {
+    // The unpivoted factorization grew: UMFPACK, for this and later solves of this matrix.
+    ++m.stats.ldlt_rejected;
+    m.prefer_ldlt = false;
+    m.stats.time_solve += seconds_since(t0);
+    if (m.factorize_umfpack("CHOLMOD LDL^T: residual above round-off; ") !=
+        LinearSolveStatus::success)
+      return m.status;
+    m.message = "CHOLMOD LDL^T: residual above round-off; factorized by UMFPACK";
+    return solve(b, x);
+  }
   if (m.backend == LinearBackend::cholmod) {
     x = m.llt.solve(b);
     ok = m.llt.info() == Eigen::Success;
-  } else {
+  } else if (m.backend == LinearBackend::umfpack) {
     x = m.lu.solve(b);
   }
   m.stats.time_solve += seconds_since(t0);

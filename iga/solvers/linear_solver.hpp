@@ -1,8 +1,10 @@
 // Sparse direct solution of K du = -R, behind one interface: CHOLMOD supernodal/simplicial LL^T
-// for symmetric positive definite tangents, UMFPACK LU otherwise (the frictional tangent is not
-// symmetric, [KS15] eqs. 38-39, 76-78) and as the fallback when the Cholesky factorization finds
-// the matrix not positive definite. The symbolic analysis is kept and reused while the sparsity
-// pattern is unchanged. Singular matrices are a status, not an exception.
+// for symmetric positive definite tangents; for symmetric indefinite ones (past a limit point,
+// at contact onset) CHOLMOD's simplicial LDL^T, accepted when its solution's residual is at
+// round-off (no pivoting: a small pivot shows as a large residual); UMFPACK LU otherwise (the
+// frictional tangent is not symmetric, [KS15] eqs. 38-39, 76-78) and as the last fallback. The
+// symbolic analysis is kept and reused while the sparsity pattern is unchanged. Singular
+// matrices are a status, not an exception.
 // References: [CHOLMOD] Chen, Davis, Hager, Rajamanickam, ACM TOMS 35(3), 2008;
 // [UMFPACK] Davis, ACM TOMS 30(2), 2004; [KS15] see ../shared/paper/EQUATIONS.md.
 #pragma once
@@ -22,6 +24,7 @@ using SparseMatrix = Eigen::SparseMatrix<double>;  // column major
 enum class LinearBackend {
   none,     ///< no successful factorization
   cholmod,  ///< CHOLMOD LL^T (symmetric positive definite)
+  ldlt,     ///< CHOLMOD simplicial LDL^T (symmetric indefinite, no pivoting)
   umfpack,  ///< UMFPACK LU (general, or the fallback)
 };
 
@@ -39,10 +42,12 @@ const char* to_string(LinearSolveStatus s);
 
 /// Counters and wall times (seconds), cumulative since construction or reset().
 struct LinearSolverStats {
-  int analyses = 0;           ///< symbolic analyses (fill-reducing ordering), both backends
-  int factorizations = 0;     ///< numeric factorizations attempted (a fallback counts two)
-  int cholesky_failures = 0;  ///< Cholesky attempts that found the matrix not positive definite
-  int solves = 0;             ///< triangular solves
+  int analyses = 0;             ///< symbolic analyses (fill-reducing ordering), both backends
+  int factorizations = 0;       ///< numeric factorizations attempted (a fallback counts two)
+  int cholesky_failures = 0;    ///< Cholesky attempts that found the matrix not positive definite
+  int ldlt_factorizations = 0;  ///< LDL^T factorizations (successful or not)
+  int ldlt_rejected = 0;        ///< LDL^T factorizations or solutions rejected (then UMFPACK)
+  int solves = 0;               ///< triangular solves
   double time_analyze = 0.0;
   double time_factorize = 0.0;
   double time_solve = 0.0;
@@ -52,8 +57,13 @@ struct LinearSolverStats {
 ///
 /// symmetric() == true: the matrix is taken as symmetric (the full matrix is passed; CHOLMOD
 /// reads its lower triangle) and factorized by CHOLMOD LL^T; if that fails (not positive
-/// definite: indefinite or singular), the same matrix is factorized by UMFPACK LU. The Cholesky
-/// is tried first again at every factorize(). symmetric() == false: UMFPACK only.
+/// definite: indefinite or singular), by CHOLMOD simplicial LDL^T, and if that fails too (a zero
+/// pivot, or at solve time a residual above 1e-10 (|A| |x| + |b|) after one step of iterative
+/// refinement: the growth of an unpivoted factorization), by UMFPACK LU. After an LDL^T with
+/// negative pivots the next factorize() starts with LDL^T (the matrices of a Newton sequence
+/// keep their inertia from one iteration to the next, and a failing LL^T costs a factorization
+/// up to its failing pivot); one without negative pivots goes back to LL^T.
+/// symmetric() == false: UMFPACK only.
 ///
 /// The pattern of the last matrix is kept as its signature; a matrix with the same pattern
 /// (same size, column pointers and row indices; explicit zeros count as entries) reuses each
@@ -89,8 +99,12 @@ class LinearSolver {
   const std::string& message() const;
   /// The backend of the current factorization (none after a failed factorize()).
   LinearBackend backend() const;
-  /// Whether the last factorize() fell back from CHOLMOD to UMFPACK.
+  /// Whether the last factorize() tried CHOLMOD LL^T and found the matrix not positive definite
+  /// (then LDL^T or UMFPACK holds the factorization).
   bool fell_back() const;
+  /// The number of negative pivots of the last LDL^T factorization (its inertia: the number of
+  /// negative eigenvalues, by Sylvester's law); 0 after LL^T, -1 after UMFPACK (unknown).
+  int negative_pivots() const;
   /// Whether the last factorize() reused a symbolic analysis (pattern unchanged).
   bool reused_analysis() const;
   /// A cheap estimate of the reciprocal condition number of the current factorization

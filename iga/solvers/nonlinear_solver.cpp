@@ -151,11 +151,13 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
   LinearSolveStatus ls = linear.factorize(K);
   if (linear.fell_back()) ++a.cholesky_fallbacks;
   if (ls == LinearSolveStatus::success) {
+    ls = linear.solve(rhs, du);  // may replace a grown LDL^T by UMFPACK
     if (linear.backend() == LinearBackend::cholmod)
       ++a.cholmod_factorizations;
+    else if (linear.backend() == LinearBackend::ldlt)
+      ++a.ldlt_factorizations;
     else
       ++a.umfpack_factorizations;
-    ls = linear.solve(rhs, du);
   }
   r.time_linear_solve += seconds_since(t0);
   return ls;
@@ -208,6 +210,7 @@ void append_resolve(StepAttempt& a, const StepAttempt& b) {
   a.residual_norms.insert(a.residual_norms.end(), b.residual_norms.begin(), b.residual_norms.end());
   a.energy_norms.insert(a.energy_norms.end(), b.energy_norms.begin(), b.energy_norms.end());
   a.cholmod_factorizations += b.cholmod_factorizations;
+  a.ldlt_factorizations += b.ldlt_factorizations;
   a.umfpack_factorizations += b.umfpack_factorizations;
   a.cholesky_fallbacks += b.cholesky_fallbacks;
 }
@@ -247,6 +250,7 @@ void add_attempt_totals(NonlinearSolverResult& r, const StepAttempt& a) {
   r.total_iterations += a.iterations;
   r.augmentations += a.augmentations;
   r.cholmod_factorizations += a.cholmod_factorizations;
+  r.ldlt_factorizations += a.ldlt_factorizations;
   r.umfpack_factorizations += a.umfpack_factorizations;
   r.cholesky_fallbacks += a.cholesky_fallbacks;
 }
@@ -576,8 +580,9 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
   if (r.augmentations > 0)
     os << format("  augmentations %d (multiplier updates, each followed by a Newton re-solve)\n",
                  r.augmentations);
-  os << format("  factorizations: CHOLMOD %d, UMFPACK %d (Cholesky fallbacks %d)\n",
-               r.cholmod_factorizations, r.umfpack_factorizations, r.cholesky_fallbacks);
+  os << format("  factorizations: CHOLMOD %d, LDL^T %d, UMFPACK %d (Cholesky fallbacks %d)\n",
+               r.cholmod_factorizations, r.ldlt_factorizations, r.umfpack_factorizations,
+               r.cholesky_fallbacks);
 }
 
 // ---------------------------------------------------------------------------------------------

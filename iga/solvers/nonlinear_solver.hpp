@@ -143,9 +143,10 @@ struct StepAttempt {
   std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms); after
                                        ///< an augmentation the re-solve's |R_0|, |R_1|, ...
   std::vector<double> energy_norms;    ///< E_1, ..., E_iterations
-  int cholmod_factorizations = 0;      ///< factorizations that succeeded with CHOLMOD
+  int cholmod_factorizations = 0;      ///< factorizations that succeeded with CHOLMOD LL^T
+  int ldlt_factorizations = 0;         ///< ... with CHOLMOD LDL^T (symmetric indefinite)
   int umfpack_factorizations = 0;      ///< ... with UMFPACK (incl. fallbacks)
-  int cholesky_fallbacks = 0;          ///< Cholesky attempts that fell back to UMFPACK
+  int cholesky_fallbacks = 0;          ///< LL^T attempts that failed (then LDL^T or UMFPACK)
   std::string message;                 ///< why it failed (empty if converged)
 };
 
@@ -162,6 +163,7 @@ struct NonlinearSolverResult {
   std::vector<StepAttempt> attempts;  ///< every attempt, in order
   int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
   int cholmod_factorizations = 0;
+  int ldlt_factorizations = 0;
   int umfpack_factorizations = 0;
   int cholesky_fallbacks = 0;
   double time_total = 0.0;         ///< wall time of solve() (seconds)

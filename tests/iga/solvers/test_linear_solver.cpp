@@ -3,6 +3,8 @@
 // to LU on indefinite symmetric matrices, singular and non-finite matrices as statuses.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -149,29 +151,65 @@ TEST_CASE("LinearSolver: the symbolic analysis is reused while the pattern is un
   }
 }
 
-TEST_CASE("LinearSolver: an indefinite symmetric matrix falls back from CHOLMOD to UMFPACK",
+TEST_CASE("LinearSolver: an indefinite symmetric matrix is factorized by LDL^T with its inertia",
           "[iga][solver]") {
   for (const auto& [n, per_col] : std::vector<std::pair<int, int>>{{9, 2}, {600, 12}}) {
     CAPTURE(n, per_col);
     const SparseMatrix indefinite = random_matrix(n, per_col, true, true, 41u);
+    // the number of negative eigenvalues, from the dense symmetric eigensolver
+    const Eigen::VectorXd lambda =
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(indefinite)).eigenvalues();
+    const int negative = static_cast<int>((lambda.array() < 0.0).count());
+    REQUIRE(negative > 0);
     LinearSolver solver(true);
     check_solve(solver, indefinite, 8u);
-    CHECK(solver.backend() == LinearBackend::umfpack);
+    CHECK(solver.backend() == LinearBackend::ldlt);
     CHECK(solver.fell_back());
+    CHECK(solver.negative_pivots() == negative);  // Sylvester's law of inertia
     CHECK(solver.stats().cholesky_failures == 1);
+    CHECK(solver.stats().ldlt_factorizations == 1);
     CHECK(solver.stats().factorizations == 2);
     CHECK_THAT(solver.message(),
-               Catch::Contains("not positive definite") && Catch::Contains("UMFPACK"));
+               Catch::Contains("not positive definite") && Catch::Contains("LDL^T"));
+    // the next matrix of the pattern goes to LDL^T at once (no failing LL^T first)
+    check_solve(solver, indefinite, 10u);
+    CHECK(solver.backend() == LinearBackend::ldlt);
+    CHECK_FALSE(solver.fell_back());
+    CHECK(solver.stats().cholesky_failures == 1);
 
-    // CHOLMOD is tried again, and succeeds, on an SPD matrix with the same pattern.
+    // An SPD matrix with the same pattern: LDL^T finds no negative pivot, so the next
+    // factorization is LL^T again.
     SparseMatrix spd = indefinite;
     for (int i = 0; i < n; ++i) spd.coeffRef(i, i) = std::abs(spd.coeff(i, i));
     check_solve(solver, spd, 9u);
+    CHECK(solver.backend() == LinearBackend::ldlt);
+    CHECK(solver.negative_pivots() == 0);
+    check_solve(solver, spd, 11u);
     CHECK(solver.backend() == LinearBackend::cholmod);
-    CHECK_FALSE(solver.fell_back());
+    CHECK(solver.negative_pivots() == 0);
     CHECK(solver.reused_analysis());
-    CHECK(solver.stats().analyses == 2);  // one per backend
+    CHECK(solver.stats().analyses == 2);  // one per CHOLMOD factorization kind
   }
+}
+
+TEST_CASE("LinearSolver: where LDL^T without pivoting fails, UMFPACK solves", "[iga][solver]") {
+  // A zero diagonal: every symmetric permutation leaves a zero first pivot.
+  SparseMatrix zero(2, 2);
+  zero.insert(0, 1) = 1.0;
+  zero.insert(1, 0) = 1.0;
+  zero.makeCompressed();
+  LinearSolver solver(true);
+  check_solve(solver, zero, 3u);
+  CHECK(solver.backend() == LinearBackend::umfpack);
+  CHECK(solver.negative_pivots() == -1);
+  CHECK_THAT(solver.message(), Catch::Contains("zero pivot") && Catch::Contains("UMFPACK"));
+  // A tiny pivot (element growth 1e20): the answer is right whichever path gives it (LDL^T
+  // with one step of refinement, or UMFPACK after the residual check rejected it).
+  SparseMatrix tiny = zero;
+  tiny.coeffRef(0, 0) = 1e-20;
+  LinearSolver other(true);
+  check_solve(other, tiny, 4u);
+  CHECK(other.backend() != LinearBackend::cholmod);
 }
 
 TEST_CASE("LinearSolver: singular matrices are reported as a status with a message",
