@@ -1,7 +1,8 @@
 // Benchmarks of the Kirchhoff-Love shell (iga/shell/kirchhoff_love_shell.hpp) on a 20 x 20 bicubic
 // plate (randomly perturbed current state): the element tangent (forces + consistent tangent,
 // 16 Gauss points, 48 x 48) per element, and one global assembly into triplets plus the
-// sparse matrix. Run: build/release/bench/bench_shell --benchmark_repetitions=5
+// sparse matrix (setFromTriplets, or the pattern kept: PatternAssembler).
+// Run: build/release/bench/bench_shell --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -10,6 +11,7 @@
 
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
+#include "iga/core/sparse_assembly.hpp"
 #include "iga/shell/kirchhoff_love_shell.hpp"
 
 using namespace iga;
@@ -80,6 +82,29 @@ void BM_ShellElements20x20Bicubic(benchmark::State& state) {
   state.counters["elements"] = shell.num_elements();
 }
 BENCHMARK(BM_ShellElements20x20Bicubic)->Unit(benchmark::kMillisecond);
+
+// The sparse matrix from the triplets of one assembly of the same plate: setFromTriplets (arg 0,
+// a sort every Newton iteration) or PatternAssembler with the pattern kept from the last call
+// (arg 1, the same triplet sequence: only the values are summed in).
+void BM_ShellSparseMatrix20x20Bicubic(benchmark::State& state) {
+  const KirchhoffLoveShell shell = plate(20, 3);
+  const std::vector<Vector3d> x = perturbed(shell.reference_points());
+  Eigen::VectorXd f;
+  std::vector<Triplet> T;
+  shell.assemble(x, f, &T);
+  Eigen::SparseMatrix<double> K(shell.num_dofs(), shell.num_dofs());
+  PatternAssembler assembler;
+  const bool kept = state.range(0) != 0;
+  for (auto _ : state) {
+    if (kept)
+      assembler.assemble(T, shell.num_dofs(), shell.num_dofs(), K);
+    else
+      K.setFromTriplets(T.begin(), T.end());
+    benchmark::DoNotOptimize(K.valuePtr());
+  }
+  state.counters["triplets"] = static_cast<double>(T.size());
+}
+BENCHMARK(BM_ShellSparseMatrix20x20Bicubic)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

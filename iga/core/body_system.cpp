@@ -36,8 +36,7 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
                                it.value());
   }
   if (!K) return;
-  K->resize(n, n);
-  K->setFromTriplets(triplets_.begin(), triplets_.end());
+  assembler_.assemble(triplets_, n, n, *K);  // the pattern kept while the bodies' are
 }
 
 bool BodySystem::symmetric() const {

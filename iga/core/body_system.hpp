@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "iga/core/body.hpp"
+#include "iga/core/sparse_assembly.hpp"
 
 namespace iga {
 
@@ -45,6 +46,7 @@ class BodySystem : public NonlinearProblem {
   VectorXd Rb_;
   SparseMatrix Kb_;
   std::vector<Triplet> triplets_;
+  PatternAssembler assembler_;
 };
 
 }  // namespace iga

@@ -168,8 +168,8 @@ void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, Spa
   if (!K) return;
   free_triplets_.clear();
   dofs_.reduce(cart_triplets_, free_triplets_);  // K_free = P^T K_cart P
-  K->resize(dofs_.num_free(), dofs_.num_free());
-  K->setFromTriplets(free_triplets_.begin(), free_triplets_.end());
+  // the pattern is built again only when the triplets' sequence changed (the active set)
+  assembler_.assemble(free_triplets_, dofs_.num_free(), dofs_.num_free(), *K);
 }
 
 std::vector<Vector3d> ControlPointProblem::nodal_residual(const VectorXd& u, double t) {

@@ -13,6 +13,7 @@
 
 #include "iga/core/body.hpp"
 #include "iga/core/dof_map.hpp"
+#include "iga/core/sparse_assembly.hpp"
 
 namespace iga {
 
@@ -131,6 +132,7 @@ class ControlPointProblem : public Body {
   std::vector<Vector3d> x_;
   VectorXd g_;
   std::vector<Triplet> cart_triplets_, free_triplets_;
+  PatternAssembler assembler_;  // K from free_triplets_, its pattern kept
 };
 
 }  // namespace iga

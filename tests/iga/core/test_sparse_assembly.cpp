@@ -1,0 +1,81 @@
+// Tests of PatternAssembler (iga/core/sparse_assembly.hpp): the matrix of setFromTriplets bit for
+// bit, the pattern reused while the triplets' sequence is unchanged and built again when it
+// changes.
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <vector>
+
+#include "iga/core/sparse_assembly.hpp"
+
+using namespace iga;
+using Triplet = Eigen::Triplet<double>;
+using Matrix = Eigen::SparseMatrix<double>;
+
+namespace {
+
+std::vector<Triplet> random_triplets(int n, int count, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_int_distribution<int> index(0, n - 1);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  std::vector<Triplet> t;
+  for (int k = 0; k < count; ++k) t.emplace_back(index(gen), index(gen), value(gen));
+  for (int k = 0; k < count / 4; ++k) t.push_back(t[static_cast<std::size_t>(k)]);  // duplicates
+  return t;
+}
+
+void check_same(const Matrix& a, const Matrix& b) {
+  REQUIRE(a.rows() == b.rows());
+  REQUIRE(a.cols() == b.cols());
+  REQUIRE(a.nonZeros() == b.nonZeros());
+  for (Eigen::Index j = 0; j <= a.outerSize(); ++j)
+    REQUIRE(a.outerIndexPtr()[j] == b.outerIndexPtr()[j]);
+  for (Eigen::Index k = 0; k < a.nonZeros(); ++k) {
+    REQUIRE(a.innerIndexPtr()[k] == b.innerIndexPtr()[k]);
+    REQUIRE(a.valuePtr()[k] == b.valuePtr()[k]);  // the same sums in the same order
+  }
+}
+
+}  // namespace
+
+TEST_CASE("PatternAssembler: setFromTriplets' matrix, the pattern kept while the sequence is",
+          "[iga][core][sparse]") {
+  PatternAssembler assembler;
+  std::vector<Triplet> t = random_triplets(50, 400, 3u);
+  Matrix K, ref;
+  ref.resize(50, 50);
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 1);
+
+  // new values, same sequence: reused
+  std::mt19937 gen(9u);
+  std::uniform_real_distribution<double> value(-2.0, 2.0);
+  for (Triplet& x : t) x = Triplet(x.row(), x.col(), value(gen));
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 1);
+  CHECK(assembler.reuses() == 1);
+
+  // one triplet more (a contact point became active): built again
+  t.emplace_back(7, 44, 0.5);
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 2);
+
+  // the same count in another order: built again (the places differ)
+  std::swap(t.front(), t.back());
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 3);
+
+  // another size: built again; no triplets: an empty matrix of that size
+  assembler.assemble({}, 7, 7, K);
+  CHECK(K.rows() == 7);
+  CHECK(K.nonZeros() == 0);
+  CHECK(assembler.builds() == 4);
+}
