@@ -76,4 +76,15 @@ inline void archive(StateArchive& a, NormalAugmentation& n) {
   a.io(n.tangential);
 }
 
+/// The fields both integrals' points have (CurveContactPoint, SurfaceContactPoint): the
+/// multipliers, the current position and foot, the history and the position at the commit.
+template <class Point>
+void archive_common(StateArchive& a, Point& p) {
+  archive(a, static_cast<ContactMultipliers&>(p));
+  a.io(p.x);
+  archive(a, p.foot);
+  archive(a, p.history);
+  a.io(p.x_committed);
+}
+
 }  // namespace iga

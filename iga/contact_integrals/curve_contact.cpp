@@ -374,12 +374,8 @@ void CurveContact::archive(StateArchive& a) {
   a.items(
       points_,
       [&](CurveContactPoint& p) {
-        iga::archive(a, static_cast<ContactMultipliers&>(p));
-        a.io(p.x);
-        iga::archive(a, p.foot);
+        archive_common(a, p);
         iga::archive(a, p.law);
-        iga::archive(a, p.history);
-        a.io(p.x_committed);
         a.io(p.N);
         a.io(p.T);
         a.io(p.B);

@@ -638,10 +638,8 @@ void SurfaceContact::archive(StateArchive& a) {
   a.items(
       points_,
       [&](SurfaceContactPoint& p) {
-        iga::archive(a, static_cast<ContactMultipliers&>(p));
-        a.io(p.x);
+        archive_common(a, p);
         a.io(p.normal);
-        iga::archive(a, p.foot);
         a.io(p.gap);
         a.io(p.N);
         a.io(p.T);
@@ -650,8 +648,6 @@ void SurfaceContact::archive(StateArchive& a) {
         a.io(p.active);
         a.io(p.slip);
         a.io(p.first_contact);
-        iga::archive(a, p.history);
-        a.io(p.x_committed);
         a.io(p.slip_distance);
       },
       "contact points", /*resize=*/false);

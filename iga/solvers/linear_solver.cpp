@@ -148,6 +148,7 @@ struct LinearSolver::Impl {
   bool ldl_analyzed = false;
   bool prefer_ldlt = false;  // the last LDL^T had negative pivots: try it first
   int negative = 0;          // negative pivots of the current factorization (-1: unknown)
+  double ldl_a_norm = 0.0;   // |A| (max norm) of the LDL^T factorization's matrix
   UmfPack lu;
   bool lu_analyzed = false;
   LinearBackend backend = LinearBackend::none;
@@ -209,7 +210,15 @@ struct LinearSolver::Impl {
     if (!cholmod_factorize(ldl, ldl_analyzed, "CHOLMOD LDL^T", why)) return false;
     ++stats.ldlt_factorizations;
     negative = ldl.factorized() ? ldl.negative_pivots() : -1;
-    if (negative >= 0) return true;
+    if (negative >= 0) {
+      ldl_a_norm = 0.0;  // max column sum = max row sum (symmetric), for solve_ldlt's test
+      for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
+        double col = 0.0;
+        for (SparseMatrix::InnerIterator it(A, j); it; ++it) col += std::abs(it.value());
+        ldl_a_norm = std::max(ldl_a_norm, col);
+      }
+      return true;
+    }
     ++stats.ldlt_rejected;
     if (ldl.library_status() < CHOLMOD_OK) ldl_analyzed = false;
     why = "CHOLMOD LDL^T: a zero pivot";
@@ -253,15 +262,9 @@ struct LinearSolver::Impl {
   bool solve_ldlt(const VectorXd& b, VectorXd& x) {
     x = ldl.solve(b);
     if (ldl.info() != Eigen::Success || !x.allFinite()) return false;
-    double a_norm = 0.0;  // max row sum = max column sum (symmetric)
-    for (Eigen::Index j = 0; j < A.outerSize(); ++j) {
-      double col = 0.0;
-      for (SparseMatrix::InnerIterator it(A, j); it; ++it) col += std::abs(it.value());
-      a_norm = std::max(a_norm, col);
-    }
     for (int pass = 0; pass < 2; ++pass) {
       const VectorXd r = b - A * x;
-      const double scale = a_norm * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff();
+      const double scale = ldl_a_norm * x.cwiseAbs().maxCoeff() + b.cwiseAbs().maxCoeff();
       if (r.cwiseAbs().maxCoeff() <= 1e-14 * scale) return true;
       if (pass == 1) return r.cwiseAbs().maxCoeff() <= 1e-10 * scale;
       x += ldl.solve(r);  // one step of iterative refinement

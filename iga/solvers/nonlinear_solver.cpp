@@ -416,6 +416,18 @@ void resume_counts(const SolverCheckpoint* resume, NonlinearSolverResult& r, int
   force_scale = c.force_scale;
 }
 
+/// The checkpoint of a converged step at t with the run's counts (resume_counts reads them back);
+/// the step sizes are the caller's to set.
+SolverCheckpoint counted_checkpoint(double t, const NonlinearSolverResult& r, int attempted,
+                                    double force_scale) {
+  SolverCheckpoint c;
+  c.t = t;
+  c.steps = r.steps;
+  c.attempted = attempted;
+  c.force_scale = force_scale;
+  return c;
+}
+
 /// A saved step size within the (possibly new) bounds, or `fallback` where none was saved.
 double resumed_step(double saved, double fallback, const NonlinearSolverSettings& s) {
   return saved > 0.0 ? std::clamp(saved, s.min_step, s.max_step) : fallback;
@@ -514,11 +526,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       r.time_callback += seconds_since(t0);
       if (log_) log_converged_step(*log_, r, a, t, (t - s.t0) / span, problem);
       if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
-      checkpoint_ = SolverCheckpoint{};
-      checkpoint_.t = t;
-      checkpoint_.steps = r.steps;
-      checkpoint_.attempted = attempted;
-      checkpoint_.force_scale = w.r0_max;
+      checkpoint_ = counted_checkpoint(t, r, attempted, w.r0_max);
       checkpoint_.dt = dt;
       checkpoint_.u_prev = u_prev;
       checkpoint_.t_prev = t_prev;
@@ -610,16 +618,12 @@ struct NonlinearSolver::ArcState {
     dl_min = c.dl_min;
     dl_max = c.dl_max;
     flat = c.flat;
-    if (c.dt_flat > 0.0) dt_flat = std::clamp(c.dt_flat, s.min_step, s.max_step);
+    dt_flat = resumed_step(c.dt_flat, dt_flat, s);
   }
   // The checkpoint after a converged step (the step sizes of the next one).
   SolverCheckpoint checkpoint(const NonlinearSolverResult& r, int attempted,
                               double force_scale) const {
-    SolverCheckpoint c;
-    c.t = t;
-    c.steps = r.steps;
-    c.attempted = attempted;
-    c.force_scale = force_scale;
+    SolverCheckpoint c = counted_checkpoint(t, r, attempted, force_scale);
     c.du_prev = du_prev;
     c.dl = dl;
     c.dl_min = dl_min;
