@@ -89,7 +89,11 @@ void run_case(const char* label, const NurbsSurface& s, std::size_t N, const std
   const std::string want_set =
       only.find(':') == std::string::npos ? "" : only.substr(only.find(':') + 1);
   if (!want_surface.empty() && want_surface != label) return;
+  const auto t_build = Clock::now();
   const PatchProjector P(s);
+  std::printf("%-9s projector built in %.1f ms (%zu tree nodes, %.1f MB)\n", label,
+              1e3 * std::chrono::duration<double>(Clock::now() - t_build).count(), P.tree_nodes(),
+              static_cast<double>(P.memory_bytes()) / 1e6);
   const Reference ref(s);
   const Box3 box = P.box();
   const Vector3d c = 0.5 * (box.lo + box.hi), half = 0.5 * (box.hi - box.lo);

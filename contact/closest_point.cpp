@@ -199,14 +199,30 @@ bool c1_border(const KnotVector& kv, const std::vector<double>& br, int I, int l
   return kv.multiplicity(br[static_cast<std::size_t>(I >> l)]) < kv.degree();
 }
 
+// The piece of a Bezier net over the parameter rectangle r (within its range): four de
+// Casteljau splits.
+detail::Net sub_net(const detail::Net& b, const Domain2& r) {
+  detail::Net lo, hi, piece = b;
+  if (r.u.lo > piece.range.u.lo) detail::split_at(piece, 0, r.u.lo, lo, piece);
+  if (r.u.hi < piece.range.u.hi) detail::split_at(piece, 0, r.u.hi, piece, hi);
+  if (r.v.lo > piece.range.v.lo) detail::split_at(piece, 1, r.v.lo, lo, piece);
+  if (r.v.hi < piece.range.v.hi) detail::split_at(piece, 1, r.v.hi, piece, hi);
+  return piece;
+}
+
 // Regions: the cells around each node, across a border between cells that is an element
 // border only where the surface is C1 there (interior knot multiplicity below the degree).
 // grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l; cell and level, each node's.
-template <class N>
-void set_regions(std::vector<N>& tree, const NurbsSurface& s, const std::vector<double>& breaks_u,
-                 const std::vector<double>& breaks_v, const std::vector<std::vector<int>>& grid,
+// The region's bounds are those of its part in each element it meets (at most 2 x 2), each
+// cut out of the element's net as one Bezier patch: tighter than the union of its cells' and
+// fewer to compute.
+template <class N, class C>
+void set_regions(const std::vector<N>& tree, std::vector<C>& cert, const NurbsSurface& s,
+                 const std::vector<double>& breaks_u, const std::vector<double>& breaks_v,
+                 const std::vector<std::vector<int>>& grid,
                  const std::vector<std::array<int, 2>>& cell, const std::vector<int>& level) {
   const int nu = static_cast<int>(breaks_u.size()) - 1, nv = static_cast<int>(breaks_v.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 16)
   for (std::size_t k = 0; k < tree.size(); ++k) {
     const int l = level[k], I = cell[k][0], J = cell[k][1];
     const int wu = nu << l, wv = nv << l;
@@ -214,19 +230,29 @@ void set_regions(std::vector<N>& tree, const NurbsSurface& s, const std::vector<
     const int i1 = I + 1 < wu && c1_border(s.knots_u(), breaks_u, I + 1, l) ? I + 1 : I;
     const int j0 = J > 0 && c1_border(s.knots_v(), breaks_v, J, l) ? J - 1 : J;
     const int j1 = J + 1 < wv && c1_border(s.knots_v(), breaks_v, J + 1, l) ? J + 1 : J;
-    N& n = tree[k];
-    n.region = n.net.range;
-    detail::PatchBounds region_bounds = n.bounds;
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        if (i == I && j == J) continue;
-        const N& m = tree[static_cast<std::size_t>(
-            grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])];
-        detail::unite(region_bounds, detail::patch_bounds(m.net, n.bounds.frame));
-        n.region.u = {std::min(n.region.u.lo, m.net.range.u.lo),
-                      std::max(n.region.u.hi, m.net.range.u.hi)};
-        n.region.v = {std::min(n.region.v.lo, m.net.range.v.lo),
-                      std::max(n.region.v.hi, m.net.range.v.hi)};
+    const N& node = tree[k];
+    C& n = cert[k];
+    auto range_of = [&](int i, int j) -> const Domain2& {
+      return tree[static_cast<std::size_t>(
+                      grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(i + wu * j)])]
+          .net.range;
+    };
+    n.region = {{range_of(i0, j0).u.lo, range_of(i1, j0).u.hi},
+                {range_of(i0, j0).v.lo, range_of(i0, j1).v.hi}};
+    detail::PatchBounds region_bounds;
+    bool first = true;
+    for (int ej = j0 >> l; ej <= j1 >> l; ++ej)
+      for (int ei = i0 >> l; ei <= i1 >> l; ++ei) {
+        const N& e =
+            tree[static_cast<std::size_t>(grid[0][static_cast<std::size_t>(ei + nu * ej)])];
+        const Domain2& er = e.net.range;
+        const Domain2 part{{std::max(er.u.lo, n.region.u.lo), std::min(er.u.hi, n.region.u.hi)},
+                           {std::max(er.v.lo, n.region.v.lo), std::min(er.v.hi, n.region.v.hi)}};
+        const detail::PatchBounds b = detail::patch_bounds(sub_net(e.net, part), node.bounds.frame);
+        if (first)
+          region_bounds = b, first = false;
+        else
+          detail::unite(region_bounds, b);
       }
     n.region_chord = detail::chord_data(region_bounds);
   }
@@ -258,17 +284,20 @@ bool apart(const Domain2& a, const Domain2& b) {
 // The gaps: a lower bound of the distance from a node to the surface outside its region, the
 // least over the leaves outside it of the distance between their boxes, axis-aligned or in
 // the tangent frame of either (a branch and bound down the tree). Nodes 0 .. n_el - 1 are the
-// roots.
-template <class N>
-void set_gaps(std::vector<N>& tree, std::size_t n_el) {
-  for (N& n : tree) {
+// roots; cert[k] (region in, gap out) is tree[k]'s.
+template <class N, class C>
+void set_gaps(const std::vector<N>& tree, std::vector<C>& cert, std::size_t n_el) {
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    const N& n = tree[i];
+    const Domain2& region = cert[i].region;
     double g2 = std::numeric_limits<double>::infinity();
     auto descend = [&](auto&& self, const N& m) -> void {
-      if (within(m.net.range, n.region)) return;
+      if (within(m.net.range, region)) return;
       if (box_gap2(n.box, m.box) >= g2) return;
       if (m.child < 0) {
         // a leaf overlapping the region (not split further) leaves no gap
-        g2 = apart(m.net.range, n.region)
+        g2 = apart(m.net.range, region)
                  ? std::min(g2, std::max(box_gap2(n.box, m.box),
                                          std::max(frame_gap2(n, m), frame_gap2(m, n))))
                  : 0.0;
@@ -277,22 +306,31 @@ void set_gaps(std::vector<N>& tree, std::size_t n_el) {
       for (int k = 0; k < 4; ++k) self(self, tree[static_cast<std::size_t>(m.child + k)]);
     };
     for (std::size_t e = 0; e < n_el; ++e) descend(descend, tree[e]);
-    n.gap = std::sqrt(g2) * (1.0 - 1e-12);
+    cert[i].gap = std::sqrt(g2) * (1.0 - 1e-12);
   }
+}
+
+// The largest float not above g (a lower bound stays one).
+float float_below(double g) {
+  float f = static_cast<float>(g);
+  if (static_cast<double>(f) > g) f = std::nextafter(f, -std::numeric_limits<float>::infinity());
+  return f;
 }
 
 // The near lists: for each node, the coarsest nodes apart from its region (and the leaves
 // overlapping it in part, at gap 0), by the lower bound of their distance to the node's points
-// (boxes, axis-aligned and in either's tangent frame), the nearest N::kNear kept in order.
-template <class N>
-void set_near_lists(std::vector<N>& tree, std::size_t n_el) {
-  std::vector<std::pair<double, int>> cut;
-  for (N& n : tree) {
-    cut.clear();
+// (boxes, axis-aligned and in either's tangent frame), the nearest C::kNear kept in order.
+template <class N, class C>
+void set_near_lists(const std::vector<N>& tree, std::vector<C>& cert, std::size_t n_el) {
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t i = 0; i < tree.size(); ++i) {
+    const N& n = tree[i];
+    C& c = cert[i];
+    std::vector<std::pair<double, int>> cut;
     auto descend = [&](auto&& self, int k) -> void {
       const N& m = tree[static_cast<std::size_t>(k)];
-      if (within(m.net.range, n.region)) return;
-      if (apart(m.net.range, n.region)) {
+      if (within(m.net.range, c.region)) return;
+      if (apart(m.net.range, c.region)) {
         const double g2 =
             std::max(box_gap2(n.box, m.box), std::max(frame_gap2(n, m), frame_gap2(m, n)));
         cut.emplace_back(std::sqrt(g2) * (1.0 - 1e-12), k);
@@ -302,14 +340,16 @@ void set_near_lists(std::vector<N>& tree, std::size_t n_el) {
         cut.emplace_back(0.0, k);
         return;
       }
-      for (int c = 0; c < 4; ++c) self(self, m.child + c);
+      for (int q = 0; q < 4; ++q) self(self, m.child + q);
     };
     for (std::size_t e = 0; e < n_el; ++e) descend(descend, static_cast<int>(e));
     std::sort(cut.begin(), cut.end());
-    n.n_near = static_cast<int>(std::min<std::size_t>(cut.size(), N::kNear));
-    std::copy_n(cut.begin(), n.n_near, n.near.begin());
-    n.rest_gap = cut.size() > static_cast<std::size_t>(N::kNear)
-                     ? cut[static_cast<std::size_t>(N::kNear)].first
+    c.n_near = static_cast<int>(std::min<std::size_t>(cut.size(), C::kNear));
+    for (int k = 0; k < c.n_near; ++k)
+      c.near[static_cast<std::size_t>(k)] = {float_below(cut[static_cast<std::size_t>(k)].first),
+                                             cut[static_cast<std::size_t>(k)].second};
+    c.rest_gap = cut.size() > static_cast<std::size_t>(C::kNear)
+                     ? cut[static_cast<std::size_t>(C::kNear)].first
                      : std::numeric_limits<double>::infinity();
   }
 }
@@ -323,9 +363,10 @@ void PatchProjector::build_tree() {
   if (static_cast<std::size_t>(nu * nv) != n_el) return;
   for (const BezierPatch& b : bez_.elements())
     if (b.degree_u > detail::kMaxNetDegree || b.degree_v > detail::kMaxNetDegree) return;
-  // Depth: as deep as the budget allows, at most 3 (64 leaves per element).
+  // Depth: as deep as the budget allows, at most 4 (256 leaves per element). A node takes
+  // about 3.5 kB (the net and points held for degree 5), so a patch up to 21 MB.
   int depth = 0;
-  while (depth < 3 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= kTreeNodes)
+  while (depth < 4 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= kTreeNodes)
     ++depth;
   // Nodes level by level; grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l.
   std::vector<std::vector<int>> grid(static_cast<std::size_t>(depth + 1));
@@ -337,11 +378,13 @@ void PatchProjector::build_tree() {
     n.centre = s_.derivs(0.5 * (r.u.lo + r.u.hi), 0.5 * (r.v.lo + r.v.hi), 1);
     n.bounds = detail::patch_bounds(n.net, detail::tangent_frame(n.centre));
   };
+  tree_.reserve(n_el * (((std::size_t{1} << (2 * (depth + 1))) - 1) / 3));
   tree_.resize(n_el);
   grid[0].assign(n_el, -1);
   for (std::size_t e = 0; e < n_el; ++e) {
     detail::to_net(bez_.elements()[e], tree_[e].net);
     make(tree_[e]);
+    tree_[e].element = static_cast<int>(e);
     cell.push_back({bez_.elements()[e].element_u, bez_.elements()[e].element_v});
     level.push_back(0);
     grid[0][static_cast<std::size_t>(bez_.elements()[e].element_u +
@@ -359,21 +402,42 @@ void PatchProjector::build_tree() {
       detail::split_half(lo, 1, c[0].net, c[1].net);
       detail::split_half(hi, 1, c[2].net, c[3].net);
       for (int q = 0; q < 4; ++q) {
-        make(c[q]);
         const int I = 2 * cell[k][0] + q / 2, J = 2 * cell[k][1] + q % 2;
         grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(I + wu * J)] =
             static_cast<int>(tree_.size());
         cell.push_back({I, J});
         level.push_back(l);
+        c[q].element = tree_[k].element;
+        c[q].level = l;
         tree_.push_back(c[q]);
       }
     }
+#pragma omp parallel for schedule(dynamic, 16)
+    for (std::size_t k = last; k < tree_.size(); ++k) make(tree_[k]);
     first = last;
     last = tree_.size();
   }
-  set_regions(tree_, s_, bez_.breaks_u(), bez_.breaks_v(), grid, cell, level);
-  set_gaps(tree_, n_el);
-  set_near_lists(tree_, n_el);
+  cert_.assign(tree_.size(), Cert{});
+  for (std::size_t k = 0; k < tree_.size(); ++k) {
+    Cert& c = cert_[k];
+    c.range = tree_[k].net.range;
+    c.child = tree_[k].child;
+    c.box = tree_[k].box;
+    c.frame_box = detail::frame_box(tree_[k].bounds);
+  }
+  set_regions(tree_, cert_, s_, bez_.breaks_u(), bez_.breaks_v(), grid, cell, level);
+  set_gaps(tree_, cert_, n_el);
+  set_near_lists(tree_, cert_, n_el);
+}
+
+std::size_t PatchProjector::memory_bytes() const {
+  std::size_t b = sizeof(*this) + tree_.size() * (sizeof(Node) + sizeof(Cert)) +
+                  boxes_.size() * sizeof(Box3) + hull_.size() * sizeof(Vector3d) +
+                  hull_offset_.size() * sizeof(std::size_t);
+  for (const auto& v : samples_) b += v.size() * sizeof(Sample);
+  for (const BezierPatch& e : bez_.elements())
+    b += sizeof(BezierPatch) + e.pw.size() * sizeof(e.pw[0]);
+  return b;
 }
 
 ProjectionResult PatchProjector::project_within(const Vector3d& x, double max_distance,
@@ -409,17 +473,6 @@ double hull_lower_bound(const Box3& box, const Vector3d* pts, std::size_t n, con
     lb = std::max(lb, dirs[k].dot(x) - support);
   }
   return lb;
-}
-
-// Squared distance from x to the box of the points of a piece in its bounds' frame.
-double frame_box_distance2(const detail::PatchBounds& b, const Vector3d& x) {
-  const Vector3d y = b.frame * (x - b.centre);
-  double d2 = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double g = std::max({b.S.c[k].lo - y[k], y[k] - b.S.c[k].hi, 0.0});
-    d2 += g * g;
-  }
-  return d2;
 }
 
 // The answer of a search that has found nothing (yet).
@@ -490,7 +543,7 @@ struct CertifiedSearch {
   // region holding it that passes the chord test is proven.
   void prove_region() {
     if (!opt.certify || !best_patch_kkt || n_proven == kMaxProven) return;
-    const Node* n = chord_region(best.uv, x - best.point);
+    const auto* n = chord_region(best.uv, x - best.point);
     if (n == nullptr) return;
     if (!is_proven(n->region)) proven[n_proven++] = &n->region;
     // Every surface point outside the region is at least gap from the foot, so at least
@@ -585,7 +638,9 @@ struct CertifiedSearch {
     }
     // The distance to the box of the node's points in its tangent frame (thin across the
     // surface: close to the distance to the piece where the surface curves towards x).
-    if (std::sqrt(frame_box_distance2(node.bounds, x)) > threshold()) return;
+    if (std::sqrt(detail::frame_box_distance2(node.bounds.frame, node.bounds.centre, node.bounds.S,
+                                              x)) > threshold())
+      return;
     if (settled_by_bounds(node, stored, element)) return;
     if (depth == 0 && !warm) {  // seeds for a good optimum early (a warm start has one)
       seed_newtons(element);
@@ -754,13 +809,14 @@ struct CertifiedSearch {
 // marked not certified (`ProjectionResult::certified`).
 ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::size_t n_ids,
                                         double max_distance, const ProjectionOptions& opt,
-                                        const ProjectionResult* start) const {
+                                        const ProjectionResult* start, bool pieces) const {
   thread_local std::vector<std::pair<double, int>> order;
   order.clear();
   const double limit2 = max_distance < kInf ? max_distance * max_distance : kInf;
   for (std::size_t k = 0; k < n_ids; ++k) {
     const int e = ids ? ids[k] : static_cast<int>(k);
-    const double lb2 = box_distance2(boxes_[static_cast<std::size_t>(e)], x);
+    const double lb2 = box_distance2(
+        pieces ? tree_[static_cast<std::size_t>(e)].box : boxes_[static_cast<std::size_t>(e)], x);
     if (lb2 <= limit2) order.emplace_back(lb2, e);
   }
   const auto region_of = [this](const Vector2d& uv, const Vector3d& r_star) {
@@ -778,7 +834,9 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       .dom = s_.domain(),
       .cu = s_.closed_u(),
       .cv = s_.closed_v(),
-      .all_elements = ids == nullptr,
+      // The pieces and the rest of the patch (proven by the caller) cover it: a node's minimum
+      // on a bound inside the patch is another node's, as with all elements.
+      .all_elements = ids == nullptr || pieces,
       .tol = 1e-11 * (box_.hi - box_.lo).norm(),
       .certified = opt.certify,
       .ub = max_distance};
@@ -789,7 +847,7 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   }
   // A first upper bound from the samples of the most promising element (a surface point at
   // that distance exists), so that far elements are pruned before any Newton.
-  if (!cs.warm) {
+  if (!cs.warm && !pieces) {
     const auto first = std::min_element(order.begin(), order.end());
     for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
       const double d = (smp.x - x).norm();
@@ -804,7 +862,8 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     const double t = cs.threshold();
     if (t < 0.0 || lb2 > t * t) break;
     if (!tree_.empty()) {
-      cs.visit(tree_[static_cast<std::size_t>(e)], true, e, 0);
+      const Node& n = tree_[static_cast<std::size_t>(e)];
+      cs.visit(n, true, n.element, n.level);
     } else {  // degrees above the nets' capacity: the sampled search, not certified
       const std::size_t k = static_cast<std::size_t>(e);
       if (hull_lower_bound(boxes_[k], hull_.data() + hull_offset_[k],
@@ -818,57 +877,124 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
   return cs.answer(max_distance);
 }
 
-bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r) const {
-  const Node* n = chord_region(r.uv, x - r.point);
-  if (n == nullptr) return false;
+bool PatchProjector::proves_global(const Vector3d& x, const ProjectionResult& r,
+                                   Uncleared* left) const {
+  const Cert* n = chord_region(r.uv, x - r.point);
+  if (n == nullptr) {
+    if (left) left->overflow = true;
+    return false;
+  }
   const double d = (x - r.point).norm();
   if (d <= 0.5 * n->gap) return true;
-  return ball_clear_near(*n, x, d, d - 1e-11 * (box_.hi - box_.lo).norm());
+  return ball_clear_near(*n, x, r.point, d - 1e-11 * (box_.hi - box_.lo).norm(), left);
 }
 
-bool PatchProjector::clear_of(const Node& m, const Vector3d& x, double r2,
-                              const Domain2& region) const {
-  if (within(m.net.range, region)) return true;
-  if (box_distance2(m.box, x) >= r2 || frame_box_distance2(m.bounds, x) >= r2) return true;
-  if (m.child < 0) return false;  // a piece outside the region may hold a closer point
-  for (int k = 0; k < 4; ++k)
-    if (!clear_of(tree_[static_cast<std::size_t>(m.child + k)], x, r2, region)) return false;
-  return true;
-}
-
-bool PatchProjector::ball_clear_near(const Node& n, const Vector3d& x, double d,
-                                     double radius) const {
-  if (!(radius > 0.0)) return false;
-  // A piece at least g from the points of n is at least g - d from x.
-  if (n.rest_gap < d + radius) return ball_clear(x, radius, n.region);
-  const double r2 = radius * radius;
-  for (int k = 0; k < n.n_near; ++k) {
-    const auto& [g, m] = n.near[static_cast<std::size_t>(k)];
-    if (g >= d + radius) break;
-    if (!clear_of(tree_[static_cast<std::size_t>(m)], x, r2, n.region)) return false;
+ProjectionResult PatchProjector::certify(const Vector3d& x, ProjectionResult r,
+                                         const ProjectionOptions& opt) const {
+  Uncleared left;
+  if (proves_global(x, r, &left)) {
+    r.certified = true;
+    return r;
   }
-  return true;
+  if (!left.overflow && left.n > 0)
+    return search(x, left.nodes.data(), static_cast<std::size_t>(left.n), kInf, opt, &r, true);
+  return search(x, nullptr, boxes_.size(), kInf, opt, &r);
 }
 
-const PatchProjector::Node* PatchProjector::chord_region(const Vector2d& uv,
+namespace {
+// Notes m as uncleared in `left` (nullptr: not kept); false when the list is full.
+template <class U>
+bool keep_uncleared(U* left, int m) {
+  if (left == nullptr || left->overflow) return false;
+  if (left->n == U::kMax) {
+    left->overflow = true;
+    return false;
+  }
+  left->nodes[static_cast<std::size_t>(left->n++)] = m;
+  return true;
+}
+}  // namespace
+
+bool PatchProjector::clear_of(const Cert& m, const Ball& ball, const Domain2& region,
+                              Uncleared* left) const {
+  if (within(m.range, region)) return true;
+  if (box_distance2(m.box, ball.x) >= ball.r2 ||
+      detail::frame_box_distance2(m.frame_box, ball.x) >= ball.r2)
+    return true;
+  if (m.child < 0) {  // a piece outside the region may hold a closer point
+    keep_uncleared(left, static_cast<int>(&m - cert_.data()));
+    return false;
+  }
+  bool clear = true;
+  for (int c = 0; c < 4; ++c)
+    if (!clear_of(cert_[static_cast<std::size_t>(m.child + c)], ball, region, left)) {
+      clear = false;
+      if (left == nullptr || left->overflow) return false;
+    }
+  return clear;
+}
+
+bool PatchProjector::ball_clear_near(const Cert& n, const Vector3d& x, const Vector3d& foot,
+                                     double radius, Uncleared* left) const {
+  if (!(radius > 0.0)) {
+    if (left) left->overflow = true;
+    return false;
+  }
+  const double d = (x - foot).norm();
+  const Ball ball{x, radius * radius};
+  // A piece at least g from the points of n is at least g - d from x.
+  if (n.rest_gap < d + radius) return ball_clear(ball, n.region, left);
+  bool clear = true;
+  for (int k = 0; k < n.n_near; ++k) {
+    const Cert::Near& m = n.near[static_cast<std::size_t>(k)];
+    if (m.gap >= d + radius) break;
+    if (!clear_of(cert_[static_cast<std::size_t>(m.node)], ball, n.region, left)) {
+      clear = false;
+      if (left == nullptr || left->overflow) return false;
+    }
+  }
+  return clear;
+}
+
+const PatchProjector::Cert* PatchProjector::chord_region(const Vector2d& uv,
                                                          const Vector3d& r_star) const {
-  if (tree_.empty()) return nullptr;
-  const Node* n = &tree_[static_cast<std::size_t>(element_of(uv))];
+  if (cert_.empty()) return nullptr;
+  // The nodes holding uv, element to leaf; then the coarsest whose region passes by bisection
+  // over the levels (a region holds the finer ones' around uv, so a coarser pass mostly means
+  // a finer pass: where not, a finer region is found, as sound).
+  std::array<const Cert*, 8> path{};
+  int n_path = 0;
+  const Cert* n = &cert_[static_cast<std::size_t>(element_of(uv))];
   while (true) {
-    if (inside(n->region, uv) && detail::chord_test(n->region_chord, r_star)) return n;
-    if (n->child < 0) return nullptr;
-    const Domain2& g = n->net.range;
-    n = &tree_[static_cast<std::size_t>(n->child + (uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
+    path[static_cast<std::size_t>(n_path++)] = n;
+    if (n->child < 0 || n_path == static_cast<int>(path.size())) break;
+    const Domain2& g = n->range;
+    n = &cert_[static_cast<std::size_t>(n->child + (uv[0] >= 0.5 * (g.u.lo + g.u.hi) ? 2 : 0) +
                                         (uv[1] >= 0.5 * (g.v.lo + g.v.hi) ? 1 : 0))];
   }
+  const Cert* found_region = nullptr;
+  int lo = 0, hi = n_path - 1;
+  while (lo <= hi) {
+    const int mid = (lo + hi) / 2;
+    const Cert* m = path[static_cast<std::size_t>(mid)];
+    if (inside(m->region, uv) && detail::chord_test(m->region_chord, r_star)) {
+      found_region = m;
+      hi = mid - 1;
+    } else {
+      lo = mid + 1;
+    }
+  }
+  return found_region;
 }
 
-bool PatchProjector::ball_clear(const Vector3d& x, double radius, const Domain2& region) const {
-  if (!(radius > 0.0)) return false;
-  const double r2 = radius * radius;
+bool PatchProjector::ball_clear(const Ball& ball, const Domain2& region, Uncleared* left) const {
+  bool clear = true;
   for (std::size_t e = 0; e < bez_.elements().size(); ++e)
-    if (!clear_of(tree_[e], x, r2, region)) return false;
-  return true;
+    if (!clear_of(cert_[e], ball, region, left)) {
+      clear = false;
+      if (left == nullptr || left->overflow) return false;
+    }
+  return clear;
 }
 
 ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOptions& opt) const {
@@ -890,13 +1016,9 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOpti
       if (d2 < seed2) seed2 = d2, seed = &smp;
     }
     ProjectionResult r = closest_point_local(bez_, x, seed->uv, opt);
-    if (found(r.status) && proves_global(x, r)) {
-      r.certified = true;
-      return r;
-    }
-    // Not proven: the search, started from that answer when it is one (an upper bound that
-    // prunes from the first node on).
-    if (found(r.status)) return search(x, nullptr, boxes_.size(), kInf, opt, &r);
+    // Proven global, or else the search started from that answer (an upper bound that prunes
+    // from the first node on).
+    if (found(r.status)) return certify(x, r, opt);
     const int used = r.iterations;
     r = search(x, nullptr, boxes_.size(), kInf, opt);
     r.iterations += used;
@@ -911,11 +1033,8 @@ ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& gues
   // either proves that answer global or finds the closer foot (the true foot may have jumped).
   ProjectionResult r = closest_point_local(bez_, x, guess, opt);
   if (opt.certify) {
-    if (found(r.status) && proves_global(x, r)) {
-      r.certified = true;
-      return r;
-    }
-    return search(x, nullptr, boxes_.size(), kInf, opt, &r);
+    if (found(r.status)) return certify(x, r, opt);
+    return search(x, nullptr, boxes_.size(), kInf, opt);
   }
   if (r.status == ProjectionStatus::not_converged) {
     const int used = r.iterations;

@@ -47,6 +47,10 @@ class PatchProjector {
   const Box3& box() const { return box_; }
   const std::vector<BezierPatch>& elements() const { return bez_.elements(); }
   const std::vector<Box3>& element_boxes() const { return boxes_; }
+  /// Nodes of the precomputed subdivision of the certified search (0: none, degrees above 5).
+  std::size_t tree_nodes() const { return tree_.size(); }
+  /// Memory held by the projector's precomputed data, in bytes (approximate: vectors' sizes).
+  std::size_t memory_bytes() const;
 
   /// Cold start: the global minimum (certified branch and bound over the elements).
   ProjectionResult project(const Vector3d& x, const ProjectionOptions& opt = {}) const;
@@ -69,9 +73,11 @@ class PatchProjector {
     Vector2d uv;
     Vector3d x;
   };
+  // The certified search among the elements ids[0 .. n_ids) (ids = nullptr: all), or with
+  // `pieces`, among those nodes of the tree (the rest of the patch proven by the caller).
   ProjectionResult search(const Vector3d& x, const int* ids, std::size_t n_ids, double max_distance,
-                          const ProjectionOptions& opt,
-                          const ProjectionResult* start = nullptr) const;
+                          const ProjectionOptions& opt, const ProjectionResult* start = nullptr,
+                          bool pieces = false) const;
   static constexpr int kMaxSamples = 64;  // 8 x 8
   NurbsSurface s_;
   BezierSurface bez_;  // the same patch by its Bezier elements: what the Newtons evaluate
@@ -83,10 +89,6 @@ class PatchProjector {
   Box3 box_;
   // The subdivision of the certified search, precomputed to a fixed depth (kTreeNodes at most):
   // nodes 0 .. n_elements - 1 are the elements, each node's four children are consecutive.
-  // Each node has a region, the node and those of its level around it (across element
-  // borders where the surface is C1), with the boxes of the derivatives over it: a foot that
-  // satisfies the optimality conditions and passes the chord test on a region proves the whole
-  // region in one test, instead of a subdivision of the nodes around the foot.
   struct Node {
     detail::Net net;
     std::array<Vector3d, std::tuple_size_v<decltype(detail::Net::pw)>> points;  // projected
@@ -94,36 +96,76 @@ class PatchProjector {
     detail::PatchBounds bounds;  // in the tangent frame at the centre
     SurfaceDerivs centre;        // S, S_u, S_v at the centre of net.range
     int child = -1;              // the tree's: first of the four children (-1: none)
+    int element = 0, level = 0;  // the element holding it, its depth below the element
+  };
+  // What the certificate of a foot reads of tree node k, in cert_[k]: apart from the search's
+  // nodes and small, so that a certificate touches few cache lines (a warm start's time is
+  // mostly the memory it reads). Each node has a region, the node and those of its level
+  // around it (across element borders where the surface is C1), with the boxes of the
+  // derivatives over it: a foot that satisfies the optimality conditions and passes the chord
+  // test on a region proves the whole region in one test, instead of a subdivision of the nodes
+  // around the foot.
+  struct Cert {
+    Domain2 range;  // the node's
     Domain2 region;
-    detail::ChordData region_chord;  // the region's bounds, as the chord test needs them
+    int child = -1;
+    int n_near = 0;
     double gap =
         0.0;  // lower bound of the distance from the node's points to those outside its region
-    // The pieces of the tree outside the region nearest to the node: the coarsest nodes apart
-    // from it, by a lower bound of their distance to the node's points, nearest first
-    // (kNear at most); every piece not listed is at least rest_gap from the node's points.
-    static constexpr int kNear = 32;
-    std::array<std::pair<double, int>, kNear> near{};
-    int n_near = 0;
     double rest_gap = 0.0;
+    Box3 box;                        // the node's points, axis-aligned
+    detail::FrameBox frame_box;      // and in the node's tangent frame
+    detail::ChordData region_chord;  // the region's bounds, as the chord test needs them
+    // The pieces of the tree outside the region nearest to the node: the coarsest nodes apart
+    // from it, by a lower bound of their distance to the node's points (rounded down to
+    // float), nearest first (kNear at most); every piece not listed is at least rest_gap from
+    // the node's points.
+    static constexpr int kNear = 32;
+    struct Near {
+      float gap;
+      int node;
+    };
+    std::array<Near, kNear> near{};
   };
-  static constexpr std::size_t kTreeNodes = 4096;
+  static constexpr std::size_t kTreeNodes = 6144;
   std::vector<Node> tree_;
+  std::vector<Cert> cert_;
   void build_tree();
+  // The leaves of the tree that a certificate's ball test could not clear (by their boxes
+  // within the ball's radius of x): a search among them alone completes the proof, as the rest
+  // of the patch is the region or clear.
+  struct Uncleared {
+    static constexpr int kMax = 16;
+    std::array<int, kMax> nodes{};
+    int n = 0;
+    bool overflow = false;  // more than kMax, or no region: not usable
+  };
   // The certificate of a foot r that satisfies the optimality conditions of the patch, without
   // a search: the chord test on the coarsest region holding it that passes, and x no farther
-  // from the foot than half the region's gap.
-  bool proves_global(const Vector3d& x, const ProjectionResult& r) const;
+  // from the foot than half the region's gap, or every piece outside the region farther from x
+  // than the foot (the pieces that are not go to `left`).
+  bool proves_global(const Vector3d& x, const ProjectionResult& r, Uncleared* left = nullptr) const;
+  // r certified by proves_global, or else the search among the leaves left uncleared, or else
+  // the whole search, started from r.
+  ProjectionResult certify(const Vector3d& x, ProjectionResult r,
+                           const ProjectionOptions& opt) const;
   // The coarsest node of the tree whose region holds uv and passes the chord test with r_star
   // (the foot's r* = x - S*); nullptr when none does.
-  const Node* chord_region(const Vector2d& uv, const Vector3d& r_star) const;
+  const Cert* chord_region(const Vector2d& uv, const Vector3d& r_star) const;
   // Whether every piece of the tree outside `region` is at least `radius` from x (boxes,
-  // axis-aligned and in the pieces' tangent frames).
-  bool ball_clear(const Vector3d& x, double radius, const Domain2& region) const;
-  // The same for the region of node n when x is within d of a point of n: only the pieces of
-  // n's near list closer than d + radius to n are examined (all of them when the list ends
-  // before that distance).
-  bool ball_clear_near(const Node& n, const Vector3d& x, double d, double radius) const;
-  bool clear_of(const Node& m, const Vector3d& x, double r2, const Domain2& region) const;
+  // axis-aligned and in the pieces' tangent frames); the leaves that are not go to `left`.
+  // A ball about x, radius^2 = r2.
+  struct Ball {
+    Vector3d x;
+    double r2;
+  };
+  bool ball_clear(const Ball& ball, const Domain2& region, Uncleared* left) const;
+  // The same for the region of node n holding the foot, d = |x - foot|: only the pieces of n's
+  // near list closer than d + radius to n are examined (all of them when the list ends before
+  // that distance).
+  bool ball_clear_near(const Cert& n, const Vector3d& x, const Vector3d& foot, double radius,
+                       Uncleared* left) const;
+  bool clear_of(const Cert& m, const Ball& ball, const Domain2& region, Uncleared* left) const;
   int element_of(const Vector2d& uv) const;
 };
 

@@ -91,6 +91,29 @@ struct PatchBounds {
   Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
   IVec3 S, Su, Sv, Suu, Suv, Svv;
 };
+/// The box of a patch's points in a frame (PatchBounds' centre, frame and S alone).
+struct FrameBox {
+  Eigen::Matrix3d frame = Eigen::Matrix3d::Identity();
+  Vector3d centre = Vector3d::Zero();
+  IVec3 S;
+};
+inline FrameBox frame_box(const PatchBounds& b) {
+  return {b.frame, b.centre, b.S};
+}
+/// Squared distance from x to the box S in the frame about centre.
+inline double frame_box_distance2(const Eigen::Matrix3d& frame, const Vector3d& centre,
+                                  const IVec3& S, const Vector3d& x) {
+  const Vector3d y = frame * (x - centre);
+  double d2 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({S.c[k].lo - y[k], y[k] - S.c[k].hi, 0.0});
+    d2 += g * g;
+  }
+  return d2;
+}
+inline double frame_box_distance2(const FrameBox& b, const Vector3d& x) {
+  return frame_box_distance2(b.frame, b.centre, b.S, x);
+}
 /// The frame with rows S_u, the part of S_v normal to it, and their normal (normalized), from
 /// the derivatives at a point of the patch; the identity where they are degenerate.
 Eigen::Matrix3d tangent_frame(const SurfaceDerivs& d);

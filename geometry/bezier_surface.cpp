@@ -15,36 +15,40 @@ BezierSurface::BezierSurface(const NurbsSurface& s)
       closed_u_(s.closed_u()),
       closed_v_(s.closed_v()) {
   set_normal_sign(s.normal_sign());
+  per_u_ = static_cast<double>(breaks_u_.size() - 1) / (breaks_u_.back() - breaks_u_.front());
+  per_v_ = static_cast<double>(breaks_v_.size() - 1) / (breaks_v_.back() - breaks_v_.front());
 }
 
 namespace {
 
 // The interval [b_i, b_{i+1}) of the breaks that holds x (the last one holds the end; x is
-// clamped to the breaks).
-int interval_of(const std::vector<double>& b, double x) {
-  const auto last = b.end() - 1;  // b has two entries at least
-  const auto it = std::upper_bound(b.begin() + 1, last, x);
-  return static_cast<int>(it - b.begin()) - 1;
+// clamped to the breaks): from the guess of evenly spaced breaks (per: intervals per unit),
+// stepped to the right one (no step where the breaks are even, as in most patches).
+int interval_of(const std::vector<double>& b, double per, double x) {
+  const int n = static_cast<int>(b.size()) - 1;  // intervals (b has two entries at least)
+  const double g = (x - b.front()) * per;
+  int i = g >= 1.0 ? (g < n ? static_cast<int>(g) : n - 1) : 0;  // NaN: 0
+  while (i > 0 && x < b[static_cast<std::size_t>(i)]) --i;
+  while (i < n - 1 && x >= b[static_cast<std::size_t>(i + 1)]) ++i;
+  return i;
 }
 
 }  // namespace
 
 int BezierSurface::element_of(double u, double v) const {
   const int nu = static_cast<int>(breaks_u_.size()) - 1;
-  return interval_of(breaks_u_, u) + nu * interval_of(breaks_v_, v);
+  return interval_of(breaks_u_, per_u_, u) + nu * interval_of(breaks_v_, per_v_, v);
 }
 
 namespace {
 
-// The Bernstein polynomials of degree p (P = p when known at compile time, 0 otherwise) and
+// The Bernstein polynomials of degree p and
 // their derivatives up to `order`, times scale^k for the k-th (the chain rule's 1 / h^k):
 // B^d_r = (1 - t) B^(d-1)_r + t B^(d-1)_(r-1);
 // B^p_r' = p (B^(p-1)_(r-1) - B^(p-1)_r);
 // B^p_r'' = p (p - 1) (B^(p-2)_(r-2) - 2 B^(p-2)_(r-1) + B^(p-2)_r)
 // (terms with an index outside 0..d are zero).
-template <int P>
-void bernstein_scaled(int p_rt, double t, int order, double scale, BasisDerivs& B) {
-  const int p = P > 0 ? P : p_rt;
+void bernstein_general(int p, double t, int order, double scale, BasisDerivs& B) {
   const double s = 1.0 - t;
   // b: degree d; lower1, lower2: degrees p - 1 and p - 2, shifted by 1 and 2 and padded with
   // zeros (lower1[r + 1] = B^(p-1)_r, lower2[r + 2] = B^(p-2)_r), so that the difference
@@ -79,14 +83,48 @@ void bernstein_scaled(int p_rt, double t, int order, double scale, BasisDerivs& 
   }
 }
 
+// The quadratic in closed form: B = (s^2, 2 t s, t^2), B' = 2 (-s, s - t, t), B'' = 2 (1, -2, 1).
+void bernstein_quadratic(double t, int order, double scale, BasisDerivs& B) {
+  const double s = 1.0 - t;
+  auto set = [&B](int k, double b0, double b1, double b2) {
+    BasisValues& row = B[static_cast<std::size_t>(k)];
+    row[0] = b0, row[1] = b1, row[2] = b2;
+  };
+  set(0, s * s, 2.0 * t * s, t * t);
+  if (order >= 1) set(1, -2.0 * scale * s, 2.0 * scale * (s - t), 2.0 * scale * t);
+  if (order >= 2) {
+    const double c2 = 2.0 * scale * scale;
+    set(2, c2, -2.0 * c2, c2);
+  }
+}
+
+// The cubic in closed form: B = (s^3, 3 t s^2, 3 t^2 s, t^3), s = 1 - t, B' = 3 (-s^2,
+// s^2 - 2 t s, 2 t s - t^2, t^2), B'' = 6 (s, t - 2 s, s - 2 t, t) (the differences above).
+void bernstein_cubic(double t, int order, double scale, BasisDerivs& B) {
+  const double s = 1.0 - t, ss = s * s, tt = t * t, ts = t * s;
+  auto set = [&B](int k, double b0, double b1, double b2, double b3) {
+    BasisValues& row = B[static_cast<std::size_t>(k)];
+    row[0] = b0, row[1] = b1, row[2] = b2, row[3] = b3;
+  };
+  set(0, ss * s, 3.0 * ts * s, 3.0 * ts * t, tt * t);
+  if (order >= 1) {
+    const double c1 = 3.0 * scale;
+    set(1, -c1 * ss, c1 * (ss - 2.0 * ts), c1 * (2.0 * ts - tt), c1 * tt);
+  }
+  if (order >= 2) {
+    const double c2 = 6.0 * scale * scale;
+    set(2, c2 * s, c2 * (t - 2.0 * s), c2 * (s - 2.0 * t), c2 * t);
+  }
+}
+
 void bernstein_any(int p, double t, int order, double scale, BasisDerivs& B) {
   switch (p) {
     case 2:
-      return bernstein_scaled<2>(p, t, order, scale, B);
+      return bernstein_quadratic(t, order, scale, B);
     case 3:
-      return bernstein_scaled<3>(p, t, order, scale, B);
+      return bernstein_cubic(t, order, scale, B);
     default:
-      return bernstein_scaled<0>(p, t, order, scale, B);
+      return bernstein_general(p, t, order, scale, B);
   }
 }
 

@@ -42,6 +42,8 @@ class BezierSurface final : public Surface {
  private:
   std::vector<BezierPatch> elements_;
   std::vector<double> breaks_u_, breaks_v_;
+  double per_u_ = 0.0,
+         per_v_ = 0.0;  // elements per unit of u and v (the first guess of element_of)
   Domain2 domain_;
   bool closed_u_ = false, closed_v_ = false;
 };

@@ -396,6 +396,19 @@ TEST_CASE("patch_bounds: a rational patch's derivative boxes are tight enough fo
   CHECK(pieces == 256);
 }
 
+namespace {
+// A hairpin: two flat sheets z = 0 and z = 1, x in [0, 4], y in [0, 1], joined by a bend at
+// x < 0 (quadratic in u, extruded in y).
+NurbsSurface hairpin() {
+  const std::vector<Vector3d> polygon = {{4, 0, 0},  {2, 0, 0}, {0, 0, 0}, {-1, 0, 0},
+                                         {-1, 0, 1}, {0, 0, 1}, {2, 0, 1}, {4, 0, 1}};
+  std::vector<Vector3d> pts;
+  for (double y : {0.0, 1.0})
+    for (const Vector3d& q : polygon) pts.push_back(q + Vector3d(0, y, 0));
+  return {2, {0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6}, 1, {0, 0, 1, 1}, pts};
+}
+}  // namespace
+
 TEST_CASE("PatchProjector: a warm start on the farther of two sheets is not certified as it is",
           "[contact][closest][certified]") {
   // A hairpin: two flat sheets z = 0 and z = 1 joined by a bend (quadratic in u, extruded in
@@ -404,12 +417,7 @@ TEST_CASE("PatchProjector: a warm start on the farther of two sheets is not cert
   // test on its region; the certificate without a search must refuse it (the upper sheet,
   // outside the region, is closer than half the region's gap allows), and the search must
   // return the upper foot, certified.
-  const std::vector<Vector3d> polygon = {{4, 0, 0},  {2, 0, 0}, {0, 0, 0}, {-1, 0, 0},
-                                         {-1, 0, 1}, {0, 0, 1}, {2, 0, 1}, {4, 0, 1}};
-  std::vector<Vector3d> pts;
-  for (double y : {0.0, 1.0})
-    for (const Vector3d& q : polygon) pts.push_back(q + Vector3d(0, y, 0));
-  const NurbsSurface s(2, {0, 0, 0, 1, 2, 3, 4, 5, 6, 6, 6}, 1, {0, 0, 1, 1}, pts);
+  const NurbsSurface s = hairpin();
   const PatchProjector P(s);
   const Vector3d x(2.5, 0.5, 0.7);
   const ProjectionResult local = closest_point_local(s, x, Vector2d(0.5, 0.5));
@@ -423,6 +431,45 @@ TEST_CASE("PatchProjector: a warm start on the farther of two sheets is not cert
   const ProjectionResult upper = P.project(x, warm.uv);
   CHECK(upper.certified);
   CHECK((upper.point - warm.point).norm() < 1e-12);
+}
+
+TEST_CASE("PatchProjector: warm starts on the farther sheet, completed among the pieces left",
+          "[contact][closest][certified]") {
+  // The hairpin above, from many points between the sheets nearer the upper one, each warm
+  // started on the lower sheet's foot below it: the local Newton returns that foot, the ball
+  // test fails on the upper sheet's pieces (closer than the foot), and the search among them
+  // (or the whole search where they are too many) must return the upper foot, certified, as
+  // the cold search does. Points nearer the lower sheet keep the lower foot.
+  const NurbsSurface s = hairpin();
+  const PatchProjector P(s);
+  std::mt19937 g(17);
+  std::uniform_real_distribution<double> U(0.0, 1.0);
+  int wrong = 0, unproven = 0, differ = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double z = 0.05 + 0.9 * U(g);
+    const Vector3d x(0.8 + 3.0 * U(g), 0.05 + 0.9 * U(g), z);
+    const ProjectionResult below = P.project(Vector3d(x.x(), x.y(), -0.1));
+    REQUIRE(std::abs(below.point.z()) < 1e-9);
+    const ProjectionResult warm = P.project(x, below.uv);
+    const ProjectionResult cold = P.project(x);
+    wrong += std::abs((warm.point - x).norm() - std::min(z, 1.0 - z)) > 1e-10;
+    unproven += !warm.certified;
+    differ += (warm.point - cold.point).norm() > 1e-9;
+  }
+  CHECK(wrong == 0);
+  CHECK(unproven == 0);
+  CHECK(differ == 0);
+}
+
+TEST_CASE("PatchProjector: the tree and its memory", "[contact][closest][certified]") {
+  // The torus (16 biquadratic elements) is subdivided four levels deep, 16 (1 + 4 + ... + 256)
+  // nodes; the free-form patch (25 bicubic elements) three levels (the node budget).
+  const PatchProjector torus(test::data_surface("torus_patch.json"));
+  CHECK(torus.tree_nodes() == 16 * 341);
+  const PatchProjector freeform(test::data_surface("freeform_bicubic.json"));
+  CHECK(freeform.tree_nodes() == 25 * 85);
+  CHECK(torus.memory_bytes() > torus.tree_nodes() * sizeof(detail::Net));
+  CHECK(torus.memory_bytes() < std::size_t{64} << 20);
 }
 
 TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (sampled check)",
