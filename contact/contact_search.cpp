@@ -21,6 +21,17 @@
 
 namespace iga {
 
+std::vector<std::size_t> first_pair_of_query(const std::vector<SearchPair>& pairs,
+                                             std::size_t n_queries) {
+  std::vector<std::size_t> first(n_queries + 1, pairs.size());
+  std::size_t k = 0;
+  for (std::size_t q = 0; q < n_queries; ++q) {
+    while (k < pairs.size() && pairs[k].query < static_cast<int>(q)) ++k;
+    first[q] = k;
+  }
+  return first;
+}
+
 namespace {
 
 // ---- input checks -----------------------------------------------------------------------

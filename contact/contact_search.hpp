@@ -41,6 +41,14 @@ struct SearchPair {
   auto operator<=>(const SearchPair&) const = default;
 };
 
+/// For pairs sorted by query: first[q] is the index of query q's first pair (where its pairs
+/// would be if it has none), first[n_queries] = pairs.size(); so that the queries' narrow
+/// phases can run independently (in parallel).
+std::vector<std::size_t> first_pair_of_query(const std::vector<SearchPair>& pairs,
+                                             std::size_t n_queries);
+/// Narrow phases over at least this many queries run on all OpenMP threads.
+inline constexpr std::ptrdiff_t kParallelQueries = 256;
+
 /// All pairs (q, e) with the point q in the rigid box e enlarged by `distance` (closed,
 /// inclusive). Sorted by (query, box). CGAL box_intersection_d, bipartite, CLOSED.
 std::vector<SearchPair> broad_phase(const std::vector<Vector3d>& points,

@@ -399,11 +399,16 @@ std::vector<ProjectionResult> RigidSurface::closest_points(const std::vector<Vec
   const std::vector<SearchPair> pairs = use_cgal
                                             ? broad_phase(points, index_->boxes, search_distance)
                                             : element_index(search_distance).query(points);
-  // Narrow phase: per point, per piece, the projection among the candidate elements.
+  // Narrow phase: per point, per piece, the projection among the candidate elements; the points
+  // in parallel (each its own answer: the same for any number of threads).
   std::vector<ProjectionResult> out(points.size());
-  std::vector<int> ids;
-  std::size_t k = 0;
-  for (std::size_t q = 0; q < points.size(); ++q) {
+  const std::vector<std::size_t> first = first_pair_of_query(pairs, points.size());
+  const auto n_points = static_cast<std::ptrdiff_t>(points.size());
+#pragma omp parallel for schedule(dynamic, 64) if (n_points >= kParallelQueries)
+  for (std::ptrdiff_t qi = 0; qi < n_points; ++qi) {
+    const auto q = static_cast<std::size_t>(qi);
+    thread_local std::vector<int> ids;
+    std::size_t k = first[q];
     const Vector3d& x = points[q];
     ProjectionResult best;
     best.status = ProjectionStatus::far;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include <omp.h>
 #include <Eigen/LU>
 
 #include "contact/analytic_projection.hpp"
@@ -245,13 +246,14 @@ bool slave_law(const Surface& rigid_patch, const PointGeometry& g, const LawInpu
 }
 
 // R_a -= w (dx_c/dX_a)^T f at an active point with basis values B (nen rows (R, R_,1, R_,2)):
-// with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f.
-void add_point_residual(const double* B, int nen, const std::vector<int>& dofs, double weight,
-                        const PointGeometry& g, const Vector3d& f, Eigen::VectorXd& R) {
+// with x_c = sum_a (R_a rho-part) ..., r_G = Xg^T f; into the element's residual Re (3 nen,
+// node a at 3 a).
+void add_point_residual(const double* B, int nen, double weight, const PointGeometry& g,
+                        const Vector3d& f, double* Re) {
   const Eigen::Matrix<double, 9, 1> rG = g.Xg.transpose() * f;
   for (int k = 0; k < nen; ++k) {
     const double* Bk = B + 3 * k;
-    R.segment<3>(3 * dofs[static_cast<std::size_t>(k)]) -=
+    Eigen::Map<Vector3d>(Re + 3 * k) -=
         weight * (Bk[0] * rG.segment<3>(0) + Bk[1] * rG.segment<3>(3) + Bk[2] * rG.segment<3>(6));
   }
 }
@@ -357,9 +359,6 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
         }
       elements_.push_back(el);
     }
-  Ke_.setZero(9 * nen_, nen_);
-  Z_.setZero(9 * nen_, 3 * np * np);
-  Nall_.setZero(nen_, 3 * np * np);
   dofs_.resize(static_cast<std::size_t>(nen_));
   cold_.reserve(points_.size());
   cold_x_.reserve(points_.size());
@@ -477,8 +476,12 @@ void SurfaceContact::cold_project() {
   const std::vector<SearchPair> pairs = rigid_->element_boxes().empty()
                                             ? std::vector<SearchPair>{}
                                             : rigid_->element_index(d).query(cold_x_);
-  std::size_t k = 0;
-  for (std::size_t q = 0; q < cold_.size(); ++q) {
+  const std::vector<std::size_t> first = first_pair_of_query(pairs, cold_.size());
+  const auto n_cold = static_cast<std::ptrdiff_t>(cold_.size());
+#pragma omp parallel for schedule(dynamic, 64) if (n_cold >= kParallelQueries)
+  for (std::ptrdiff_t qi = 0; qi < n_cold; ++qi) {
+    const auto q = static_cast<std::size_t>(qi);
+    std::size_t k = first[q];
     SurfaceContactPoint& cp = points_[static_cast<std::size_t>(cold_[q])];
     ProjectionResult best;
     best.status = ProjectionStatus::far;
@@ -514,29 +517,53 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
                                 std::to_string(3 * n_cp) + ", got " + std::to_string(x.size()) +
                                 " and " + std::to_string(R.size()));
   const double c = shell_face_sign(params_.face) * 0.5 * params_.thickness;
-  const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
-  const int per_element = params_.points_per_direction * params_.points_per_direction;
-  const double* const B0 = basis_.data();
-  const std::size_t stride = 3 * static_cast<std::size_t>(nen_);
+  locate(x, c);
+  evaluate(x, c, R, K);
+}
+
+SurfaceContact::Layout SurfaceContact::layout() const {
+  return {params_.strategy == SurfaceContactStrategy::kRigidMaster,
+          params_.points_per_direction * params_.points_per_direction,
+          basis_.data(),
+          3 * static_cast<std::size_t>(nen_),
+          static_cast<int>(elements_.size()),
+          static_cast<int>(points_.size()) >= kParallelContactPoints};
+}
+
+// Elements in parallel (OpenMP, static schedule: thread t takes the t-th run of elements),
+// each writing only its own points, its residual slot and its thread's triplet list; the
+// residuals are added and the lists joined in element order by one thread, so R and K are the
+// same, bit for bit, for any number of threads (K's triplets in the serial order).
+void SurfaceContact::locate(const std::vector<Vector3d>& x, double c) {
+  const auto [master, per_element, B0, stride, n_el, parallel] = layout();
 
   // 1. Contact points on the face and warm-started projections; the rest is searched at once.
-  cold_.clear();
-  cold_x_.clear();
-  PointGeometry g;
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    SurfaceContactPoint& cp = points_[i];
-    if (i % static_cast<std::size_t>(per_element) == 0) {
-      const Element& el = elements_[static_cast<std::size_t>(cp.element)];
-      element_dofs(ref_, el.first_u, el.first_v, dofs_);
-    }
-    point_geometry(B0 + i * stride, nen_, dofs_.data(), x, c, g);
-    cp.x = g.x;
-    cp.normal = g.n;
-    if (!warm_project(cp)) {
-      cold_.push_back(static_cast<int>(i));
-      cold_x_.push_back(cp.x);
+  warm_.assign(points_.size(), 0);
+#pragma omp parallel if (parallel)
+  {
+    std::vector<int> dofs(static_cast<std::size_t>(nen_));
+    PointGeometry g;
+#pragma omp for schedule(static)
+    for (int e = 0; e < n_el; ++e) {
+      element_dofs(ref_, elements_[static_cast<std::size_t>(e)].first_u,
+                   elements_[static_cast<std::size_t>(e)].first_v, dofs);
+      for (std::size_t i = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
+           i < static_cast<std::size_t>(e + 1) * static_cast<std::size_t>(per_element); ++i) {
+        SurfaceContactPoint& cp = points_[i];
+        point_geometry(B0 + i * stride, nen_, dofs.data(), x, c, g);
+        cp.x = g.x;
+        cp.normal = g.n;
+        warm_[i] = warm_project(cp) ? 1 : 0;
+      }
     }
   }
+  cold_.clear();
+  cold_x_.clear();
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (warm_[i] == 0) {
+      cold_.push_back(static_cast<int>(i));
+      cold_x_.push_back(points_[i].x);
+    }
   cold_project();
 
   // The start state anchors friction (master strategy): before the first commit, a point with
@@ -549,6 +576,11 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
         cp.x_committed = cp.x;
       }
   anchored_start_ = true;
+}
+
+void SurfaceContact::evaluate(const std::vector<Vector3d>& x, double c, Eigen::VectorXd& R,
+                              std::vector<Eigen::Triplet<double>>* K) {
+  const auto [master, per_element, B0, stride, n_el, parallel] = layout();
 
   // 2. Point laws, residual and element tangents.
   LawInputs in;
@@ -558,32 +590,64 @@ void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R
   in.friction = params_.mu > 0.0 && params_.eps_t > 0.0;
   in.tangential = augmentation_.tangential;
   const ContactParameters law_params{in.eps_n, in.eps_t, params_.mu, 0.0};
-  for (std::size_t e = 0; e < elements_.size(); ++e) {
-    element_dofs(ref_, elements_[e].first_u, elements_[e].first_v, dofs_);
-    int n_active = 0;  // points of this element with a tangent contribution
-    for (std::size_t i = e * static_cast<std::size_t>(per_element);
-         i < (e + 1) * static_cast<std::size_t>(per_element); ++i) {
-      SurfaceContactPoint& cp = points_[i];
-      clear_law_state(cp);
-      if (!found(cp.foot.status)) continue;
-      const double* B = B0 + i * stride;
-      point_geometry(B, nen_, dofs_.data(), x, c, g);
-      polish(cp.foot, g.x, g.n);
-      const Surface& rigid_patch = rigid_->patch(cp.foot.patch);
-      Vector3d f;
-      Matrix39 df;
-      const bool active = master ? master_law(rigid_patch, g, law_params, in.tangential, cp, f, df)
-                                 : slave_law(rigid_patch, g, in, cp, f, df);
-      if (!active) continue;
-      cp.active = true;
-      cp.first_contact = !cp.history.active;
-      add_point_residual(B, nen_, dofs_, cp.weight, g, f, R);
-      if (!K) continue;
-      collect_point_tangent(B, nen_, g, f, df, c, cp.weight, n_active, Nall_, Z_);
-      ++n_active;
+  const std::size_t re_size = 3 * static_cast<std::size_t>(nen_);
+  element_R_.assign(static_cast<std::size_t>(n_el) * re_size, 0.0);
+  element_active_.assign(static_cast<std::size_t>(n_el), 0);
+  thread_K_.resize(static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1));
+#pragma omp parallel if (parallel)
+  {
+    std::vector<Eigen::Triplet<double>>& Kt =
+        thread_K_[static_cast<std::size_t>(omp_get_thread_num())];
+    Kt.clear();
+    std::vector<int> dofs(static_cast<std::size_t>(nen_));
+    // per element: Nall = [.. N_p ..], N_p = (R, R_,1, R_,2); Z: rows nen (3 k + l) + a,
+    // [.. N_p M_p^kl ..]; Ke: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
+    Eigen::MatrixXd Nall(nen_, 3 * per_element), Z(9 * nen_, 3 * per_element), Ke;
+    PointGeometry g;
+#pragma omp for schedule(static)
+    for (int e = 0; e < n_el; ++e) {
+      element_dofs(ref_, elements_[static_cast<std::size_t>(e)].first_u,
+                   elements_[static_cast<std::size_t>(e)].first_v, dofs);
+      double* Re = element_R_.data() + static_cast<std::size_t>(e) * re_size;
+      int n_active = 0;  // points of this element with a tangent contribution
+      for (std::size_t i = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
+           i < static_cast<std::size_t>(e + 1) * static_cast<std::size_t>(per_element); ++i) {
+        SurfaceContactPoint& cp = points_[i];
+        clear_law_state(cp);
+        if (!found(cp.foot.status)) continue;
+        const double* B = B0 + i * stride;
+        point_geometry(B, nen_, dofs.data(), x, c, g);
+        polish(cp.foot, g.x, g.n);
+        const Surface& rigid_patch = rigid_->patch(cp.foot.patch);
+        Vector3d f;
+        Matrix39 df;
+        const bool active = master
+                                ? master_law(rigid_patch, g, law_params, in.tangential, cp, f, df)
+                                : slave_law(rigid_patch, g, in, cp, f, df);
+        if (!active) continue;
+        cp.active = true;
+        cp.first_contact = !cp.history.active;
+        element_active_[static_cast<std::size_t>(e)] = 1;
+        add_point_residual(B, nen_, cp.weight, g, f, Re);
+        if (!K) continue;
+        collect_point_tangent(B, nen_, g, f, df, c, cp.weight, n_active, Nall, Z);
+        ++n_active;
+      }
+      if (K && n_active > 0) add_element_tangent(Z, Nall, n_active, nen_, dofs, turn_, Ke, Kt);
     }
-    if (K && n_active > 0) add_element_tangent(Z_, Nall_, n_active, nen_, dofs_, turn_, Ke_, *K);
   }
+  for (int e = 0; e < n_el; ++e) {
+    if (element_active_[static_cast<std::size_t>(e)] == 0) continue;
+    element_dofs(ref_, elements_[static_cast<std::size_t>(e)].first_u,
+                 elements_[static_cast<std::size_t>(e)].first_v, dofs_);
+    const double* Re = element_R_.data() + static_cast<std::size_t>(e) * re_size;
+    for (int k = 0; k < nen_; ++k)
+      R.segment<3>(3 * dofs_[static_cast<std::size_t>(k)]) +=
+          Eigen::Map<const Vector3d>(Re + 3 * k);
+  }
+  if (K)
+    for (const std::vector<Eigen::Triplet<double>>& Kt : thread_K_)
+      K->insert(K->end(), Kt.begin(), Kt.end());
 }
 
 void SurfaceContact::commit() {

@@ -159,6 +159,9 @@ struct SurfaceContactCounts {
   int failed = 0;  ///< no foot point: far, miss, tangent or not converged
 };
 
+/// Contact integrals with at least this many points are assembled on all OpenMP threads.
+inline constexpr int kParallelContactPoints = 256;
+
 class SurfaceContact {
  public:
   /// `reference`: the shell mid-surface in its reference configuration (its knots and
@@ -219,6 +222,22 @@ class SurfaceContact {
   void polish(ProjectionResult& foot, const Vector3d& x, const Vector3d& n) const;
   /// Broad + narrow phase for the points in cold_.
   void cold_project();
+  /// What both passes of assemble use: the strategy, points per element, basis rows and their
+  /// stride per point, elements, and whether to run on all threads.
+  struct Layout {
+    bool master;
+    int per_element;
+    const double* B0;
+    std::size_t stride;
+    int n_el;
+    bool parallel;
+  };
+  Layout layout() const;
+  /// assemble's two passes: the contact points at x and their feet (warm, else cold_project),
+  /// c the face's offset; then the laws, the residual and the element tangents.
+  void locate(const std::vector<Vector3d>& x, double c);
+  void evaluate(const std::vector<Vector3d>& x, double c, Eigen::VectorXd& R,
+                std::vector<Eigen::Triplet<double>>* K);
   void check(const SurfaceContactParameters& p) const;
 
   NurbsSurface ref_;
@@ -237,10 +256,13 @@ class SurfaceContact {
   bool anchored_start_ = false;  ///< the first assembly anchored the points at rest (master)
   std::vector<Vector3d> cold_x_;
   Matrix3d turn_ = Matrix3d::Identity();
-  Eigen::MatrixXd Ke_;  ///< element tangent: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
-  Eigen::MatrixXd Z_;   ///< per element: rows nen (3 k + l) + a: [.. N_p M_p^kl ..], 3 n^2 columns
-  Eigen::MatrixXd Nall_;  ///< per element: [.. N_p ..], N_p = (R, R_,1, R_,2)
+  // Scratch of assemble: the elements' residuals and whether they have active points, each
+  // thread's triplets, which points the warm start placed.
   std::vector<int> dofs_;
+  std::vector<double> element_R_;
+  std::vector<char> element_active_;
+  std::vector<std::vector<Eigen::Triplet<double>>> thread_K_;
+  std::vector<char> warm_;
 };
 
 }  // namespace iga
