@@ -243,6 +243,27 @@ void CurveContact::set_twisting_rod(const TwistingRod* rod) {
   twist_ = rod;
 }
 
+void CurveContact::locate(const std::vector<Vector3d>& x, bool parallel, std::vector<char>& warm) {
+  const int p = ref_.degree();
+  const auto n_points = static_cast<std::ptrdiff_t>(points_.size());
+  // Current positions (77); the points without a warm start go through the broad phase.
+#pragma omp parallel for schedule(static) if (parallel)
+  for (std::ptrdiff_t i = 0; i < n_points; ++i)
+    set_position(basis_[static_cast<std::size_t>(i)], p, x, points_[static_cast<std::size_t>(i)]);
+  cold_.clear();
+  cold_x_.clear();
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    const CurveContactPoint& cp = points_[i];
+    if (cp.foot.patch < 0 || !found(cp.foot.status)) {
+      cold_.push_back(static_cast<int>(i));
+      cold_x_.push_back(cp.x);
+      warm[i] = 0;
+    }
+  }
+  broad_phase_points_ = static_cast<int>(cold_.size());
+  if (!cold_.empty()) project_cold(*rigid_, cold_, cold_x_, search_distance_, points_);
+}
+
 void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
@@ -259,45 +280,52 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     alpha.resize(static_cast<std::size_t>(twist_->num_knots()));
     for (std::size_t k = 0; k < alpha.size(); ++k) alpha[k] = x[n + k][0];
   }
-  // Current positions (77); the points without a warm start go through the broad phase.
-  cold_.clear();
-  cold_x_.clear();
-  for (std::size_t i = 0; i < points_.size(); ++i) {
-    CurveContactPoint& cp = points_[i];
-    set_position(basis_[i], p, x, cp);
-    if (cp.foot.patch < 0 || !found(cp.foot.status)) {
-      cold_.push_back(static_cast<int>(i));
-      cold_x_.push_back(cp.x);
-    }
-  }
-  broad_phase_points_ = static_cast<int>(cold_.size());
-  if (!cold_.empty()) project_cold(*rigid_, cold_, cold_x_, search_distance_, points_);
+  // The points in parallel (OpenMP) where they are many: their positions, projections and
+  // laws touch only the point itself; the residual and tangent are then summed over the points
+  // in order by one thread, so R and K do not depend on the number of threads, bit for bit.
+  const auto n_points = static_cast<std::ptrdiff_t>(points_.size());
+  const bool parallel = n_points >= kParallelCurvePoints;
+  std::vector<char> warm(points_.size(), 1);
+  locate(x, parallel, warm);
   // The start state anchors friction: before the first commit, a point with a foot has no
   // history yet, and without one it would carry no friction in the first step (a rope laid on
   // an inclined surface would have nothing to hold it). The first assembly is at the start
   // state, so its feet are where the points rest.
   const bool anchor_start = !anchored_start_;
   anchored_start_ = true;
-  std::size_t next_cold = 0;
-  near_.clear();
   ContactParameters law_params = params_;
   law_params.eps_n *= augmentation_.eps_scale;  // 1 but where augmentations stalled
   law_params.eps_t *= augmentation_.eps_t_scale;
+  // Each point's law: the closest point warm-started from its last foot (cold ones: done
+  // above), the section's spin and roll of a rod with torsion, the law, the frame forces.
+  // (xw and alpha are this thread's: passed by reference into the parallel loop.)
+  const std::vector<Vector3d>& x_world = xw;
+  const std::vector<double>& twists = alpha;
+  std::vector<TwistingRod::Spin> spins(twist_ ? points_.size() : 0);
+  std::vector<Roll> rolls(points_.size(),
+                          Roll{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero()});
+  std::vector<char> evaluated(points_.size(), 0);
+#pragma omp parallel for schedule(dynamic, 16) if (parallel)
+  for (std::ptrdiff_t ii = 0; ii < n_points; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    CurveContactPoint& cp = points_[i];
+    if (warm[i] != 0) cp.foot = rigid_->closest_point(cp.x, cp.foot);
+    if (twist_)
+      rolls[i] = spin_and_roll(*twist_, x_world, twists, params_.radius, turn_, cp, spins[i]);
+    cp.torque = 0.0;
+    evaluated[i] = evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
+                                  twist_ ? &rolls[i].s : nullptr, cp)
+                       ? 1
+                       : 0;
+    if (evaluated[i] == 0 || !cp.law.active) continue;
+    if (twist_) cp.torque = cp.law.T_vector.dot(rolls[i].s1);
+    set_frame_forces(basis_[i], p, x, cp);
+  }
+  near_.clear();
   bool any_active = false;
   for (std::size_t i = 0; i < points_.size(); ++i) {
-    CurveContactPoint& cp = points_[i];
-    // Closest point, warm-started from the last foot of this point (cold ones: done above).
-    if (next_cold < cold_.size() && cold_[next_cold] == static_cast<int>(i))
-      ++next_cold;
-    else
-      cp.foot = rigid_->closest_point(cp.x, cp.foot);
-    TwistingRod::Spin sp;
-    Roll roll{};
-    if (twist_) roll = spin_and_roll(*twist_, xw, alpha, params_.radius, turn_, cp, sp);
-    cp.torque = 0.0;
-    if (!evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
-                        twist_ ? &roll.s : nullptr, cp))
-      continue;
+    const CurveContactPoint& cp = points_[i];
+    if (evaluated[i] == 0) continue;
     if (!cp.law.active) {
       if (cp.law.gap >= 0.0 && cp.law.gap <= near_distance()) near_.push_back(static_cast<int>(i));
       continue;
@@ -306,11 +334,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
     add_point_residual(cp, basis_[i], p, R);
     if (K) add_point_tangent(cp, basis_[i], p, turn_, *K);
-    if (twist_) {
-      add_twist_terms(cp, basis_[i], p, *twist_, sp, roll, turn_, R, K);
-      cp.torque = cp.law.T_vector.dot(roll.s1);
-    }
-    set_frame_forces(basis_[i], p, x, cp);
+    if (twist_) add_twist_terms(cp, basis_[i], p, *twist_, spins[i], rolls[i], turn_, R, K);
   }
   // No point in contact, some a hair above the surface: the tangent gets their normal penalty
   // stiffness eps_N n n^T (no force, so the residual and the converged state are unchanged).

@@ -72,6 +72,9 @@ inline bool steady_sliding(int active, int slip, int slip_back, double drag_rati
   return active > 0 && slip == active && slip_back == 0 && drag_ratio <= max_drag;
 }
 
+/// Contact integrals of at least this many points evaluate them on all OpenMP threads.
+inline constexpr std::ptrdiff_t kParallelCurvePoints = 256;
+
 class CurveContact {
  public:
   /// `reference`: the curve in its reference configuration (knots, degree, weights are those
@@ -177,6 +180,9 @@ class CurveContact {
   std::vector<int> cold_;  ///< work: points without a warm start
   std::vector<Vector3d> cold_x_;
   std::vector<int> near_;  ///< work: points near contact (see near_distance)
+  /// assemble's first pass: the points' positions at x, the feet of those without a warm start
+  /// (warm[i] = 0) from the broad phase.
+  void locate(const std::vector<Vector3d>& x, bool parallel, std::vector<char>& warm);
 };
 
 }  // namespace iga

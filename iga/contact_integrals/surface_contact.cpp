@@ -535,7 +535,11 @@ SurfaceContact::Layout SurfaceContact::layout() const {
 // residuals are added and the lists joined in element order by one thread, so R and K are the
 // same, bit for bit, for any number of threads (K's triplets in the serial order).
 void SurfaceContact::locate(const std::vector<Vector3d>& x, double c) {
-  const auto [master, per_element, B0, stride, n_el, parallel] = layout();
+  const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
+  const bool master = lay.master, parallel = lay.parallel;
+  const int per_element = lay.per_element, n_el = lay.n_el;
+  const double* const B0 = lay.B0;
+  const std::size_t stride = lay.stride;
 
   // 1. Contact points on the face and warm-started projections; the rest is searched at once.
   warm_.assign(points_.size(), 0);
@@ -580,7 +584,11 @@ void SurfaceContact::locate(const std::vector<Vector3d>& x, double c) {
 
 void SurfaceContact::evaluate(const std::vector<Vector3d>& x, double c, Eigen::VectorXd& R,
                               std::vector<Eigen::Triplet<double>>* K) {
-  const auto [master, per_element, B0, stride, n_el, parallel] = layout();
+  const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
+  const bool master = lay.master, parallel = lay.parallel;
+  const int per_element = lay.per_element, n_el = lay.n_el;
+  const double* const B0 = lay.B0;
+  const std::size_t stride = lay.stride;
 
   // 2. Point laws, residual and element tangents.
   LawInputs in;

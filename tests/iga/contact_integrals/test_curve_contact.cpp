@@ -8,6 +8,7 @@
 #include <numbers>
 #include <random>
 
+#include <omp.h>
 #include <Eigen/SparseCore>
 
 #include "geometry/analytic_surfaces.hpp"
@@ -16,6 +17,7 @@
 #include "iga/contact_integrals/curve_contact.hpp"
 #include "tests/iga/contact_integrals/pass_through_case.hpp"
 #include "tests/iga/fd_tangent.hpp"
+#include "tests/iga/same_bits.hpp"
 
 using namespace iga;
 using iga::test::residual;
@@ -142,4 +144,40 @@ TEST_CASE("CurveContact: a step that carries the rope through the rigid body is 
   CHECK(test::moved_by(cc, ref, 0.5).status == AugmentStatus::satisfied);    // lifted off
   CHECK(test::moved_by(cc, ref, -0.11).status == AugmentStatus::satisfied);  // 0.01 deep
   CHECK(cc.counts().active == 12);
+}
+
+TEST_CASE("CurveContact: assembly on 1 and 2 threads is the same bit for bit",
+          "[iga][contact][ctrs][threads]") {
+  // Issue 17, item 4: the points' projections and laws run on all threads, the residual and
+  // tangent are summed in point order by one thread. A rope of 120 cubic elements, 3 points
+  // each (360, above the parallel threshold), pressed into a cylinder, with friction from a
+  // history committed at a shifted state.
+  RigidSurface cyl;
+  cyl.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  NurbsCurve ref =
+      make_circular_arc(Vector3d(0, 0, 0.1), Vector3d::UnitX(), Vector3d::UnitY(), 1.04, 0.3, 2.5);
+  ref = subdivide(elevate_degree(ref, 1), 60);
+  std::vector<Vector3d> x = ref.control_points(), x0 = x;
+  for (Vector3d& q : x0) q += Vector3d(0, 0, 0.004);
+  std::mt19937 g(5);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  for (Vector3d& q : x) q += 0.003 * Vector3d(U(g), U(g), U(g));
+  const int saved = omp_get_max_threads();
+  Eigen::VectorXd R[2];
+  std::vector<Eigen::Triplet<double>> K[2];
+  for (int t = 0; t < 2; ++t) {
+    omp_set_num_threads(t + 1);
+    CurveContact cc(ref, cyl, ContactParameters{2e3, 1e3, 0.3, 0.05}, 3);
+    REQUIRE(static_cast<std::ptrdiff_t>(cc.points().size()) >= kParallelCurvePoints);
+    Eigen::VectorXd R0 = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
+    cc.assemble(x0, R0, nullptr);
+    cc.commit();
+    R[t] = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
+    cc.assemble(x, R[t], &K[t]);
+    CHECK(cc.counts().active > 300);
+  }
+  omp_set_num_threads(saved);
+  CHECK(R[0].norm() > 0.0);
+  REQUIRE(K[0].size() == K[1].size());
+  CHECK(test::count_differences(R[0], R[1], K[0], K[1]) == 0);
 }

@@ -27,6 +27,7 @@
 #include "tests/iga/contact_integrals/moving_pair.hpp"
 #include "tests/iga/contact_integrals/pass_through_case.hpp"
 #include "tests/iga/fd_tangent.hpp"
+#include "tests/iga/same_bits.hpp"
 
 using namespace iga;
 using iga::test::residual;
@@ -473,11 +474,6 @@ TEST_CASE("SurfaceContact: assembly on 1 and 2 threads is the same bit for bit",
     INFO(name(strategy));
     CHECK(R[0].norm() > 0.0);
     REQUIRE(K[0].size() == K[1].size());
-    int differ = 0;
-    for (Eigen::Index i = 0; i < R[0].size(); ++i) differ += R[0][i] != R[1][i];
-    for (std::size_t k = 0; k < K[0].size(); ++k)
-      differ += K[0][k].row() != K[1][k].row() || K[0][k].col() != K[1][k].col() ||
-                K[0][k].value() != K[1][k].value();
-    CHECK(differ == 0);
+    CHECK(test::count_differences(R[0], R[1], K[0], K[1]) == 0);
   }
 }

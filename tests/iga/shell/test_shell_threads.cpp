@@ -11,6 +11,7 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/shell/kirchhoff_love_shell.hpp"
+#include "tests/iga/same_bits.hpp"
 
 using namespace iga;
 
@@ -35,10 +36,5 @@ TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for b
   REQUIRE(f1.size() == f2.size());
   REQUIRE(T1.size() == T2.size());
   CHECK(f1.norm() > 0.0);
-  int differ = 0;
-  for (Eigen::Index i = 0; i < f1.size(); ++i) differ += f1[i] != f2[i];
-  for (std::size_t k = 0; k < T1.size(); ++k)
-    differ +=
-        T1[k].row() != T2[k].row() || T1[k].col() != T2[k].col() || T1[k].value() != T2[k].value();
-  CHECK(differ == 0);
+  CHECK(test::count_differences(f1, f2, T1, T2) == 0);
 }
