@@ -902,16 +902,20 @@ ProjectionResult PatchProjector::certify(const Vector3d& x, ProjectionResult r,
 }
 
 namespace {
-// Notes m as uncleared in `left` (nullptr: not kept); false when the list is full.
+// Notes m as uncleared in `left` (nullptr: not kept); past U::kMax the list overflows.
 template <class U>
-bool keep_uncleared(U* left, int m) {
-  if (left == nullptr || left->overflow) return false;
+void keep_uncleared(U* left, int m) {
+  if (left == nullptr || left->overflow) return;
   if (left->n == U::kMax) {
     left->overflow = true;
-    return false;
+    return;
   }
   left->nodes[static_cast<std::size_t>(left->n++)] = m;
-  return true;
+}
+// Whether a walk that met an uncleared piece stops there: no list keeps them, or it overflowed.
+template <class U>
+bool walk_stops(const U* left) {
+  return left == nullptr || left->overflow;
 }
 }  // namespace
 
@@ -929,7 +933,7 @@ bool PatchProjector::clear_of(const Cert& m, const Ball& ball, const Domain2& re
   for (int c = 0; c < 4; ++c)
     if (!clear_of(cert_[static_cast<std::size_t>(m.child + c)], ball, region, left)) {
       clear = false;
-      if (left == nullptr || left->overflow) return false;
+      if (walk_stops(left)) return false;
     }
   return clear;
 }
@@ -950,7 +954,7 @@ bool PatchProjector::ball_clear_near(const Cert& n, const Vector3d& x, const Vec
     if (m.gap >= d + radius) break;
     if (!clear_of(cert_[static_cast<std::size_t>(m.node)], ball, n.region, left)) {
       clear = false;
-      if (left == nullptr || left->overflow) return false;
+      if (walk_stops(left)) return false;
     }
   }
   return clear;
@@ -992,7 +996,7 @@ bool PatchProjector::ball_clear(const Ball& ball, const Domain2& region, Unclear
   for (std::size_t e = 0; e < bez_.elements().size(); ++e)
     if (!clear_of(cert_[e], ball, region, left)) {
       clear = false;
-      if (left == nullptr || left->overflow) return false;
+      if (walk_stops(left)) return false;
     }
   return clear;
 }
