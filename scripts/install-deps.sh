@@ -10,9 +10,21 @@ packages=(
   libeigen3-dev libcgal-dev libsuitesparse-dev nlohmann-json3-dev
   catch2 libcli11-dev libbenchmark-dev
   libocct-data-exchange-dev libtbb-dev  # OCCT: its CMake package names libtbb.so, which only libtbb-dev holds
+  libopenblas0-serial  # the BLAS of CHOLMOD's supernodal factorization (Debian's alternatives)
   python3 python3-matplotlib clang-format clang-tidy
 )
 [[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)
+
+# CHOLMOD and UMFPACK call libblas.so.3, which Debian's alternatives point at the installed BLAS of
+# highest priority; a threaded OpenBLAS (-pthread, -openmp) wins over the serial one and is slower
+# here (its threads compete with the element loops'). Said, not changed.
+blas_note() {
+  local blas
+  blas=$(readlink -f /usr/lib/x86_64-linux-gnu/libblas.so.3 2>/dev/null || true)
+  [[ "$blas" == *openblas-serial* ]] ||
+    echo "install-deps: note: libblas.so.3 is ${blas:-missing}, not OpenBLAS serial: the sparse" \
+      "factorizations are slower (update-alternatives --config libblas.so.3-x86_64-linux-gnu)"
+}
 
 missing=()
 for p in "${packages[@]}"; do
@@ -22,6 +34,7 @@ done
 
 if ((${#missing[@]} == 0)); then
   echo "install-deps: all ${#packages[@]} packages present"
+  [[ "${1:-}" == "--fuzz" ]] || blas_note
   exit 0
 fi
 
@@ -34,3 +47,4 @@ fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+[[ "${1:-}" == "--fuzz" ]] || blas_note

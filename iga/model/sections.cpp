@@ -654,6 +654,7 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
                    "predictor",
                    "control",
                    "desired_iterations",
+                   "max_turn_deg",
                    "description"});
   NonlinearSolverSettings n;
   n.t0 = 0.0;
@@ -693,6 +694,11 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
                     : PathControl::load;
   // arc length: iterations per step the step size aims at
   read_int(s, "desired_iterations", 1, n.desired_iterations);
+  if (s.has("max_turn_deg")) {  // arc length: the largest turn of a step from its predictor
+    const JsonCursor c = s["max_turn_deg"];
+    n.max_turn_deg = c.as_number();
+    if (!(n.max_turn_deg > 0.0 && n.max_turn_deg <= 180.0)) c.fail("must be in (0, 180]");
+  }
   if (s.has("predictor"))
     n.secant_predictor = one_of(s["predictor"], {"none", "secant"}) == "secant";
   if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);

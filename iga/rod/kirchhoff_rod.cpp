@@ -444,22 +444,33 @@ void KirchhoffRod::assemble(std::span<const Vector3d> x, Eigen::VectorXd& f_int,
     throw std::invalid_argument("KirchhoffRod::assemble: " + std::to_string(x.size()) +
                                 " current points, expected " +
                                 std::to_string(num_control_points()));
-  f_int.setZero(num_dofs());
-  RodElementVector fe;
-  RodElementMatrix Ke;
+  // Elements in parallel (OpenMP), each writing its own slots: its forces into fe_all and its
+  // triplets into the block of K reserved for it; the forces are added in element order by one
+  // thread, so f_int and K are the same bit for bit for any number of threads.
+  const int nel = num_elements();
   const int ne = 3 * (degree() + 1);
-  if (K) K->reserve(K->size() + static_cast<std::size_t>(num_elements() * ne * ne));
-  for (int e = 0; e < num_elements(); ++e) {
-    const int first = 3 * elements_[static_cast<std::size_t>(e)].first;
-    if (K) {
-      element_tangent(e, x, fe, Ke);
-      for (int c = 0; c < ne; ++c)
-        for (int r = 0; r < ne; ++r) K->emplace_back(first + r, first + c, Ke(r, c));
-    } else {
+  const std::size_t per_element = static_cast<std::size_t>(ne * ne);
+  const std::size_t base = K ? K->size() : 0;
+  if (K) K->resize(base + static_cast<std::size_t>(nel) * per_element);
+  std::vector<RodElementVector> fe_all(static_cast<std::size_t>(nel));
+#pragma omp parallel for schedule(static) if (nel >= kParallelRodElements)
+  for (int e = 0; e < nel; ++e) {
+    RodElementVector& fe = fe_all[static_cast<std::size_t>(e)];
+    if (!K) {
       element_forces(e, x, fe);
+      continue;
     }
-    f_int.segment(first, ne) += fe;
+    RodElementMatrix Ke;
+    element_tangent(e, x, fe, Ke);
+    const int first = 3 * elements_[static_cast<std::size_t>(e)].first;
+    Triplet* out = K->data() + base + static_cast<std::size_t>(e) * per_element;
+    for (int c = 0; c < ne; ++c)
+      for (int r = 0; r < ne; ++r) *out++ = Triplet(first + r, first + c, Ke(r, c));
   }
+  f_int.setZero(num_dofs());
+  for (int e = 0; e < nel; ++e)
+    f_int.segment(3 * elements_[static_cast<std::size_t>(e)].first, ne) +=
+        fe_all[static_cast<std::size_t>(e)];
 }
 
 Vector3d KirchhoffRod::point(double xi, std::span<const Vector3d> x) const {

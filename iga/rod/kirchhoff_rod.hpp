@@ -134,6 +134,10 @@ struct RodOptions {
   bool straight_stress_free = false;
 };
 
+/// Rods with at least this many elements are assembled on all OpenMP threads (KirchhoffRod::
+/// assemble: an element takes about 1 us, so fewer do not pay for the threads' start).
+inline constexpr int kParallelRodElements = 128;
+
 /// Element vectors and matrices of fixed capacity 3 (kMaxDegree + 1): no heap allocation.
 inline constexpr int kMaxRodElementDofs = 3 * (kMaxDegree + 1);
 using RodElementVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxRodElementDofs, 1>;
@@ -184,7 +188,9 @@ class KirchhoffRod {
   void element_tangent(int e, std::span<const Vector3d> x, RodElementVector& f,
                        RodElementMatrix& K) const;
   /// Global internal forces (resized to num_dofs()) and, if K != nullptr, the tangent as
-  /// triplets appended to *K (duplicates are to be summed).
+  /// triplets appended to *K (duplicates are to be summed), in element order. Rods of
+  /// kParallelRodElements elements or more are assembled on all OpenMP threads; the result is
+  /// the same bit for bit for any number of threads.
   void assemble(std::span<const Vector3d> x, Eigen::VectorXd& f_int, std::vector<Triplet>* K) const;
 
   /// Current position and strains at parameter xi.

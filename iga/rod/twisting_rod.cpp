@@ -375,12 +375,20 @@ void TwistingRod::element_tangent(int e, std::span<const Vector3d> x, std::span<
 void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> alpha,
                            Eigen::VectorXd& f, std::vector<Triplet>* K) const {
   check(x, alpha);
-  f.setZero(num_dofs());
-  Eval ev;
-  ev.derivatives = true;
+  // Elements in parallel (OpenMP), each into its own Eval; summed and emitted in element order
+  // by one thread, so f and K are the same bit for bit for any number of threads.
+  const int nel = num_elements();
   const int ne = 3 * (degree() + 1) + 2;
-  for (int e = 0; e < num_elements(); ++e) {
+  std::vector<Eval> evs(static_cast<std::size_t>(nel));
+#pragma omp parallel for schedule(static) if (nel >= kParallelTwistingRodElements)
+  for (int e = 0; e < nel; ++e) {
+    Eval& ev = evs[static_cast<std::size_t>(e)];
+    ev.derivatives = true;
     evaluate(e, x, alpha, committed_, ev);
+  }
+  f.setZero(num_dofs());
+  for (int e = 0; e < nel; ++e) {
+    const Eval& ev = evs[static_cast<std::size_t>(e)];
     auto global = [&](int l) { return global_dof(e, l); };
     for (int i = 0; i < ne; ++i) {
       f[global(i)] += ev.f[i];

@@ -74,6 +74,10 @@
 
 namespace iga {
 
+/// Rods with torsion of at least this many elements are assembled on all OpenMP threads
+/// (TwistingRod::assemble; an element takes 70-100 us).
+inline constexpr int kParallelTwistingRodElements = 16;
+
 /// Strains, section forces and frame at one point of the twisting rod (output, tests).
 struct TwistStrains {
   double eps = 0.0;                    ///< Green-Lagrange axial strain
@@ -118,7 +122,9 @@ class TwistingRod {
   double energy(std::span<const Vector3d> x, std::span<const double> alpha) const;
   void element_tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
                        Eigen::VectorXd& f, Eigen::MatrixXd* K) const;
-  /// Global internal forces (num_dofs(), numbering of the header) and tangent triplets.
+  /// Global internal forces (num_dofs(), numbering of the header) and tangent triplets, in
+  /// element order. Rods of kParallelTwistingRodElements elements or more are assembled on all
+  /// OpenMP threads; the result is the same bit for bit for any number of threads.
   void assemble(std::span<const Vector3d> x, std::span<const double> alpha, Eigen::VectorXd& f,
                 std::vector<Triplet>* K) const;
 

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <ostream>
 #include <stdexcept>
 #include <utility>
@@ -67,6 +68,8 @@ void NonlinearSolverSettings::validate() const {
   for (double h : hit_times)
     if (!(h > t0 && h < t1)) bad_setting("hit_times", "inside (t0, t1)", h);
   if (desired_iterations < 1) bad_setting("desired_iterations", ">= 1", desired_iterations);
+  if (!(max_turn_deg > 0.0 && max_turn_deg <= 180.0))
+    bad_setting("max_turn_deg", "in (0, 180]", max_turn_deg);
 }
 
 const char* to_string(PathControl c) {
@@ -282,7 +285,8 @@ void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const
       "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
       "|R0| = %.3e  |R| = %.3e  E = %.3e",
       r.steps, t, a.dt, lambda, a.iterations, a.residual_norms.front(), rn, en);
-  if (a.arc_length > 0.0) log << format("  arc %.3e", a.arc_length) << (a.landed ? " landed" : "");
+  if (a.arc_length > 0.0)
+    log << format("  arc %.3e turn %.1f", a.arc_length, a.turn_deg) << (a.landed ? " landed" : "");
   if (a.augmentations > 0) log << "  augmentations " << a.augmentations;
   if (a.cholesky_fallbacks > 0) log << "  lu-fallbacks " << a.cholesky_fallbacks;
   const std::string status = problem.status();
@@ -678,6 +682,24 @@ std::string constraint_root(const VectorXd& base, const VectorXd& du_t, const Ve
   return {};
 }
 
+/// A converged arc-length step in `a`: the angle (degrees) between its increment Du and its
+/// predictor into a.turn_deg, and the outcome: converged, or refused (diverged, with why) if
+/// the angle is above max_turn_deg and the arc can still be cut (`can_cut`).
+void finish_arc_step(StepAttempt& a, const VectorXd& Du, const VectorXd& predictor,
+                     double max_turn_deg, bool can_cut) {
+  const double nn = Du.norm() * predictor.norm();
+  const double c = nn > 0.0 ? std::clamp(Du.dot(predictor) / nn, -1.0, 1.0) : 1.0;
+  a.turn_deg = std::acos(c) * 180.0 / std::numbers::pi;
+  a.outcome = NewtonOutcome::converged;
+  a.message.clear();
+  if (a.turn_deg <= max_turn_deg || !can_cut) return;
+  a.outcome = NewtonOutcome::diverged;
+  a.message = format(
+      "converged, but the increment turned %.1f degrees from the predictor (max_turn_deg %.1f): "
+      "the arc is too long for the path's bend",
+      a.turn_deg, max_turn_deg);
+}
+
 }  // namespace
 
 bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcState& arc,
@@ -757,7 +779,12 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
     return newton(problem, u, a.t, w, a, r);
   }
   VectorXd& Du = arc.du;
+  const VectorXd predictor = Du;
   LinearSolveStatus ls = LinearSolveStatus::success;
+  // A converged step, unless its increment turned too far from the predictor.
+  const auto converged = [&] {
+    finish_arc_step(a, Du, predictor, s.max_turn_deg, arc.dl > arc.dl_min * (1.0 + 1e-12));
+  };
 
   double r0 = 0.0, scale = 0.0, e1 = 0.0, r_prev = 0.0;
   int increases = 0;
@@ -778,14 +805,14 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
       // predictor's residual (small by construction).
       scale = std::max(r0, std::abs(Dt) * arc.R_t.norm());
       w.r0_max = std::max(w.r0_max, scale);
-      if (rk <= r_abs()) return finish(NewtonOutcome::converged, {});
+      if (rk <= r_abs()) return converged();
     } else {
       const double e = a.energy_norms.back();
       const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * scale;
       const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs;
-      if (residual_ok && energy_ok) return finish(NewtonOutcome::converged, {});
+      if (residual_ok && energy_ok) return converged();
       if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
-        return finish(NewtonOutcome::converged, {});
+        return converged();
       if (std::string why =
               divergence(s, k, rk, r_prev, s.divergence_ratio * w.r0_max, w.r0_max, increases);
           !why.empty())

@@ -51,6 +51,11 @@ struct NonlinearSolverSettings {
   /// Delta l sqrt(desired_iterations / N) [Cri81], the factor within [cutback_factor,
   /// growth_factor].
   int desired_iterations = 5;
+  /// Arc length: a converged step whose increment turns by more than this angle (degrees) from
+  /// its predictor (the tangent) is refused and its arc length cut back, unless the arc is at
+  /// its minimum: a large turn means the arc is long against the path's curvature, where the
+  /// corrector can land on another branch of the path (and then turn back along it). 180: off.
+  double max_turn_deg = 45.0;
   double t0 = 0.0;  ///< start of the pseudo-time span (u is converged there)
   /// End of the span. With arc length the run ends when the path reaches t1 (the step that
   /// crosses it is repeated under load control to land on t1); t may go down and up before.
@@ -140,6 +145,9 @@ struct StepAttempt {
   double arc_length = 0.0;  ///< arc length Delta l of the step (0 under load control)
   bool landed = false;      ///< arc length: the step was repeated under load control to land
                             ///< on t1 or a hit time it crossed
+  /// Arc length: the angle (degrees) between the converged increment Delta u and the step's
+  /// predictor, the tangent (0 under load control).
+  double turn_deg = 0.0;
   std::vector<double> residual_norms;  ///< |R_0|, |R_1|, ..., |R_iterations| (2-norms); after
                                        ///< an augmentation the re-solve's |R_0|, |R_1|, ...
   std::vector<double> energy_norms;    ///< E_1, ..., E_iterations
