@@ -225,6 +225,11 @@ TEST_CASE("analysis: structural errors of the model name their JSON path",
           "m.json: /boundary_conditions/1/point: control point index must be in 0..20, got 99"));
   CHECK_THAT(error([](Json& d) { d["solver"]["t_end"] = std::nan(""); }),
              Catch::Contains("m.json: /solver/t_end"));
+  CHECK_THAT(error([](Json& d) { d["solver"]["max_turn_deg"] = 0.0; }),
+             Catch::Contains("m.json: /solver/max_turn_deg: must be in (0, 180], got 0"));
+  Json turned = base;
+  turned["solver"]["max_turn_deg"] = 30.0;
+  CHECK(Analysis::from_json(turned, "m.json").solver_settings().max_turn_deg == 30.0);
   CHECK_THAT(
       error([](Json& d) { d["load_curves"]["hold"]["type"] = "sine"; }),
       Catch::Contains("m.json: /load_curves/hold/type: expected one of \"ramp\", \"constant\""));

@@ -175,5 +175,49 @@ TEST_CASE("Arc length: where nothing depends on t the steps are load steps, sett
   NonlinearSolverSettings s = arc_settings(0.1);
   s.desired_iterations = 0;
   CHECK_THROWS_WITH(NonlinearSolver(s), Catch::Contains("desired_iterations"));
+  s.desired_iterations = 5;
+  for (double bad : {0.0, -10.0, 180.5}) {
+    s.max_turn_deg = bad;
+    CHECK_THROWS_WITH(NonlinearSolver(s), Catch::Contains("max_turn_deg"));
+  }
   CHECK(std::string(to_string(PathControl::arc_length)) == "arc_length");
+}
+
+TEST_CASE("Arc length: a step that turns more than max_turn_deg from its predictor is cut back",
+          "[iga][solver][arc_length]") {
+  // The snap-back of the truss behind a soft spring with long arcs: without the limit some
+  // converged steps turn far from their predictor (the path bends within one arc; here the run
+  // then loses the path and ends at max_steps far below t = 0); with max_turn_deg = 10 those
+  // are refused and repeated with shorter arcs, every accepted step turns at most 10 degrees,
+  // and the run reaches t1 with every state on the closed form.
+  const VonMisesTruss unit(1.0, 0.5, 1.0, 0.0);
+  const double P = 1.5 * unit.P_max();
+  const auto run = [&](double max_turn, double& worst_turn) {
+    TrussWithSpring problem(1.0, 0.5, 1.0, P, 0.1);
+    NonlinearSolverSettings s = arc_settings(0.2);
+    s.max_turn_deg = max_turn;
+    s.max_steps = 300;
+    NonlinearSolver solver(s);
+    VectorXd u = VectorXd::Zero(3);
+    worst_turn = 0.0;
+    NonlinearSolverResult r =
+        solver.solve(problem, u, [&](const VectorXd& uc, double t, const StepAttempt& a) {
+          CHECK(problem.truss().load(-uc(1)) == Approx(t * P).margin(1e-9 * P));
+          worst_turn = std::max(worst_turn, a.turn_deg);
+          return true;
+        });
+    return r;
+  };
+  double free_turn = 0.0, limited_turn = 0.0;
+  const NonlinearSolverResult free = run(180.0, free_turn);
+  const NonlinearSolverResult limited = run(10.0, limited_turn);
+  INFO("without the limit: " << to_string(free.status) << " at t = " << free.t);
+  CHECK(free_turn > 10.0);
+  REQUIRE(limited.status == NonlinearSolverStatus::converged);
+  CHECK(limited.t == 1.0);
+  CHECK(limited_turn <= 10.0);
+  int refused = 0;
+  for (const StepAttempt& a : limited.attempts)
+    refused += a.message.find("turned") != std::string::npos ? 1 : 0;
+  CHECK(refused > 0);
 }
