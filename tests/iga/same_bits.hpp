@@ -1,10 +1,11 @@
 // Thread-count independence checks (issue 17, item 4): how many entries of two assemblies
-// (residual and tangent triplets) differ, bit for bit.
+// (residual and tangent triplets) differ, bit for bit; running a piece of code on n threads.
 #pragma once
 
 #include <cstddef>
 #include <vector>
 
+#include <omp.h>
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -20,6 +21,15 @@ inline int count_differences(const Eigen::VectorXd& a, const Eigen::VectorXd& b,
   for (std::size_t k = 0; k < A.size(); ++k)
     differ += A[k].row() != B[k].row() || A[k].col() != B[k].col() || A[k].value() != B[k].value();
   return differ;
+}
+
+/// Runs f() with n OpenMP threads, then restores the thread count it found.
+template <class F>
+void on_threads(int n, F&& f) {
+  const int saved = omp_get_max_threads();
+  omp_set_num_threads(n);
+  f();
+  omp_set_num_threads(saved);
 }
 
 }  // namespace iga::test

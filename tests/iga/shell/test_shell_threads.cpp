@@ -6,8 +6,6 @@
 #include <cmath>
 #include <vector>
 
-#include <omp.h>
-
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/shell/kirchhoff_love_shell.hpp"
@@ -25,14 +23,10 @@ TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for b
   std::vector<Vector3d> x = shell.reference_points();
   for (std::size_t i = 0; i < x.size(); ++i)  // a deformed state
     x[i] += 0.01 * Vector3d(std::sin(1.0 + i), std::cos(2.0 * i), std::sin(0.5 * i));
-  const int saved = omp_get_max_threads();
   Eigen::VectorXd f1, f2;
   std::vector<Triplet> T1, T2;
-  omp_set_num_threads(1);
-  shell.assemble(x, f1, &T1);
-  omp_set_num_threads(2);
-  shell.assemble(x, f2, &T2);
-  omp_set_num_threads(saved);
+  test::on_threads(1, [&] { shell.assemble(x, f1, &T1); });
+  test::on_threads(2, [&] { shell.assemble(x, f2, &T2); });
   REQUIRE(f1.size() == f2.size());
   REQUIRE(T1.size() == T2.size());
   CHECK(f1.norm() > 0.0);
