@@ -25,6 +25,45 @@ namespace iga {
 namespace fs = std::filesystem;
 using namespace model_detail;
 
+namespace {
+
+// The direction of the load factor along the path: update(t) after each converged step returns
+// +1 when the step before it was a maximum of t, -1 a minimum, 0 otherwise (or no direction
+// yet; a step at the same t keeps the direction).
+class LoadDirection {
+ public:
+  int update(double t) {
+    const double dt = t - last_t_;
+    const bool first = !started_;
+    started_ = true;
+    last_t_ = t;
+    if (first || dt == 0.0) return 0;
+    const int d = dt > 0.0 ? 1 : -1;
+    const int turned = (direction_ != 0 && d != direction_) ? direction_ : 0;
+    direction_ = d;
+    return turned;
+  }
+
+ private:
+  double last_t_ = 0.0;
+  int direction_ = 0;
+  bool started_ = false;
+};
+
+}  // namespace
+
+std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& steps) {
+  std::vector<LoadLimitPoint> out;
+  LoadDirection direction;
+  std::size_t previous = 0;  // the last step whose t differs from the one before it
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const int turned = direction.update(steps[k].t);
+    if (turned != 0) out.push_back({previous, turned > 0});
+    if (k == 0 || steps[k].t != steps[k - 1].t) previous = k;
+  }
+  return out;
+}
+
 Analysis Analysis::from_json(const Json& doc, const std::string& file) {
   const Model model = parse_model(doc, file);  // format, version, geometry, known sections
   const JsonCursor root(doc, file);
@@ -345,6 +384,23 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
     pairs.push_back(p);
   }
   s["pairs"] = pairs;
+  Json limits = Json::array();  // the load's maxima and minima along the path
+  for (const LoadLimitPoint& lp : load_limit_points(res.steps)) {
+    const AnalysisStep& st = res.steps[lp.index];
+    Json l = Json::object();
+    l["kind"] = lp.maximum ? "maximum" : "minimum";
+    l["step"] = st.step;
+    l["t"] = json_number(st.t);
+    l["lambda"] = json_number((st.t - settings_.t0) / (settings_.t1 - settings_.t0));
+    Json m = Json::object();
+    for (std::size_t i = 0; i < output_.monitors.size() && i < st.displacements.size(); ++i) {
+      const Vector3d& d = st.displacements[i];
+      m[output_.monitors[i].name] = {json_number(d.x()), json_number(d.y()), json_number(d.z())};
+    }
+    l["monitors"] = m;
+    limits.push_back(l);
+  }
+  s["limit_points"] = limits;
   if (!res.restart_file.empty()) s["restart_file"] = res.restart_file;
   s["time_total_s"] = json_number(res.solver.time_total);
   s["time_assembly_s"] = json_number(res.solver.time_assembly);
@@ -431,6 +487,7 @@ struct Analysis::RunContext {
   std::string restart_path;  // empty: no output folder
   int restart_step = -1;     // the step of the last restart file written
   int sliding_steps = 0;     // consecutive steps of steady sliding (the plateau so far)
+  LoadDirection direction;   // of the load factor along the path (its limit points)
 
   // The number of the step that converged last (the rows before a restart included).
   int step_number() const { return rs.steps + static_cast<int>(res.steps.size()); }
@@ -490,9 +547,11 @@ struct Analysis::RunContext {
   bool step(const VectorXd& u, double t, const StepAttempt& at, const SolverCheckpoint& checkpoint,
             const AnalysisStepCallback& user_callback) {
     try {
-      const AnalysisStep st = an.record_step(u, t, at.iterations);
+      AnalysisStep st = an.record_step(u, t, at.iterations);
+      st.step = step_number() + 1;
       res.steps.push_back(st);
       const int k = step_number();
+      log_limit_point(t);
       if (csv.is_open()) {
         std::ostringstream row;
         an.write_csv_row(row, k, st);
@@ -514,6 +573,15 @@ struct Analysis::RunContext {
       error = "output of the step at t = " + fmt(t) + ": " + e.what();
       return false;
     }
+  }
+
+  // After the step at t: a limit point of the load at the step before, if the load turned.
+  void log_limit_point(double t) {
+    const int turned = direction.update(t);
+    if (turned == 0 || log == nullptr || res.steps.size() < 2) return;
+    const AnalysisStep& at = res.steps[res.steps.size() - 2];
+    *log << "limit point: load " << (turned > 0 ? "maximum" : "minimum") << " at step " << at.step
+         << ", t = " << fmt(at.t) << "\n";
   }
 
   // A run that stopped before t1 (not at full slip as asked): the restart file of its last

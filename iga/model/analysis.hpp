@@ -67,6 +67,7 @@ struct AnalysisOutput {
 
 /// One converged step as recorded by Analysis::run.
 struct AnalysisStep {
+  int step = 0;  ///< its number in steps.csv (a restart's earlier steps counted)
   double t = 0.0;
   int iterations = 0;
   ContactCounts contact;             ///< summed over the pairs (drag_ratio: the largest)
@@ -76,6 +77,19 @@ struct AnalysisStep {
   std::vector<Vector3d> reactions;      ///< at AnalysisOutput::reactions, Cartesian
   std::vector<Vector3d> displacements;  ///< at AnalysisOutput::monitors
 };
+
+/// A limit point of the load along the path (arc length): a converged step at which the load
+/// factor t stops rising (a maximum) or falling (a minimum). It is the extreme of the sampled
+/// states; the path's own limit lies between the neighbouring steps.
+struct LoadLimitPoint {
+  std::size_t index = 0;  ///< into the steps
+  bool maximum = true;
+};
+
+/// The limit points of the load among `steps`, in path order (steps at the same t as the one
+/// before are passed over). Analysis::run logs each when the step after it converges and
+/// summary.json lists them with the monitors' displacements.
+std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& steps);
 
 /// Called by Analysis::run after each converged step (after the step's row is written); return
 /// false to stop the run.

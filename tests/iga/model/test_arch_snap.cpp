@@ -67,6 +67,26 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   for (std::size_t k = 1; k + 1 < P.size(); ++k)
     if ((P[k] - P[k - 1]) * (P[k + 1] - P[k]) < 0.0) extrema.push_back(vertex(delta, P, k));
   REQUIRE(extrema.size() == 2);
+  // The same two limit points from load_limit_points, logged and listed in summary.json: the
+  // sampled states at the extremes, with the step numbers of steps.csv.
+  const std::vector<LoadLimitPoint> limits = load_limit_points(res.steps);
+  REQUIRE(limits.size() == 2);
+  CHECK(limits[0].maximum);
+  CHECK_FALSE(limits[1].maximum);
+  const Json summary = read_json_file(dir + "/summary.json");
+  REQUIRE(summary.at("limit_points").size() == 2);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::size_t i = limits[k].index;
+    REQUIRE((i > 0 && i + 1 < P.size()));
+    const double sign = limits[k].maximum ? 1.0 : -1.0;
+    CHECK(sign * (P[i] - P[i - 1]) > 0.0);
+    CHECK(sign * (P[i] - P[i + 1]) > 0.0);
+    const Json& l = summary["limit_points"][k];
+    CHECK(l.at("kind") == (limits[k].maximum ? "maximum" : "minimum"));
+    CHECK(l.at("step") == static_cast<int>(i) + 1);
+    CHECK(l.at("t").get<double>() == Approx(res.steps[i].t).epsilon(1e-12));
+    CHECK(l.at("monitors").at("apex").at(1).get<double>() == Approx(-delta[i]).epsilon(1e-12));
+  }
   std::printf(
       "arch snap-through, 16 cubic elements, %d arc-length steps, %d Newton iterations:\n"
       "  maximum P = %.6e at delta = %.4f (reference 4.441629e-3 at 0.86309)\n"
@@ -101,4 +121,22 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   });
   // Either it stops below P_max or it jumps over the falling branch to the far one.
   CHECK((P_reached < 4.441629e-3 || widest_jump > 2.42704 - 0.86309));
+}
+
+TEST_CASE("load_limit_points: maxima and minima of the load along the steps", "[iga][model]") {
+  std::vector<AnalysisStep> steps;
+  for (double t : {0.1, 0.3, 0.3, 0.2, 0.1, 0.1, 0.4, 0.5}) {
+    AnalysisStep st;
+    st.t = t;
+    steps.push_back(st);
+  }
+  const std::vector<LoadLimitPoint> limits = load_limit_points(steps);
+  REQUIRE(limits.size() == 2);
+  CHECK(limits[0].index == 1);  // the first of the two states at t = 0.3
+  CHECK(limits[0].maximum);
+  CHECK(limits[1].index == 4);
+  CHECK_FALSE(limits[1].maximum);
+  steps.resize(3);  // rising, then level: no limit point
+  CHECK(load_limit_points(steps).empty());
+  CHECK(load_limit_points({}).empty());
 }
