@@ -369,6 +369,7 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
   s["steps"] = res.solver.steps;
   s["cutbacks"] = res.solver.cutbacks;
   s["newton_iterations"] = res.solver.total_iterations;
+  s["jumps"] = res.solver.jumps;  // load control: steps that likely jumped over a limit point
   s["dofs"] = system_->num_dofs();
   s["full_slip"] = res.full_slip;
   Json pairs = Json::array();  // each pair at the last converged step
@@ -625,6 +626,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     a.finish();
     u = run.rs.u;
     run.sliding_steps = run.rs.sliding_steps;
+    run.direction.update(run.rs.solver.t);  // the path's limit points from the next step on
     if (log)
       *log << "restart from " << restart_file << ": step " << run.rs.steps
            << ", t = " << run.rs.solver.t << "\n";

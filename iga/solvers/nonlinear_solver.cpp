@@ -289,6 +289,8 @@ void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const
     log << format("  arc %.3e turn %.1f", a.arc_length, a.turn_deg) << (a.landed ? " landed" : "");
   if (a.augmentations > 0) log << "  augmentations " << a.augmentations;
   if (a.cholesky_fallbacks > 0) log << "  lu-fallbacks " << a.cholesky_fallbacks;
+  if (a.jump_ratio > kJumpRatio)
+    log << format("  jump: %.0f times the tangent's prediction", a.jump_ratio);
   const std::string status = problem.status();
   if (!status.empty()) log << "  " << status;
   log << '\n';
@@ -351,6 +353,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
       return finish(
           NewtonOutcome::linear_solve_failed,
           format("iteration %d: linear solve %s: %s", k, to_string(ls), linear_.message().c_str()));
+    if (k == 1 && a.iterations == 0) a.predicted = std::max(a.predicted, w.du.norm());
     a.iterations = k;
 
     const double e = std::abs(w.du.dot(w.R));  // E_k = |du_k . R_{k-1}|
@@ -505,8 +508,10 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     a.t = t_new;
     a.dt = t_new - t;
     int hardest_solve = 0;  // the most iterations of one Newton solve of the step
-    if (s.secant_predictor && u_prev.size() == n && t > t_prev)
+    if (s.secant_predictor && u_prev.size() == n && t > t_prev) {
       u = u_last + (a.dt / (t - t_prev)) * (u_last - u_prev);
+      a.predicted = (u - u_last).norm();
+    }
     try {
       // Newton, then exact enforcement: multiplier updates and re-solves until they hold.
       hardest_solve = solve_fixed(problem, u, t_new, w, a, r);
@@ -518,6 +523,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     add_attempt_totals(r, a);
 
     if (a.outcome == NewtonOutcome::converged) {
+      if (a.predicted > 0.0) a.jump_ratio = (u - u_last).norm() / a.predicted;
+      if (a.jump_ratio > kJumpRatio) ++r.jumps;
       u_prev = u_last;
       t_prev = t;
       t = t_new;
@@ -595,6 +602,12 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
   os << format("  factorizations: CHOLMOD %d, LDL^T %d, UMFPACK %d (Cholesky fallbacks %d)\n",
                r.cholmod_factorizations, r.ldlt_factorizations, r.umfpack_factorizations,
                r.cholesky_fallbacks);
+  if (r.jumps > 0)
+    os << format(
+        "  warning: %d step(s) landed more than %.0f times beyond the tangent's prediction (see "
+        "'jump' in the step lines): the path likely passes a limit point there and load control "
+        "jumped to another branch; \"control\": \"arc_length\" follows the path through it\n",
+        r.jumps, kJumpRatio);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -133,6 +133,10 @@ const char* to_string(NonlinearSolverStatus s);
 const char* to_string(PathControl c);
 
 /// One attempted step, converged or not, with the history of its Newton iterations.
+/// Load control: a converged step whose increment exceeds this many times the tangent's
+/// prediction is reported as a probable jump over a limit point (StepAttempt::jump_ratio).
+inline constexpr double kJumpRatio = 10.0;
+
 struct StepAttempt {
   int step = 0;          ///< number of the step it tries to complete (1 + converged steps before)
   double t_start = 0.0;  ///< last converged time
@@ -155,7 +159,14 @@ struct StepAttempt {
   int ldlt_factorizations = 0;         ///< ... with CHOLMOD LDL^T (symmetric indefinite)
   int umfpack_factorizations = 0;      ///< ... with UMFPACK (incl. fallbacks)
   int cholesky_fallbacks = 0;          ///< LL^T attempts that failed (then LDL^T or UMFPACK)
-  std::string message;                 ///< why it failed (empty if converged)
+  /// Load control: |du_1|, the first Newton correction of the step (the tangent's prediction
+  /// of its increment, after the secant predictor if any: then the larger of the two).
+  double predicted = 0.0;
+  /// Load control: |u - u_start| of the converged step over `predicted`. A step that lands far
+  /// beyond the tangent's prediction (more than kJumpRatio times) has likely jumped over a
+  /// limit point to another branch of the path (snap-through); it is logged as a warning.
+  double jump_ratio = 0.0;
+  std::string message;  ///< why it failed (empty if converged)
 };
 
 /// The outcome of NonlinearSolver::solve.
@@ -174,7 +185,8 @@ struct NonlinearSolverResult {
   int ldlt_factorizations = 0;
   int umfpack_factorizations = 0;
   int cholesky_fallbacks = 0;
-  double time_total = 0.0;         ///< wall time of solve() (seconds)
+  int jumps = 0;            ///< load control: converged steps that jumped (StepAttempt::jump_ratio)
+  double time_total = 0.0;  ///< wall time of solve() (seconds)
   double time_assembly = 0.0;      ///< in NonlinearProblem::assemble
   double time_linear_solve = 0.0;  ///< in factorizations and solves
   double time_callback = 0.0;      ///< in commit() and the step callback (output)

@@ -112,15 +112,18 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   b.solver_settings().control = PathControl::load;
   b.solver_settings().min_step = 1e-4;
   double P_reached = 0.0, delta_before = 0.0, widest_jump = 0.0;
-  (void)b.run(nullptr, "", [&](const VectorXd&, double t, const AnalysisStep& st) {
-    const double d = -st.displacements.at(0).y();
-    widest_jump = std::max(widest_jump, d - delta_before);
-    delta_before = d;
-    P_reached = kLoadAtT1 * t;
-    return true;
-  });
+  const AnalysisResult lc =
+      b.run(nullptr, "", [&](const VectorXd&, double t, const AnalysisStep& st) {
+        const double d = -st.displacements.at(0).y();
+        widest_jump = std::max(widest_jump, d - delta_before);
+        delta_before = d;
+        P_reached = kLoadAtT1 * t;
+        return true;
+      });
   // Either it stops below P_max or it jumps over the falling branch to the far one.
   CHECK((P_reached < 4.441629e-3 || widest_jump > 2.42704 - 0.86309));
+  // A jump is reported (StepAttempt::jump_ratio), a run that stays below P_max reports none.
+  CHECK((lc.solver.jumps > 0) == (widest_jump > 2.42704 - 0.86309));
 }
 
 TEST_CASE("load_limit_points: maxima and minima of the load along the steps", "[iga][model]") {

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -257,4 +258,38 @@ TEST_CASE("Sze, Liu & Lo: hinged roof mesh study 4, 8, 16", "[iga][model][sze][.
     CHECK(std::abs(medium.min_load / fine.min_load - 1.0) < 5e-3);
     CHECK(std::abs(medium.load_at_wc / fine.load_at_wc - 1.0) < 1e-3);
   }
+}
+
+// Load control cannot follow the roof past its first maximum: the step that crosses it lands on
+// the far branch (W_C from about 8 to 27) and is reported as a jump (its increment is many times
+// the tangent's prediction; every other step's within 25 % of it), with the warning in the log.
+TEST_CASE("Load control over the hinged roof's limit point: the jump is reported",
+          "[iga][model][sze]") {
+  Json doc = read_json_file(kData + "hinged_roof.json");
+  doc["output"]["vtk"] = "none";
+  doc["solver"]["control"] = "load";
+  Analysis a = Analysis::from_json(doc, "hinged_roof.json");
+  std::ostringstream log;
+  std::vector<double> ratios, wc;
+  const AnalysisResult r = a.run(&log, "", [&](const VectorXd&, double, const AnalysisStep& st) {
+    wc.push_back(-st.displacements.at(0).z());
+    return true;
+  });
+  REQUIRE(r.solver.converged());  // it reaches P_max, on the far branch
+  for (const StepAttempt& at : r.solver.attempts)
+    if (at.outcome == NewtonOutcome::converged) ratios.push_back(at.jump_ratio);
+  REQUIRE(ratios.size() == wc.size());
+  CHECK(r.solver.jumps == 1);
+  int jumped = -1;
+  for (std::size_t k = 0; k < ratios.size(); ++k) {
+    if (ratios[k] > kJumpRatio)
+      jumped = static_cast<int>(k);
+    else
+      CHECK(ratios[k] < 1.25);
+  }
+  REQUIRE(jumped > 0);
+  const auto j = static_cast<std::size_t>(jumped);
+  CHECK(wc[j - 1] < 11.293);  // before the published maximum's deflection
+  CHECK(wc[j] > 19.5);        // beyond the minimum's: on the far branch
+  CHECK_THAT(log.str(), Catch::Contains("jump:") && Catch::Contains("arc_length"));
 }
