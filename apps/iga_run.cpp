@@ -46,8 +46,20 @@ int run_model(const RunOptions& o) {
   std::cout << ")\n";
   for (const AnalysisOutput::Plot& p : a.output().plots) {  // figures of steps.csv columns
     const std::string png = (std::filesystem::path(out) / p.file).string();
-    if (run_python(resource("scripts/plot_steps.py"),
-                   {(std::filesystem::path(out) / "steps.csv").string(), p.x, p.y, png, p.title}))
+    std::vector<std::string> args{(std::filesystem::path(out) / "steps.csv").string(), p.x, p.y,
+                                  png, p.title};
+    if (!p.reference.empty()) {  // the published points, beside the PNG: <stem>_reference.json
+      Json ref = Json::array();
+      for (const AnalysisOutput::Reference& r : p.reference) {
+        Json points = Json::array();
+        for (const auto& [x, y] : r.points) points.push_back({x, y});
+        ref.push_back({{"label", r.label}, {"points", points}});
+      }
+      const std::string file = png.substr(0, png.size() - 4) + "_reference.json";
+      std::ofstream(file) << format_json(ref) << "\n";
+      args.push_back(file);
+    }
+    if (run_python(resource("scripts/plot_steps.py"), args))
       std::cout << "iga run: plot " << png << "\n";
     else
       std::cout << "iga run: warning: the plot " << png << " failed (python3 with matplotlib?)\n";

@@ -1,12 +1,14 @@
 #!/usr/bin/python3
 """Plots columns of a run's steps.csv against each other (iga run, "output": "plots").
 
-usage: plot_steps.py steps.csv X Y out.png [title]
+usage: plot_steps.py steps.csv X Y out.png [title [reference.json]]
 X: a term, Y: one or more terms separated by ';' (one curve each); a term is a column name,
 optionally scaled: "2*plate_on_ring_Fy", "-centre_uz". Empty cells (non-finite values) are
-skipped. A file with no rows writes no plot.
+skipped. A file with no rows writes no plot. reference.json: [{"label", "points": [[x, y],
+...]}, ...], published points drawn as markers (in the plot's units).
 """
 import csv
+import json
 import sys
 
 from plot_common import save
@@ -29,7 +31,7 @@ def values(rows, spec):
     return [factor * float(r[column]) if r[column] != "" else None for r in rows]
 
 
-def main(src, x, ys, dst, title=""):
+def main(src, x, ys, dst, title="", reference=""):
     rows = list(csv.DictReader(open(src)))
     if not rows:
         return
@@ -43,9 +45,17 @@ def main(src, x, ys, dst, title=""):
     for y in ys.split(";"):
         pts = [(a, b) for a, b in zip(xs, values(rows, y)) if a is not None and b is not None]
         ax.plot([p[0] for p in pts], [p[1] for p in pts], "o-", ms=3, lw=1, label=y.strip())
+    markers = "sD^vxP"
+    refs = json.load(open(reference)) if reference else []
+    curves = ys.split(";")
+    for k, r in enumerate(refs):
+        # One set per curve: the curve's colour; otherwise black.
+        colour = "C%d" % k if len(refs) == len(curves) else "k"
+        ax.plot([p[0] for p in r["points"]], [p[1] for p in r["points"]], markers[k % 6],
+                ms=7, mfc="none", mew=1.5, color=colour, label=r["label"])
     ax.set_xlabel(x)
     ax.set_ylabel(ys if ";" not in ys else "")
-    if ";" in ys:
+    if ";" in ys or refs:
         ax.legend(fontsize=8)
     ax.set_title(title)
     ax.grid(True, alpha=0.3)
@@ -53,6 +63,6 @@ def main(src, x, ys, dst, title=""):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (5, 6):
+    if len(sys.argv) not in (5, 6, 7):
         sys.exit(__doc__)
     main(*sys.argv[1:])

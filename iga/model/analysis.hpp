@@ -11,6 +11,7 @@
 // Every input error is a ModelError naming the file, the JSON path and the value.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -54,9 +55,15 @@ struct AnalysisOutput {
   /// (16 for rods, 4 for shells).
   int samples_per_element = 0;
   /// Figures of steps.csv columns that `iga run` draws after the run (scripts/plot_steps.py):
-  /// x and y are terms "[factor*]column" (y: several separated by ';'), file a PNG name.
+  /// x and y are terms "[factor*]column" (y: several separated by ';'), file a PNG name;
+  /// reference: published points drawn as markers beside the curves (in the plot's units).
+  struct Reference {
+    std::string label;
+    std::vector<std::array<double, 2>> points;
+  };
   struct Plot {
     std::string x, y, file, title;
+    std::vector<Reference> reference;
   };
   std::vector<Plot> plots;
   /// A restart file (restart.bin in the output folder) every this many converged steps

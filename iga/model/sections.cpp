@@ -630,6 +630,26 @@ void read_int(const JsonCursor& s, const char* key, int min, int& out) {
   if (out < min) c.fail("must be >= " + std::to_string(min));
 }
 
+// "reference": [{"label", "points": [[x, y], ...]}, ...], published points of a plot.
+std::vector<AnalysisOutput::Reference> plot_reference(const JsonCursor& r) {
+  r.expect_array(1);
+  std::vector<AnalysisOutput::Reference> out;
+  for (std::size_t k = 0; k < r.size(); ++k) {
+    const JsonCursor e = r[k];
+    e.expect_object({"label", "points", "description"});
+    AnalysisOutput::Reference ref{e["label"].as_string(), {}};
+    const JsonCursor pts = e["points"];
+    pts.expect_array(1);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const std::vector<double> xy = pts[i].as_numbers();
+      if (xy.size() != 2) pts[i].fail("must be a point [x, y]");
+      ref.points.push_back({xy[0], xy[1]});
+    }
+    out.push_back(std::move(ref));
+  }
+  return out;
+}
+
 }  // namespace
 
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
@@ -747,9 +767,13 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
     pl.expect_array();
     for (std::size_t k = 0; k < pl.size(); ++k) {
       const JsonCursor p = pl[k];
-      p.expect_object({"x", "y", "file", "title", "description"});
-      AnalysisOutput::Plot plot{p["x"].as_string(), p["y"].as_string(), p["file"].as_string(),
-                                p.has("title") ? p["title"].as_string() : std::string()};
+      p.expect_object({"x", "y", "file", "title", "reference", "description"});
+      AnalysisOutput::Plot plot{p["x"].as_string(),
+                                p["y"].as_string(),
+                                p["file"].as_string(),
+                                p.has("title") ? p["title"].as_string() : std::string(),
+                                {}};
+      if (p.has("reference")) plot.reference = plot_reference(p["reference"]);
       const std::string& f = plot.file;
       if (f.size() < 5 || f.substr(f.size() - 4) != ".png" ||
           f.find_first_of("/\\\"") != std::string::npos)

@@ -13,12 +13,15 @@
 #include <vector>
 
 #include <sys/wait.h>
+#include "geometry/json_reader.hpp"
 #include "tests/support/files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using iga::Json;
+using iga::read_json_file;
 using iga::test::csv_rows;
 using iga::test::slurp;
 
@@ -68,19 +71,48 @@ TEST_CASE("iga run: a failure while writing the results exits 2 with summary.jso
   CHECK(csv_rows(slurp(out / "steps.csv")).size() >= 11);  // header and every converged step
 }
 
+namespace {
+
+/// `iga run` of data/<model> into out with one --set: it must succeed, write steps.csv and
+/// draw `png`.
+void run_plotted(const std::string& model, const fs::path& out, const std::string& set,
+                 const char* png) {
+  const Result r = run(IGA_EXE, "run \"" + kModel + model + "\" --quiet --out \"" + out.string() +
+                                    "\" --set " + set);
+  INFO(r.out);
+  CHECK(r.status == 0);
+  CHECK(fs::exists(out / "steps.csv"));
+  CHECK(fs::exists(out / png));
+  CHECK_THAT(r.out, Catch::Contains("iga run: plot "));
+}
+
+}  // namespace
+
 TEST_CASE("iga run: the model's plots of steps.csv columns are drawn (ring between plates)",
           "[apps][iga][run][moving_tools]") {
   const fs::path out = fresh("iga_ring_plots");
-  const Result r = run(IGA_EXE, "run \"" + kModel + "ring_between_plates.json\" --quiet --out \"" +
-                                    out.string() + "\" --set /output/vtk='\"last\"'");
-  INFO(r.out);
-  CHECK(r.status == 0);
-  for (const char* f : {"force_travel.png", "diameters.png", "last_rod.vtk", "last_rigid.vtk",
-                        "rigid.pvd", "steps.csv"})
+  run_plotted("ring_between_plates.json", out, "/output/vtk='\"last\"'", "force_travel.png");
+  for (const char* f : {"diameters.png", "last_rod.vtk", "last_rigid.vtk", "rigid.pvd"})
     CHECK(fs::exists(out / f));
-  CHECK_THAT(r.out, Catch::Contains("iga run: plot "));
+  // The ring's plot has no published points: no reference file.
+  CHECK_FALSE(fs::exists(out / "force_travel_reference.json"));
   // The moving plate is written where it is: its last position 0.4 below the first.
   CHECK(slurp(out / "last_rigid.vtk") != slurp(out / "rigid.vtk"));
+}
+
+TEST_CASE("iga run: a plot's published points go beside it and onto it (hinged roof)",
+          "[apps][iga][run]") {
+  const fs::path out = fresh("iga_roof_reference");
+  run_plotted("hinged_roof.json", out, "/geometry/roof/refine/subdivide=4", "load_deflection.png");
+  const Json ref = read_json_file((out / "load_deflection_reference.json").string());
+  REQUIRE(ref.size() == 2);
+  CHECK(ref[0].at("label") == "Sze et al. 2004: first maximum, h = 12.7");
+  CHECK(ref[0].at("points").at(0).at(0).get<double>() == 11.293);
+  CHECK(ref[0].at("points").at(0).at(1).get<double>() == 2226.3);
+  // summary.json lists the path's two load limit points.
+  const Json summary = read_json_file((out / "summary.json").string());
+  REQUIRE(summary.at("limit_points").size() == 2);
+  CHECK(summary["limit_points"][0].at("kind") == "maximum");
 }
 
 #ifdef CAPSTAN_EXE

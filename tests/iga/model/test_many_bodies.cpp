@@ -241,6 +241,17 @@ TEST_CASE("many bodies: references between bodies, conditions, pairs and output 
              Catch::Contains("m.json: /output/plots/0/x: expected one term"));
   CHECK_THAT(error([](Json& d) { d["output"]["plots"][0]["file"] = "../a.png"; }),
              Catch::Contains("m.json: /output/plots/0/file: must be a file name ending in .png"));
+  CHECK_THAT(
+      error([](Json& d) {
+        d["output"]["plots"][0]["reference"] =
+            Json::parse(R"([{"label": "a", "points": [[1, 2], [1, 2, 3]]}])");
+      }),
+      Catch::Contains("m.json: /output/plots/0/reference/0/points/1: must be a point [x, y]"));
+  CHECK_THAT(
+      error([](Json& d) {
+        d["output"]["plots"][0]["reference"] = Json::parse(R"([{"points": [[1, 2]]}])");
+      }),
+      Catch::Contains("m.json: /output/plots/0/reference/0: missing required key \"label\""));
   CHECK(error([](Json& d) {
           d["output"]["monitors"] =
               Json::parse(R"([{"name": "mid", "at": 0.5, "body": "rope_b"}])");
