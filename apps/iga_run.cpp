@@ -50,10 +50,10 @@ int run_model(const RunOptions& o) {
                                   png, p.title};
     if (!p.reference.empty()) {  // the published points, beside the PNG: <stem>_reference.json
       Json ref = Json::array();
-      for (const AnalysisOutput::Reference& r : p.reference) {
+      for (const AnalysisOutput::Reference& set : p.reference) {
         Json points = Json::array();
-        for (const auto& [x, y] : r.points) points.push_back({x, y});
-        ref.push_back({{"label", r.label}, {"points", points}});
+        for (const auto& [x, y] : set.points) points.push_back({x, y});
+        ref.push_back({{"label", set.label}, {"points", points}});
       }
       const std::string file = png.substr(0, png.size() - 4) + "_reference.json";
       std::ofstream(file) << format_json(ref) << "\n";
