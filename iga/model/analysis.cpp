@@ -340,7 +340,7 @@ std::vector<std::string> Analysis::csv_columns() const {
 
 void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
   // csv_number: a non-finite value is an empty cell, never nan or inf.
-  const double lambda = (st.t - settings_.t0) / (settings_.t1 - settings_.t0);  // load factor
+  const double lambda = load_factor(st.t);
   csv << index << "," << csv_number(st.t) << "," << csv_number(lambda) << "," << st.iterations
       << "," << st.contact.active << "," << st.contact.stick << "," << st.contact.slip;
   if (num_pairs() > 1)
@@ -392,7 +392,7 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
     l["kind"] = lp.maximum ? "maximum" : "minimum";
     l["step"] = st.step;
     l["t"] = json_number(st.t);
-    l["lambda"] = json_number((st.t - settings_.t0) / (settings_.t1 - settings_.t0));
+    l["lambda"] = json_number(load_factor(st.t));
     Json m = Json::object();
     for (std::size_t i = 0; i < output_.monitors.size() && i < st.displacements.size(); ++i) {
       const Vector3d& d = st.displacements[i];

@@ -264,6 +264,8 @@ class Analysis {
   std::string open_output(const std::string& out_dir, std::ofstream& csv) const;
   /// steps.csv: the header, and the row of the step with 1-based `index`.
   void write_csv_header(std::ostream& csv) const;
+  /// The load factor lambda of time t: (t - t0) / (t1 - t0) (steps.csv, summary.json).
+  double load_factor(double t) const { return (t - settings_.t0) / (settings_.t1 - settings_.t0); }
   void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;
   /// summary.json of a run.
   void write_summary(const std::string& out_dir, const AnalysisResult& res) const;

@@ -135,11 +135,11 @@ const char* to_string(NewtonOutcome o);
 const char* to_string(NonlinearSolverStatus s);
 const char* to_string(PathControl c);
 
-/// One attempted step, converged or not, with the history of its Newton iterations.
 /// Load control: a converged step whose increment exceeds this many times the tangent's
 /// prediction is reported as a probable jump over a limit point (StepAttempt::jump_ratio).
 inline constexpr double kJumpRatio = 10.0;
 
+/// One attempted step, converged or not, with the history of its Newton iterations.
 struct StepAttempt {
   int step = 0;          ///< number of the step it tries to complete (1 + converged steps before)
   double t_start = 0.0;  ///< last converged time
