@@ -578,13 +578,21 @@ void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) 
 }
 
 ShellMaterial parse_shell_material(const JsonCursor& m) {
-  m.expect_object({"type", "E", "nu", "thickness", "description"});
+  m.expect_object({"type", "E", "nu", "thickness", "law", "thickness_points", "description"});
   ShellMaterial s;
   s.E = positive(m["E"]);
   const JsonCursor n = m["nu"];
   s.nu = n.as_number();
   if (!(s.nu > -1.0 && s.nu < 0.5)) n.fail("must be in (-1, 0.5)");
   s.thickness = positive(m["thickness"]);
+  if (m.has("law") && one_of(m["law"], {"saint_venant_kirchhoff", "neo_hookean"}) == "neo_hookean")
+    s.law = ShellLaw::kNeoHookean;
+  if (m.has("thickness_points")) {
+    const JsonCursor t = m["thickness_points"];
+    s.thickness_points = t.as_int();
+    if (s.thickness_points < 2 || s.thickness_points > kMaxGaussPoints)
+      t.fail("must be in [2, 20]");
+  }
   return s;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "geometry/differential_geometry.hpp"
@@ -51,6 +52,51 @@ void kinematics(const SurfaceBasis& B, std::span<const Vector3d> x, int first_u,
     }
 }
 
+/// Voigt (11, 22, 12) forms of the fourth-order tensors M (x) M and Isym(M)^abcd =
+/// 1/2 (M^ac M^bd + M^ad M^bc) of a symmetric 2 x 2 M, against strains (E_11, E_22, 2 E_12).
+Matrix3d voigt_outer(const Matrix2d& M) {
+  const Vector3d v(M(0, 0), M(1, 1), M(0, 1));
+  return v * v.transpose();
+}
+Matrix3d voigt_isym(const Matrix2d& M) {
+  const double m11 = M(0, 0), m22 = M(1, 1), m12 = M(0, 1);
+  Matrix3d I;
+  I << m11 * m11, m12 * m12, m11 * m12,  //
+      m12 * m12, m22 * m22, m22 * m12,   //
+      m11 * m12, m22 * m12, 0.5 * (m11 * m22 + m12 * m12);
+  return I;
+}
+
+/// Thickness-integrated resultants of a law: energy per reference area W, n = dW/deps,
+/// m = dW/dkap and (Order 2) their tangents. Dnm is zero for St. Venant-Kirchhoff.
+struct Resultants {
+  double W = 0.0;
+  Vector3d nf = Vector3d::Zero(), mf = Vector3d::Zero();
+  Matrix3d Dnn = Matrix3d::Zero(), Dnm = Matrix3d::Zero(), Dmm = Matrix3d::Zero();
+  bool coupled = false;  ///< Dnm != 0
+};
+
+/// [KHB+15] Sect. 3: E(z) = eps + z kap on the mid-surface metric, n = int S dz,
+/// m = int z S dz, D_nn, D_nm, D_mm = int (1, z, z^2) D dz, W = int psi dz.
+template <int Order>
+void neo_hookean_resultants(const KirchhoffLoveShell::QuadraturePoint& q, const ShellMaterial& mat,
+                            const ShellThicknessRule& rule, const Vector3d& eps,
+                            const Vector3d& kap, Resultants& r) {
+  r.coupled = true;
+  for (int i = 0; i < rule.n; ++i) {
+    const double z = rule.z[static_cast<std::size_t>(i)], w = rule.w[static_cast<std::size_t>(i)];
+    const PlaneStressPoint p = neo_hookean_plane_stress(mat.E, mat.nu, q.Aab, eps + z * kap);
+    r.W += w * p.psi;
+    r.nf.noalias() += w * p.S;
+    r.mf.noalias() += (w * z) * p.S;
+    if constexpr (Order >= 2) {
+      r.Dnn.noalias() += w * p.D;
+      r.Dnm.noalias() += (w * z) * p.D;
+      r.Dmm.noalias() += (w * z * z) * p.D;
+    }
+  }
+}
+
 /// Value, gradient and Hessian (Order 0, 1, 2) of the energy density W(y) per reference area,
 /// and the strains and resultants for output.
 struct Density {
@@ -74,8 +120,8 @@ struct Density {
 ///  W = 1/2 eps.nf + 1/2 kap.mf, g = B_eps^T nf + B_kap^T mf,
 ///  H = B_eps^T h D B_eps + B_kap^T h^3/12 D B_kap + sum_i nf_i eps_i'' + sum_i mf_i kap_i''.
 template <int Order>
-void density(const KirchhoffLoveShell::QuadraturePoint& q, double h, const Kinematics& k,
-             Density& d) {
+void density(const KirchhoffLoveShell::QuadraturePoint& q, const ShellMaterial& mat,
+             const ShellThicknessRule& rule, const Kinematics& k, Density& d) {
   const Vector3d& a1 = k.y[0];
   const Vector3d& a2 = k.y[1];
   d.eps = Vector3d(0.5 * (a1.squaredNorm() - q.Aab(0, 0)), 0.5 * (a2.squaredNorm() - q.Aab(1, 1)),
@@ -86,10 +132,22 @@ void density(const KirchhoffLoveShell::QuadraturePoint& q, double h, const Kinem
   const std::array<double, 3> s{1.0, 1.0, 2.0};  // Voigt factors of kap
   for (int i = 0; i < 3; ++i)
     d.kap[i] = s[static_cast<std::size_t>(i)] * (q.Bv[i] - k.y[2 + i].dot(n));
-  const double hb = h * h * h / 12.0;
-  d.nf.noalias() = h * (q.D * d.eps);
-  d.mf.noalias() = hb * (q.D * d.kap);
-  d.W = 0.5 * d.eps.dot(d.nf) + 0.5 * d.kap.dot(d.mf);
+  Resultants r;
+  if (mat.law == ShellLaw::kSaintVenantKirchhoff) {
+    const double h = mat.thickness, hb = h * h * h / 12.0;
+    r.nf.noalias() = h * (q.D * d.eps);
+    r.mf.noalias() = hb * (q.D * d.kap);
+    r.W = 0.5 * d.eps.dot(r.nf) + 0.5 * d.kap.dot(r.mf);
+    if constexpr (Order >= 2) {
+      r.Dnn = h * q.D;
+      r.Dmm = hb * q.D;
+    }
+  } else {
+    neo_hookean_resultants<Order>(q, mat, rule, d.eps, d.kap, r);
+  }
+  d.nf = r.nf;
+  d.mf = r.mf;
+  d.W = r.W;
   if constexpr (Order < 1) return;
 
   Matrix3x6d J;
@@ -113,9 +171,13 @@ void density(const KirchhoffLoveShell::QuadraturePoint& q, double h, const Kinem
   d.g.noalias() += Bk.transpose() * d.mf;
   if constexpr (Order < 2) return;
 
-  const Matrix3d De = h * q.D, Db = hb * q.D;
-  d.H.noalias() = Be.transpose() * (De * Be);
-  d.H.noalias() += Bk.transpose() * (Db * Bk);
+  d.H.noalias() = Be.transpose() * (r.Dnn * Be);
+  d.H.noalias() += Bk.transpose() * (r.Dmm * Bk);
+  if (r.coupled) {
+    const Matrix15d C = Be.transpose() * (r.Dnm * Bk);
+    d.H += C;
+    d.H += C.transpose();
+  }
   // membrane: nf . eps''
   d.H.block<3, 3>(0, 0).diagonal().array() += d.nf[0];
   d.H.block<3, 3>(3, 3).diagonal().array() += d.nf[1];
@@ -148,6 +210,54 @@ void density(const KirchhoffLoveShell::QuadraturePoint& q, double h, const Kinem
 }  // namespace
 
 // ---------------------------------------------------------------------------------------------
+// Neo-Hookean plane stress ([KHB+15] Sect. 3.1-3.2)
+
+PlaneStressPoint neo_hookean_plane_stress(double E, double nu, const Matrix2d& Aab,
+                                          const Vector3d& strain) {
+  const double mu = E / (2.0 * (1.0 + nu));
+  const double lam = E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  Matrix2d C = Aab;  // C_ab = A_ab + 2 E_ab
+  C(0, 0) += 2.0 * strain[0];
+  C(1, 1) += 2.0 * strain[1];
+  C(0, 1) += strain[2];
+  C(1, 0) += strain[2];
+  PlaneStressPoint p;
+  const double detC = C.determinant(), detA = Aab.determinant();
+  if (!(detC > 0.0) || !std::isfinite(detC)) {
+    p.psi = std::numeric_limits<double>::infinity();
+    p.S.setConstant(std::numeric_limits<double>::quiet_NaN());
+    p.D.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return p;
+  }
+  // S^33 = 0 <=> g(c) = mu (c - 1) + lam (a + 1/2 ln c) = 0 for c = C_33, a = 1/2 ln(det C /
+  // det A); g is increasing in c > 0 with g(0+) = -inf, g(inf) = inf: one root, by Newton kept
+  // positive (halving a step that would leave c > 0).
+  const double a = 0.5 * std::log(detC / detA);
+  double c = 1.0;
+  for (int it = 0; it < 60; ++it) {
+    const double g = mu * (c - 1.0) + lam * (a + 0.5 * std::log(c));
+    const double dg = mu + 0.5 * lam / c;
+    double dc = -g / dg;
+    while (c + dc <= 0.0) dc *= 0.5;
+    c += dc;
+    if (std::abs(dc) <= 1e-15 * c) break;
+  }
+  const double lnJ = a + 0.5 * std::log(c);
+  const Matrix2d Ainv = Aab.inverse(), Cinv = C.inverse();
+  p.C33 = c;
+  // psi = mu/2 (tr C - 3) - mu ln J + lam/2 ln^2 J, tr C = A^ab C_ab + C_33.
+  p.psi = 0.5 * mu * ((Ainv.cwiseProduct(C)).sum() + c - 3.0) - mu * lnJ + 0.5 * lam * lnJ * lnJ;
+  // S^ab = mu (A^ab - C^ab) + lam ln J C^ab (S^33 = 0 makes the C_33 dependence drop out).
+  const Matrix2d S = mu * Ainv + (lam * lnJ - mu) * Cinv;
+  p.S = Vector3d(S(0, 0), S(1, 1), S(0, 1));
+  // 3D: C^ijkl = lam C^ij C^kl + 2 (mu - lam ln J) Isym(C^-1); condensed over C_33 with
+  // C^ab33 = lam C^ab / c, C^3333 = (lam + 2 (mu - lam ln J)) / c^2.
+  const double m2 = mu - lam * lnJ;
+  p.D = (lam - lam * lam / (lam + 2.0 * m2)) * voigt_outer(Cinv) + (2.0 * m2) * voigt_isym(Cinv);
+  return p;
+}
+
+// ---------------------------------------------------------------------------------------------
 // KirchhoffLoveShell
 
 KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial material,
@@ -178,6 +288,17 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
         fail(std::string("KirchhoffLoveShell: interior knot ") + dir[d] + " = " + num(br[i]) +
              " has multiplicity " + std::to_string(kv[d]->multiplicity(br[i])) +
              "; a C1 patch needs <= p - 1 = " + std::to_string(p - 1));
+  }
+  if (m.thickness_points < 2 || m.thickness_points > kMaxGaussPoints)
+    fail("KirchhoffLoveShell: ShellMaterial.thickness_points must be in [2, 20], got " +
+         std::to_string(m.thickness_points));
+  if (m.law == ShellLaw::kNeoHookean) {
+    thickness_rule_.n = m.thickness_points;
+    gauss_legendre(m.thickness_points, thickness_rule_.z, thickness_rule_.w);
+    for (int i = 0; i < m.thickness_points; ++i) {
+      thickness_rule_.z[static_cast<std::size_t>(i)] *= 0.5 * m.thickness;
+      thickness_rule_.w[static_cast<std::size_t>(i)] *= 0.5 * m.thickness;
+    }
   }
   X_ = reference_.control_points();
 
@@ -286,7 +407,7 @@ void KirchhoffLoveShell::element_kernel(int e, std::span<const Vector3d> x, doub
     const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + g)];
     const SurfaceBasis& B = q.basis;
     kinematics(B, x, fu, fv, reference_.num_u(), kin);
-    density<Order>(q, material_.thickness, kin, d);
+    density<Order>(q, material_, thickness_rule_, kin, d);
     if (energy) *energy += q.wJ * d.W;  // Pi_e = int W dA
     if constexpr (Order < 1) continue;
     const std::array<const double*, 5> dR{B.d1.data(), B.d2.data(), B.d11.data(), B.d22.data(),
@@ -406,7 +527,7 @@ ShellStresses KirchhoffLoveShell::stresses(double u, double v, std::span<const V
   kinematics(q.basis, x, q.basis.span_u - reference_.degree_u(),
              q.basis.span_v - reference_.degree_v(), reference_.num_u(), k);
   Density d;
-  density<0>(q, material_.thickness, k, d);
+  density<0>(q, material_, thickness_rule_, k, d);
   ShellStresses s;
   s.membrane_strain = d.eps;
   s.bending_strain = d.kap;

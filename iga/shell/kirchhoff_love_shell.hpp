@@ -8,7 +8,12 @@
 //   A_ab), bending strain K_ab = B_ab - b_ab, thickness-integrated St. Venant-Kirchhoff
 //   constitutive law n = h C:E, m = h^3/12 C:K, C from the contravariant reference metric),
 //   Sect. 4 (first and second variations of the strains, incl. those of the unit normal);
-// [PT97] Piegl & Tiller, The NURBS Book (A2.3 and eq. 4.20 for the rational surface basis).
+// [PT97] Piegl & Tiller, The NURBS Book (A2.3 and eq. 4.20 for the rational surface basis);
+// [KHB+15] J. Kiendl, M.-C. Hsu, M.C.H. Wu, A. Reali, "Isogeometric Kirchhoff-Love shell
+//   formulations for general hyperelastic materials", CMAME 291 (2015) 280-303: Sect. 3 (strain
+//   E(z) = eps + z kap through the thickness on the mid-surface metric, plane stress by the
+//   condition S^33 = 0 solved for C_33, the condensed tangent C^abcd - C^ab33 C^33cd / C^3333,
+//   numerical integration through the thickness), Sect. 3.2 (compressible neo-Hookean).
 // The variations below are written out and differentiated by us in the 15 kinematic variables
 // y = (a_1, a_2, a_11, a_22, a_12) and then mapped to control points (kirchhoff_love_shell.cpp);
 // the equation-level correspondence to [KBLW09] is given in comments there by section.
@@ -29,6 +34,12 @@
 //   n^ab = h C:E, m^ab = h^3/12 C:K  membrane forces, moments (contra.)  nf, mf (Voigt)
 //   dA = |A_1 x A_2| du dv       reference area element                  wJ (Gauss weight incl.)
 //   lambda(t)                    load curve of pseudo-time t             LoadCurve
+//   z in [-h/2, h/2]             thickness coordinate along a_3          z (Gauss points)
+//   C_ab = A_ab + 2 E_ab(z)      in-plane right Cauchy-Green (covariant) C (2x2)
+//   C_33, J = sqrt(det C_ab / det A_ab C_33)  thickness stretch^2, volume ratio  C33, lnJ
+//   mu, Lambda                   Lame constants from E, nu               mu, lam
+//   n = int S dz, m = int z S dz, D_nn, D_nm, D_mm = int (1, z, z^2) dS/dE dz
+//                                resultants and their tangents (neo-Hookean)  Resultants
 //
 // Energy per unit reference area: W = 1/2 h E:C:E + 1/2 h^3/12 K:C:K with
 //   C^abcd = E/(1-nu^2) [nu A^ab A^cd + 1/2 (1-nu)(A^ac A^bd + A^ad A^bc)]   ([KBLW09] Sect. 3).
@@ -52,6 +63,7 @@
 #include "geometry/nurbs_surface.hpp"
 #include "geometry/rational_basis.hpp"
 #include "iga/core/dof_map.hpp"
+#include "iga/core/quadrature.hpp"
 
 namespace iga {
 
@@ -61,12 +73,47 @@ class ShellError : public std::invalid_argument {
   using std::invalid_argument::invalid_argument;
 };
 
-/// Isotropic St. Venant-Kirchhoff material and thickness.
+/// Constitutive law of a shell material (both isotropic, both with Young's modulus E and
+/// Poisson's ratio nu at small strain).
+enum class ShellLaw {
+  /// S = C:E in the Green-Lagrange strain, integrated through the thickness in closed form
+  /// (n = h C:eps, m = h^3/12 C:kap; [KBLW09] Sect. 3). Adequate while strains stay small.
+  kSaintVenantKirchhoff,
+  /// Compressible neo-Hookean (psi = mu/2 (tr C - 3) - mu ln J + lambda/2 ln^2 J; [KHB+15]
+  /// Sect. 3.2), plane stress by condensing C_33, integrated through the thickness with
+  /// ShellMaterial::thickness_points Gauss points. For large strains (folds, creases, rubber).
+  kNeoHookean,
+};
+
+/// Isotropic shell material and thickness.
 struct ShellMaterial {
   double E = 0.0;          ///< Young's modulus, > 0
   double nu = 0.0;         ///< Poisson's ratio, in (-1, 0.5)
   double thickness = 0.0;  ///< h, > 0
+  ShellLaw law = ShellLaw::kSaintVenantKirchhoff;
+  int thickness_points = 5;  ///< Gauss points through the thickness (kNeoHookean), in [2, 20]
 };
+
+/// Gauss points z and weights w through the thickness, z in [-h/2, h/2] (neo-Hookean).
+struct ShellThicknessRule {
+  int n = 0;
+  std::array<double, kMaxGaussPoints> z{}, w{};
+};
+
+/// One material point of the neo-Hookean law in plane stress (S^33 = 0): energy per unit
+/// reference volume psi, 2nd Piola-Kirchhoff stress S^ab (Voigt 11, 22, 12), its consistent
+/// tangent D = dS/dE condensed over C_33 (Voigt, against E_11, E_22, 2 E_12) and C_33 itself, at
+/// the in-plane Green-Lagrange strain E (Voigt E_11, E_22, 2 E_12) on the reference metric A_ab
+/// (covariant components, unit thickness direction). psi is +inf and S, D are NaN where
+/// det C_ab <= 0 (the material point is inverted).
+struct PlaneStressPoint {
+  double psi = 0.0;
+  Vector3d S = Vector3d::Zero();
+  Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
+  double C33 = 1.0;
+};
+PlaneStressPoint neo_hookean_plane_stress(double E, double nu, const Matrix2d& Aab,
+                                          const Vector3d& strain);
 
 struct ShellOptions {
   int quadrature_points = 0;  ///< Gauss-Legendre points per direction and element; 0: p + 1
@@ -104,7 +151,8 @@ struct ShellStresses {
 /// Global DOF numbering for assembly: 3 I + c for component c of control point I.
 class KirchhoffLoveShell {
  public:
-  /// Throws ShellError: E <= 0, thickness <= 0, nu outside (-1, 0.5), degree < 2 or >
+  /// Throws ShellError: E <= 0, thickness <= 0, nu outside (-1, 0.5), thickness_points
+  /// outside [2, 20], degree < 2 or >
   /// kMaxShellDegree in a direction, an interior knot of multiplicity > p - 1 (not C1),
   /// quadrature_points outside [0, 20], a singular reference point (A_1 x A_2 = 0).
   KirchhoffLoveShell(NurbsSurface reference, ShellMaterial material, ShellOptions options = {});
@@ -173,6 +221,7 @@ class KirchhoffLoveShell {
   std::vector<Vector3d> X_;
   std::vector<Element> elements_;
   std::vector<QuadraturePoint> qps_;
+  ShellThicknessRule thickness_rule_;
 };
 
 }  // namespace iga

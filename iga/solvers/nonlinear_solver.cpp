@@ -92,6 +92,8 @@ const char* to_string(NewtonOutcome o) {
       return "assembly_failed";
     case NewtonOutcome::augmentation_failed:
       return "augmentation_failed";
+    case NewtonOutcome::landing_failed:
+      return "landing_failed";
   }
   return "?";
 }
@@ -874,6 +876,21 @@ int NonlinearSolver::solve_fixed(NonlinearProblem& problem, VectorXd& u, double 
   return std::max(first_solve, augment_until_satisfied(problem, u, t, a, resolve));
 }
 
+namespace {
+
+/// The message of an arc-length run that converged: on t1, or past it (a failed landing at the
+/// minimum arc length).
+std::string arc_end_message(const NonlinearSolverSettings& s, int steps, double t) {
+  if (t > s.t1 + 1e-12 * (s.t1 - s.t0))
+    return format(
+        "passed t1 = %.9g in %d arc-length steps, ending at t = %.9g (landing on t1 failed at "
+        "the minimum arc length)",
+        s.t1, steps, t);
+  return format("reached t1 = %.9g in %d arc-length steps", s.t1, steps);
+}
+
+}  // namespace
+
 void NonlinearSolver::land(NonlinearProblem& problem, VectorXd& u, const ArcState& arc,
                            Workspace& w, StepAttempt& a, NonlinearSolverResult& r, int& hardest) {
   const NonlinearSolverSettings& s = settings_;
@@ -907,7 +924,15 @@ void NonlinearSolver::land(NonlinearProblem& problem, VectorXd& u, const ArcStat
     hardest = std::max(hardest, it);
     return;
   }
-  // Keep the arc state: solved again at its t (a few iterations at most).
+  if (!arc.flat && arc.dl > arc.dl_min * (1.0 + 1e-12)) {
+    // Cut back (the caller restores u and the problem): a shorter arc ends before the time or
+    // starts its landing from closer by. Before, the arc state was kept here, and a run whose
+    // last step overshot t1 ended beyond it reporting "reached t1".
+    a.outcome = NewtonOutcome::landing_failed;
+    a.message = format("landing on t = %.9g failed: %s", target, b.message.c_str());
+    return;
+  }
+  // At the minimum arc length: keep the arc state, solved again at its t (a few iterations).
   problem.restore();
   u = u_arc;
   StepAttempt c;
@@ -1027,8 +1052,7 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
       r.attempts.push_back(std::move(a));
     }
   }
-  if (r.status == NonlinearSolverStatus::converged)
-    r.message = format("reached t1 = %.9g in %d arc-length steps", s.t1, r.steps);
+  if (r.status == NonlinearSolverStatus::converged) r.message = arc_end_message(s, r.steps, arc.t);
   r.time_total = seconds_since(start);
   if (log_) write_summary(*log_, r);
   return r;

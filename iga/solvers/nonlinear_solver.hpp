@@ -119,6 +119,8 @@ enum class NewtonOutcome {
                         ///< the contact search); the step is cut back like any other failure
   augmentation_failed,  ///< Newton converged but NonlinearProblem::augment found the constraints
                         ///< still violated after its allowed multiplier updates; cut back
+  landing_failed,       ///< arc length: the step crossed t1 or a hit time and the solve at that t
+                        ///< failed; cut back (at the minimum arc length the arc state is kept)
 };
 
 /// How the whole run ended.
@@ -313,8 +315,9 @@ class NonlinearSolver {
   int solve_fixed(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
                   NonlinearSolverResult& r);
   /// After a converged arc-length step in a: when it crossed t1 or a hit time, the step again
-  /// under load control, landing on it (a.landed), else the arc state kept; `hardest` the most
-  /// iterations of one solve of the step.
+  /// under load control, landing on it (a.landed). If that solve fails the step fails
+  /// (landing_failed: cut back, a shorter arc then reaches the time from closer by), or at the
+  /// minimum arc length the arc state is kept. `hardest`: the most iterations of one solve.
   void land(NonlinearProblem& problem, VectorXd& u, const ArcState& arc, Workspace& w,
             StepAttempt& a, NonlinearSolverResult& r, int& hardest);
 

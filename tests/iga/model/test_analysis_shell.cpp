@@ -185,6 +185,12 @@ TEST_CASE("analysis: bad shell input names the file, the JSON path and the value
              Catch::Contains("m.json: /materials/concrete/thickness: must be > 0, got -0.25"));
   CHECK_THAT(error([](Json& d) { d["materials"]["concrete"]["nu"] = 0.5; }),
              Catch::Contains("m.json: /materials/concrete/nu: must be in (-1, 0.5), got 0.5"));
+  CHECK_THAT(error([](Json& d) { d["materials"]["concrete"]["law"] = "mooney_rivlin"; }),
+             Catch::Contains("m.json: /materials/concrete/law: expected one of "
+                             "\"saint_venant_kirchhoff\", \"neo_hookean\", got \"mooney_rivlin\""));
+  CHECK_THAT(
+      error([](Json& d) { d["materials"]["concrete"]["thickness_points"] = 1; }),
+      Catch::Contains("m.json: /materials/concrete/thickness_points: must be in [2, 20], got 1"));
   CHECK_THAT(error([](Json& d) { d["boundary_conditions"][0]["edge"] = "left"; }),
              Catch::Contains("m.json: /boundary_conditions/0/edge: expected one of \"u_min\", "
                              "\"u_max\", \"v_min\", \"v_max\", got \"left\""));

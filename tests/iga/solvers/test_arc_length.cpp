@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -220,4 +221,55 @@ TEST_CASE("Arc length: a step that turns more than max_turn_deg from its predict
   for (const StepAttempt& a : limited.attempts)
     refused += a.message.find("turned") != std::string::npos ? 1 : 0;
   CHECK(refused > 0);
+}
+
+namespace {
+
+/// The von Mises truss whose residual at t = 1 is NaN the first `failures` times it is asked
+/// for: the solve that lands an arc-length step on t1 fails.
+class TrussFailingAtOne : public VonMisesTruss {
+ public:
+  TrussFailingAtOne(double P, int failures) : VonMisesTruss(1.0, 0.5, 1.0, P), left_(failures) {}
+  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override {
+    VonMisesTruss::assemble(u, t, R, K);
+    if (t == 1.0 && left_ > 0) {
+      --left_;
+      R.setConstant(std::numeric_limits<double>::quiet_NaN());
+    }
+  }
+
+ private:
+  int left_;
+};
+
+}  // namespace
+
+TEST_CASE("Arc length: a step whose landing on t1 fails is cut back and ends on t1",
+          "[iga][solver][arc_length]") {
+  // Half the limit load: the path goes on beyond t = 1, the last arc crosses t1 and its landing
+  // there fails once (NaN residual). The step is refused and repeated with a shorter arc, which
+  // lands. (Before, the arc state beyond t1 was kept and the run said "reached t1".)
+  const VonMisesTruss unit(1.0, 0.5, 1.0, 0.0);
+  const double P = 0.5 * unit.P_max();
+  TrussFailingAtOne truss(P, 1);
+  NonlinearSolverSettings s = arc_settings(0.3);
+  VectorXd u = VectorXd::Zero(2);
+  const NonlinearSolverResult r =
+      NonlinearSolver(s).solve(truss, u, [&](const VectorXd& uc, double t, const StepAttempt&) {
+        CHECK(t <= 1.0);
+        CHECK(truss.load(-uc(1)) == Approx(t * P).margin(1e-9 * P));
+        return true;
+      });
+  REQUIRE(r.status == NonlinearSolverStatus::converged);
+  CHECK(r.t == 1.0);
+  CHECK(r.attempts.back().landed);
+  CHECK(r.cutbacks == 1);
+  int failed_landings = 0;
+  for (const StepAttempt& a : r.attempts)
+    if (a.outcome == NewtonOutcome::landing_failed) {
+      ++failed_landings;
+      CHECK_THAT(a.message, Catch::StartsWith("landing on t = 1 failed"));
+    }
+  CHECK(failed_landings == 1);
+  CHECK_THAT(r.message, Catch::StartsWith("reached t1 = 1"));
 }
