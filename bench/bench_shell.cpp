@@ -1,8 +1,8 @@
 // Benchmarks of the Kirchhoff-Love shell (iga/shell/kirchhoff_love_shell.hpp) on a 20 x 20 bicubic
 // plate (randomly perturbed current state): the element tangent (forces + consistent tangent,
-// 16 Gauss points, 48 x 48) per element, and one global assembly into triplets plus the
-// sparse matrix (setFromTriplets, or the pattern kept: PatternAssembler).
-// Run: build/release/bench/bench_shell --benchmark_repetitions=5
+// 16 Gauss points, 48 x 48) per element (by degree; by law), and one global assembly into triplets
+// plus the sparse matrix (setFromTriplets, or the pattern kept: PatternAssembler). Run:
+// build/release/bench/bench_shell --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -18,10 +18,10 @@ using namespace iga;
 
 namespace {
 
-KirchhoffLoveShell plate(int n, int p) {
+KirchhoffLoveShell plate(int n, int p, ShellLaw law = ShellLaw::kSaintVenantKirchhoff) {
   NurbsSurface s = make_plane_patch(Vector3d::Zero(), Vector3d(1, 0, 0), Vector3d(0, 1, 0));
   s = subdivide(elevate_degree(s, p - 1, p - 1), n, n);
-  return KirchhoffLoveShell(s, {1e6, 0.3, 0.01});
+  return KirchhoffLoveShell(s, {1e6, 0.3, 0.01, law, 5});
 }
 
 std::vector<Vector3d> perturbed(const std::vector<Vector3d>& X) {
@@ -32,10 +32,8 @@ std::vector<Vector3d> perturbed(const std::vector<Vector3d>& X) {
   return x;
 }
 
-// Element tangent of a 20 x 20 plate of degree p; items = elements.
-void BM_ShellElementTangent(benchmark::State& state) {
-  const int p = static_cast<int>(state.range(0));
-  const KirchhoffLoveShell shell = plate(20, p);
+// Element tangents of the shell, one element after another; items = elements.
+void time_element_tangents(benchmark::State& state, const KirchhoffLoveShell& shell) {
   const std::vector<Vector3d> x = perturbed(shell.reference_points());
   ShellElementVector f;
   ShellElementMatrix K;
@@ -47,7 +45,24 @@ void BM_ShellElementTangent(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
+
+// Element tangent of a 20 x 20 plate of degree p; items = elements.
+void BM_ShellElementTangent(benchmark::State& state) {
+  const int p = static_cast<int>(state.range(0));
+  const KirchhoffLoveShell shell = plate(20, p);
+  time_element_tangents(state, shell);
+}
 BENCHMARK(BM_ShellElementTangent)->Arg(2)->Arg(3)->Arg(4);
+
+// Element tangent of the 20 x 20 bicubic plate by law: 0 St. Venant-Kirchhoff (closed-form
+// thickness integration), 1 neo-Hookean (5 points through the thickness); items = elements.
+void BM_ShellElementTangentLaw(benchmark::State& state) {
+  const ShellLaw law =
+      state.range(0) == 0 ? ShellLaw::kSaintVenantKirchhoff : ShellLaw::kNeoHookean;
+  const KirchhoffLoveShell shell = plate(20, 3, law);
+  time_element_tangents(state, shell);
+}
+BENCHMARK(BM_ShellElementTangentLaw)->Arg(0)->Arg(1);
 
 // One global assembly (forces + triplets + setFromTriplets) of the 20 x 20 bicubic plate.
 void BM_ShellAssembly20x20Bicubic(benchmark::State& state) {

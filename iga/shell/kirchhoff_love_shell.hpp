@@ -141,7 +141,8 @@ struct ShellStresses {
   /// (M_11, M_22, M_12).
   Eigen::Vector3d membrane_force_local = Eigen::Vector3d::Zero();
   Eigen::Vector3d moment_local = Eigen::Vector3d::Zero();
-  /// Largest von Mises stress of the top and bottom fibres, sigma = N/h +- 6 M/h^2 (plane stress).
+  /// Largest von Mises stress of the top and bottom fibres, sigma = N/h +- 6 M/h^2 (plane stress;
+  /// with the neo-Hookean law the same formula on its resultants, an estimate).
   double von_mises = 0.0;
   double energy_density = 0.0;  ///< W per unit reference area
 };

@@ -3,7 +3,7 @@
 // whose load-deflection points at P/P_max = 0.05, 0.2, 0.5, 1 must lie within 1 % of the
 // published ones. The suite runs 24 x 24 cubic elements; the mesh study (16, 24, 32) is tagged
 // [.slow] and prints its table. The pinched cylinder (data/pinched_cylinder_nonlinear.json,
-// arc length through its snap-backs): mesh study 24, 32, 40 [.slow], see its test case. The
+// arc length through its snap-backs): mesh study, cubic and quartic [.slow], see its test case. The
 // hinged roof of Sabir & Lock (data/hinged_roof.json, both thicknesses): arc length through both
 // load limit points, the first maximum against the published one.
 #include <catch2/catch.hpp>
@@ -126,72 +126,73 @@ const CylinderPoint& reference(double load) {
 
 }  // namespace
 
-// The Kirchhoff-Love cylinder converges (24 -> 32 -> 40) to a path close to, but not on, the
-// published one (Sze et al.: ABAQUS S4R, shear deformable, one mesh): -W_A within 1 % from
-// P/P_max = 0.2 on and 2 % at 0.1, U_B 3-7 % above the table (the same sign and shape; the
-// snap-backs around P/P_max = 0.2 and 0.5 are where the meshes differ most). The checks are
-// those: at 40 x 40, the last state at each reference load (the path that goes on to P_max),
-// -W_A within 1 % at 0.5 and 1.0 and within 2 % at 0.1 and 0.2, U_B within 8 %; and the end
-// point converging: 32 -> 40 moves -W_A and U_B by less than 0.5 %.
-TEST_CASE("Sze, Liu & Lo: pinched cylinder mesh study 24, 32, 40 (arc length)",
+// The Kirchhoff-Love cylinder's path, cubic 32, 48, 64 and quartic 32, 48 elements. Before the
+// first limit point (P/P_max = 0.1) and at P_max the finest two agree to 0.1 % (cubic 64:
+// 23.615, -2.458 and 83.622, 35.632; quartic 48: 23.617, -2.458 and 83.636, 35.598): that is the
+// converged path, and it lies above the published one (Sze et al.: ABAQUS S4R, shear deformable,
+// one mesh) by 2.0 % (-W_A) and 2.8 % (U_B) at 0.1 and 0.6 %, 3.9 % at P_max. Coarser meshes
+// scatter around it by a few per cent (quartic 32 happens to end within 1 % of the table: 83.162,
+// 34.611). Around 0.2 and 0.5 the path snaps back (several states at one load, folds forming at
+// mesh-dependent loads); the last state at each load is compared there, -W_A only. Checked: the
+// finest two agree within 0.3 % at 0.1 and 1.0; against the table -W_A within 2 % at 0.1, 3 % at
+// 0.2, 1 % at 0.5 and 1.0, U_B within 5 % at 0.1 and 1.0. The strains reach 5 % under the load
+// at 0.1 and 15-24 % at the folds at P_max; the neo-Hookean law (cubic 64) moves the path by less
+// than 1 % at 0.1 and 1.0 (23.445, -2.436; 83.873, 35.551): the law is not what separates the
+// path from the table. (At 40 x 40 its end point happened to lie within 1 % of the table.)
+TEST_CASE("Sze, Liu & Lo: pinched cylinder mesh study, cubic 32, 48, 64, quartic 32, 48",
           "[iga][model][sze][.slow]") {
-  std::printf("pinched cylinder with rigid diaphragms, Kirchhoff-Love, cubic, arc length:\n");
-  std::vector<CylinderPoint> last;
-  std::vector<CylinderPoint> previous_end;
-  for (int n : {24, 32, 40}) {
-    const std::vector<CylinderPoint> c = cylinder(n);
+  std::printf("pinched cylinder with rigid diaphragms, Kirchhoff-Love, arc length:\n");
+  struct Mesh {
+    int degree, n;
+  };
+  std::vector<std::vector<CylinderPoint>> finest;
+  for (const Mesh m : {Mesh{3, 32}, Mesh{3, 48}, Mesh{3, 64}, Mesh{4, 32}, Mesh{4, 48}}) {
+    const std::vector<CylinderPoint> c = cylinder(m.n, [&m](Json& d) {
+      d["geometry"]["cylinder"]["refine"]["elevate"] = {m.degree - 2, m.degree - 1};
+    });
     for (const CylinderPoint& p : c) {
       const CylinderPoint& ref = reference(p.load);
       std::printf(
-          "  %2d x %2d  P/P_max %.1f: -W_A %8.3f (%7.3f, %+6.2f %%), U_B %8.3f (%7.3f, %+6.2f "
-          "%%)\n",
-          n, n, p.load, p.wa, ref.wa, 100.0 * (p.wa / ref.wa - 1.0), p.ub, ref.ub,
+          "  p = %d, %2d x %2d  P/P_max %.1f: -W_A %8.3f (%7.3f, %+6.2f %%), U_B %8.3f (%7.3f, "
+          "%+6.2f %%)\n",
+          m.degree, m.n, m.n, p.load, p.wa, ref.wa, 100.0 * (p.wa / ref.wa - 1.0), p.ub, ref.ub,
           100.0 * (p.ub / ref.ub - 1.0));
     }
     REQUIRE(!c.empty());
     REQUIRE(c.back().load == 1.0);
-    if (n == 32) previous_end = {c.back()};
-    last = c;
+    if (m.n == 64 || (m.degree == 4 && m.n == 48)) finest.push_back(c);
   }
-  for (const CylinderPoint& ref : kCylinder) {
-    const CylinderPoint* p = nullptr;
-    for (const CylinderPoint& q : last)
-      if (q.load == ref.load) p = &q;
-    REQUIRE(p != nullptr);
-    CHECK(std::abs(p->wa / ref.wa - 1.0) < (ref.load >= 0.5 ? 0.01 : 0.02));
-    CHECK(std::abs(p->ub / ref.ub - 1.0) < 0.08);
-  }
-  REQUIRE(previous_end.size() == 1);
-  CHECK(std::abs(last.back().wa / previous_end[0].wa - 1.0) < 0.005);
-  CHECK(std::abs(last.back().ub / previous_end[0].ub - 1.0) < 0.005);
-}
-
-// The same cylinder with the neo-Hookean law at 40 x 40: at P_max the strains reach 15-24 % at
-// the folds under A and beside B, and the path is about to snap again (U_B rises 0.9 between
-// P/P_max = 0.98 and 1 with St. Venant-Kirchhoff), so the law moves the end point: -W_A, U_B
-// +0.2 %, +0.9 % (St. Venant-Kirchhoff +0.5 %, +4.1 %). At 0.5 U_B stays 2.7 % above the table
-// with either law. Checked: the end point within 1 %, the other points as the mesh study's.
-TEST_CASE("Sze, Liu & Lo: pinched cylinder 40 x 40 with the neo-Hookean law",
-          "[iga][model][sze][.slow]") {
-  const std::vector<CylinderPoint> c =
-      cylinder(40, [](Json& d) { d["materials"]["shell"]["law"] = "neo_hookean"; });
-  REQUIRE(!c.empty());
-  REQUIRE(c.back().load == 1.0);
-  for (const CylinderPoint& p : c) {
-    const CylinderPoint& ref = reference(p.load);
-    std::printf(
-        "  neo-Hookean 40 x 40  P/P_max %.1f: -W_A %8.3f (%+6.2f %%), U_B %8.3f (%+6.2f %%)\n",
-        p.load, p.wa, 100.0 * (p.wa / ref.wa - 1.0), p.ub, 100.0 * (p.ub / ref.ub - 1.0));
-  }
-  for (const CylinderPoint& ref : kCylinder) {
+  REQUIRE(finest.size() == 2);
+  const std::vector<CylinderPoint> nh =
+      cylinder(64, [](Json& d) { d["materials"]["shell"]["law"] = "neo_hookean"; });
+  REQUIRE(!nh.empty());
+  REQUIRE(nh.back().load == 1.0);
+  // The last state at each reference load (the path that goes on to P_max).
+  const auto at = [](const std::vector<CylinderPoint>& c, double load) {
     const CylinderPoint* p = nullptr;
     for (const CylinderPoint& q : c)
-      if (q.load == ref.load) p = &q;
+      if (q.load == load) p = &q;
     REQUIRE(p != nullptr);
-    const bool end = ref.load == 1.0;
-    CHECK(std::abs(p->wa / ref.wa - 1.0) < (ref.load >= 0.5 ? 0.01 : 0.02));
-    CHECK(std::abs(p->ub / ref.ub - 1.0) < (end ? 0.01 : 0.08));
+    return *p;
+  };
+  for (double load : {0.1, 1.0}) {
+    const CylinderPoint a = at(finest[0], load), b = at(finest[1], load), c = at(nh, load);
+    std::printf(
+        "  neo-Hookean p = 3, 64 x 64  P/P_max %.1f: -W_A %8.3f (%+6.2f %% from St. "
+        "Venant-Kirchhoff), U_B %8.3f (%+6.2f %%)\n",
+        load, c.wa, 100.0 * (c.wa / a.wa - 1.0), c.ub, 100.0 * (c.ub / a.ub - 1.0));
+    CHECK(std::abs(a.wa / b.wa - 1.0) < 0.003);
+    CHECK(std::abs(a.ub / b.ub - 1.0) < 0.003);
+    CHECK(std::abs(c.wa / a.wa - 1.0) < 0.01);
+    CHECK(std::abs(c.ub / a.ub - 1.0) < 0.01);
   }
+  for (const std::vector<CylinderPoint>& c : finest)
+    for (const CylinderPoint& ref : kCylinder) {
+      const CylinderPoint p = at(c, ref.load);
+      const double tol_wa = ref.load == 0.1 ? 0.02 : ref.load == 0.2 ? 0.03 : 0.01;
+      CHECK(std::abs(p.wa / ref.wa - 1.0) < tol_wa);
+      if (ref.load == 0.1 || ref.load == 1.0) CHECK(std::abs(p.ub / ref.ub - 1.0) < 0.05);
+    }
 }
 
 namespace {
