@@ -24,7 +24,11 @@ std::string ShellProblem::describe() const {
   const NurbsSurface& S = shell_.reference();
   return "shell of " + std::to_string(shell_.num_elements()) + " elements (degree " +
          std::to_string(S.degree_u()) + " x " + std::to_string(S.degree_v()) + ", " +
-         std::to_string(num_control_points()) + " control points)";
+         std::to_string(num_control_points()) + " control points" +
+         (shell_.material().law == ShellLaw::kNeoHookean
+              ? ", neo-Hookean, " + std::to_string(shell_.material().thickness_points) +
+                    " points through the thickness)"
+              : ")");
 }
 
 SampledMesh ShellProblem::sample_model(const VectorXd& u, double t, int samples) const {

@@ -360,6 +360,18 @@ TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the s
   fs::remove_all(out);
 }
 
+TEST_CASE("iga run: the neo-Hookean tube names its law in the log and plots the closed form",
+          "[apps][iga][run][shell]") {
+  const fs::path out = fs::temp_directory_path() / ("iga_run_tube_" + std::to_string(::getpid()));
+  const Run r = run_data_model("inflated_tube.json", out);
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("shell of 16 elements (degree 3 x 3, 55 control points, neo-Hookean, 5 points "
+                   "through the thickness)") != std::string::npos);
+  CHECK(fs::exists(out / "pressure_stretch_reference.json"));
+  fs::remove_all(out);
+}
+
 TEST_CASE("iga run: bad analysis input exits 1 naming the file, JSON path and value",
           "[apps][iga][run][errors]") {
   const std::string model = std::string(IGA_SOURCE_DIR) + "/data/capstan.json";
