@@ -279,7 +279,7 @@ TEST_CASE(
 }
 
 TEST_CASE(
-    "analysis: data/inflated_tube.json holds the neo-Hookean tube at twice its radius; St. "
+    "analysis: data/inflated_tube.json holds the neo-Hookean tube at twice its radius, and St. "
     "Venant-Kirchhoff at 1.2287 times (closed forms)",
     "[iga][analysis][shell][neo_hookean]") {
   // The model's p is the neo-Hookean closed form's pressure at the hoop stretch 2 (p = h S / R,
