@@ -370,7 +370,7 @@ AugmentResult CurveContact::passed_through() const {
 }
 
 AugmentResult CurveContact::augment() {
-  if (AugmentResult through = passed_through(); through.status == AugmentStatus::failed)
+  if (AugmentResult through = passed_through(); through.status != AugmentStatus::satisfied)
     return through;
   const bool friction = params_.mu > 0.0 && params_.eps_t > 0.0;
   return augmentation_.update(

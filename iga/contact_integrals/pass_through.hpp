@@ -45,7 +45,7 @@ AugmentResult passed_through(const std::vector<Point>& points, const RigidSurfac
                 "%d contact point(s) went through the rigid surface in one step (moved up to "
                 "%.3g, across the surface)",
                 n, longest);
-  return {AugmentStatus::failed, buf};
+  return {AugmentStatus::passed_through, buf};
 }
 
 }  // namespace iga

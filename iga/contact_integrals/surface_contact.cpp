@@ -682,7 +682,7 @@ AugmentResult SurfaceContact::passed_through() const {
 }
 
 AugmentResult SurfaceContact::augment() {
-  if (AugmentResult through = passed_through(); through.status == AugmentStatus::failed)
+  if (AugmentResult through = passed_through(); through.status != AugmentStatus::satisfied)
     return through;
   const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
   return augmentation_.update(

@@ -23,16 +23,30 @@ enum class AugmentStatus {
   satisfied,  ///< the constraints hold within their tolerance: commit the step
   updated,    ///< the multipliers were updated: solve the same step again
   failed,     ///< not satisfied after the allowed number of updates: the step fails
+  /// a contact point went through the rigid surface in the step (a thin tool crossed): the
+  /// step fails whatever the enforcement (penalty or exact)
+  passed_through,
 };
 struct AugmentResult {
   AugmentStatus status = AugmentStatus::satisfied;
   std::string message;  ///< what was found (e.g. the largest penetration against the tolerance)
 };
 /// Joins the result of one part (a contact pair, a body) into that of the whole: the worst
-/// status (failed > updated > satisfied) with the messages of the parts that have it.
+/// status (passed_through > failed > updated > satisfied) with the messages of the parts that
+/// have it.
 inline void merge_augment(AugmentResult& whole, const AugmentResult& part) {
   const auto rank = [](AugmentStatus s) {
-    return s == AugmentStatus::failed ? 2 : s == AugmentStatus::updated ? 1 : 0;
+    switch (s) {
+      case AugmentStatus::passed_through:
+        return 3;
+      case AugmentStatus::failed:
+        return 2;
+      case AugmentStatus::updated:
+        return 1;
+      case AugmentStatus::satisfied:
+        break;
+    }
+    return 0;
   };
   if (rank(part.status) > rank(whole.status)) {
     whole = part;

@@ -3,6 +3,7 @@
 #include "iga/solvers/nonlinear_solver.hpp"
 
 #include "iga/core/state_archive.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -94,6 +95,10 @@ const char* to_string(NewtonOutcome o) {
       return "augmentation_failed";
     case NewtonOutcome::landing_failed:
       return "landing_failed";
+    case NewtonOutcome::passed_through:
+      return "passed_through";
+    case NewtonOutcome::probe_refused:
+      return "probe_refused";
   }
   return "?";
 }
@@ -157,6 +162,7 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
   if (linear.fell_back()) ++a.cholesky_fallbacks;
   if (ls == LinearSolveStatus::success) {
     ls = linear.solve(rhs, du);  // may replace a grown LDL^T by UMFPACK
+    roundoff_probe_perturb(du);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
     if (linear.backend() == LinearBackend::cholmod)
       ++a.cholmod_factorizations;
     else if (linear.backend() == LinearBackend::ldlt)
@@ -166,6 +172,13 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
   }
   r.time_linear_solve += seconds_since(t0);
   return ls;
+}
+
+/// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp).
+void probe_refusal(StepAttempt& a) {
+  if (!roundoff_probe_refuses()) return;
+  a.outcome = NewtonOutcome::probe_refused;
+  a.message = "refused by the round-off probe (IGA_ROUNDOFF_PROBE, tests only)";
 }
 
 /// The divergence tests after iteration k: |R_k| above r_div, or |R| grew in
@@ -231,8 +244,9 @@ int augment_until_satisfied(NonlinearProblem& problem, const VectorXd& u, double
   while (a.outcome == NewtonOutcome::converged) {
     const AugmentResult ar = problem.augment(u, t);
     if (ar.status == AugmentStatus::satisfied) break;
-    if (ar.status == AugmentStatus::failed) {
-      a.outcome = NewtonOutcome::augmentation_failed;
+    if (ar.status == AugmentStatus::failed || ar.status == AugmentStatus::passed_through) {
+      a.outcome = ar.status == AugmentStatus::failed ? NewtonOutcome::augmentation_failed
+                                                     : NewtonOutcome::passed_through;
       a.message = ar.message;
       break;
     }
@@ -523,6 +537,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       throw;
     }
     add_attempt_totals(r, a);
+    if (a.outcome == NewtonOutcome::converged && std::min(dt, a.dt) > s.min_step * (1.0 + 1e-12))
+      probe_refusal(a);
 
     if (a.outcome == NewtonOutcome::converged) {
       if (a.predicted > 0.0) a.jump_ratio = (u - u_last).norm() / a.predicted;
@@ -781,6 +797,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
   const auto solve = [&](const VectorXd& b, VectorXd& x) {
     const Clock::time_point t0 = Clock::now();
     const LinearSolveStatus ls = linear_.solve(b, x);
+    roundoff_probe_perturb(x);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
     r.time_linear_solve += seconds_since(t0);
     return ls;
   };
@@ -995,6 +1012,9 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
     }
     add_attempt_totals(r, a);
     a.dt = a.t - arc.t;
+    if (a.outcome == NewtonOutcome::converged &&
+        (arc.flat ? arc.dt_flat > s.min_step * (1.0 + 1e-12) : arc.dl > arc.dl_min * (1.0 + 1e-12)))
+      probe_refusal(a);
 
     if (a.outcome == NewtonOutcome::converged) {
       arc.du_prev = u - arc.u_last;

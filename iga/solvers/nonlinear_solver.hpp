@@ -121,6 +121,11 @@ enum class NewtonOutcome {
                         ///< still violated after its allowed multiplier updates; cut back
   landing_failed,       ///< arc length: the step crossed t1 or a hit time and the solve at that t
                         ///< failed; cut back (at the minimum arc length the arc state is kept)
+  passed_through,       ///< Newton converged but a contact point went through a rigid surface in
+                        ///< the step (NonlinearProblem::augment, penalty or exact); cut back
+  probe_refused,        ///< tests only: converged, refused by the round-off probe
+                        ///< (IGA_ROUNDOFF_PROBE, roundoff_probe.hpp) as round-off on another
+                        ///< processor may refuse a step at the edge of convergence; cut back
 };
 
 /// How the whole run ended.

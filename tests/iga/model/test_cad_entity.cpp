@@ -277,6 +277,14 @@ TEST_CASE("cad entity: a plate that would fall through the die in one step is ca
   const AnalysisResult r = a.run(nullptr, dir);
   REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
   CHECK(r.solver.cutbacks > 0);
+  // The steps cut for it are labelled as what they are (a penalty run has no augmentation to
+  // fail: they were labelled augmentation_failed).
+  int through = 0;
+  for (const StepAttempt& at : r.solver.attempts) {
+    through += at.outcome == NewtonOutcome::passed_through;
+    CHECK(at.outcome != NewtonOutcome::augmentation_failed);
+  }
+  CHECK(through > 0);
   CHECK(r.steps.back().contact.active > 100);
   CHECK(r.steps.back().tool_loads.at(0).first.z() == Approx(-12.96).epsilon(1e-3));
   // On the top: 1e-4 of start gap and a penetration of the order q / eps_N = 1e-4 (on this

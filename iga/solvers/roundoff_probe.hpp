@@ -1,0 +1,45 @@
+// The round-off probe (issue 34): a test-only knob that makes the suite's runs feel what another
+// processor does to them. Results differ between x86-64 processors in the last bits (glibc's libm
+// and OpenBLAS pick code paths per processor); a test that holds only for one rounding (two runs
+// required to take the same adaptive steps, the same cutbacks or active counts) passes on the
+// machine that wrote it and fails on another. With the environment variable
+// IGA_ROUNDOFF_PROBE=<seed> (a non-negative integer) every Newton correction and arc-length
+// tangent solution of NonlinearSolver is multiplied, component by component, by
+// (1 + 1e-10 xi_i), xi_i uniform in [-1, 1] from one pseudo-random sequence per process (seeded
+// by <seed>; every run in a process draws its own numbers, so two runs that a test compares are
+// perturbed differently). That is round-off made a million times larger: it moves the decisions
+// that round-off can move (a point active or not at a threshold, a Newton sequence at the edge of
+// its iteration limit), and no result beyond what a test's tolerance should allow. Such a
+// decision flips only now and then (a perturbation alone fails today's sphere-pole capstan test
+// for 2 seeds of 20), so the probe also makes the decision that matters most for such tests
+// itself: it refuses a converged step, with the probability 1/8 per step, as if it had not
+// converged (NewtonOutcome::probe_refused; never a step of the minimum size), and the step is cut
+// back as any failed step. A test that requires two runs to take the same steps, or a run to
+// take no cutback, then fails nearly always. Unset (the default), nothing changes.
+// scripts/portability.sh runs the whole suite with it (mode `probe`; CI's libm run).
+//
+// Notation: du the correction (or tangent solution), xi_i the i-th draw, kRoundoffProbeSize the
+// relative size 1e-10, kRoundoffProbeRefusal the probability of a refusal.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace iga {
+
+/// The relative size of the probe's perturbation.
+inline constexpr double kRoundoffProbeSize = 1e-10;
+/// The probability that the probe refuses a converged step.
+inline constexpr double kRoundoffProbeRefusal = 0.125;
+
+/// True when IGA_ROUNDOFF_PROBE is set (read once per process). Throws std::invalid_argument
+/// naming the variable and its value when it is set but not a non-negative integer.
+bool roundoff_probe_enabled();
+
+/// du_i <- du_i (1 + 1e-10 xi_i) when the probe is on; nothing otherwise. Thread-safe.
+void roundoff_probe_perturb(Eigen::VectorXd& du);
+
+/// True (with the probability kRoundoffProbeRefusal) when the probe is on and refuses the
+/// converged step at hand; always false otherwise. Thread-safe.
+bool roundoff_probe_refuses();
+
+}  // namespace iga
