@@ -53,8 +53,7 @@ class CadError : public std::runtime_error {
   using std::runtime_error::runtime_error;
   /// For a face number out of range: its position in CadOptions::faces (else -1), so that a
   /// model's "faces" list can be located at the bad entry.
-  CadError(const std::string& what, int option)
-      : std::runtime_error(what), face_option(option) {}
+  CadError(const std::string& what, int option) : std::runtime_error(what), face_option(option) {}
   int face_option = -1;
 };
 
