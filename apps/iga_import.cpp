@@ -1,7 +1,8 @@
 // `iga import FILE.step --out FILE.json`: the faces of a STEP or IGES file (cad/cad_import.hpp)
 // written as an ordinary model: one entity per face (NURBS or analytic, exact unless the
 // import says otherwise) and a patch group of them under the tool's name, so that a user can
-// inspect the faces and run without OpenCASCADE.
+// inspect the faces and run without OpenCASCADE. Entities of the file OpenCASCADE skipped are a
+// warning on stderr (an error with --strict).
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -17,6 +18,7 @@ namespace {
 struct ImportOptions {
   std::string file, out, name, unit = "mm";
   std::vector<int> faces;
+  bool strict = false;
 };
 
 int run_import(const ImportOptions& o) {
@@ -24,7 +26,9 @@ int run_import(const ImportOptions& o) {
   CadOptions opt;
   opt.faces = o.faces;
   opt.unit = o.unit;
+  opt.strict = o.strict;
   const CadImport imp = import_cad(o.file, name, opt);
+  for (const std::string& w : imp.warnings) std::cerr << "warning: " << w << "\n";
   Model m;
   m.name = name;
   m.description = "faces of " + std::filesystem::path(o.file).filename().string() +
@@ -61,6 +65,8 @@ Action add_import_command(CLI::App& app) {
   cmd->add_option("--unit", o->unit, "Length unit to convert the file's lengths into")
       ->capture_default_str()
       ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft", "um", "km"}));
+  cmd->add_flag("--strict", o->strict,
+                "Refuse a file of which OpenCASCADE skipped entities (default: a warning)");
   return [o]() { return run_import(*o); };
 }
 

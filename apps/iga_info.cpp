@@ -1,5 +1,6 @@
 // `iga info MODEL.json`: what a model holds; `iga info FILE.step`: the faces of a CAD file,
-// with their type, what each imports as, size and trimming.
+// with their type, what each imports as (or why it cannot be), size and trimming, the file's
+// length unit and the factor applied; what OpenCASCADE skipped is a warning on stderr.
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -51,22 +52,37 @@ bool is_cad_file(const std::string& path) {
 }
 
 int cad_info(const std::string& file, const std::string& unit) {
-  CadOptions opt;
-  opt.unit = unit;
-  const CadImport imp = import_cad(file, "face", opt);
-  std::cout << file << ": " << cad_format(file) << " file, " << imp.faces.size()
-            << " faces (lengths in " << unit << "; read and converted in " << imp.seconds
-            << " s)\n";
-  for (const CadFace& f : imp.faces) {
+  const CadListing l = list_cad(file, unit);
+  std::size_t failing = 0;
+  for (const CadFace& f : l.faces) failing += !f.message.empty();
+  std::cout << file << ": " << l.format << " file, " << l.faces.size() << " faces";
+  if (failing > 0) std::cout << " (" << failing << " cannot be imported)";
+  std::cout << "; length unit of the file: ";
+  if (l.units.names.empty())
+    std::cout << "not declared";
+  else
+    for (std::size_t i = 0; i < l.units.names.size(); ++i)
+      std::cout << (i ? ", " : "") << l.units.names[i];
+  std::cout << " (" << l.units.file_unit_mm << " mm), converted to " << l.units.unit
+            << " by the factor " << l.units.factor << "; read in " << l.seconds << " s\n";
+  for (const CadFace& f : l.faces) {
     const Eigen::Vector3d size = f.box_hi - f.box_lo;
-    std::cout << "  face " << f.index << ": " << f.cad_type << " -> " << f.entity_type
-              << (f.exact ? " (exact)"
-                          : " (approximated within " + std::to_string(f.tolerance) + ")")
-              << ", area " << f.area << ", box " << size.x() << " x " << size.y() << " x "
+    std::cout << "  face " << f.index << ": " << f.cad_type << " -> ";
+    if (!f.message.empty()) {
+      const std::string prefix = "cannot be imported: ";  // (said once)
+      const bool said = f.message.rfind(prefix, 0) == 0;
+      std::cout << prefix << f.message.substr(said ? prefix.size() : 0);
+    } else {
+      std::cout << f.entity_type
+                << (f.exact ? " (exact)"
+                            : " (approximated within " + std::to_string(f.tolerance) + ")");
+    }
+    std::cout << ", area " << f.area << ", box " << size.x() << " x " << size.y() << " x "
               << size.z() << " from (" << f.box_lo.x() << ", " << f.box_lo.y() << ", "
               << f.box_lo.z() << "), " << (f.trimmed ? "trimmed" : "untrimmed") << ", " << f.wires
               << (f.wires == 1 ? " boundary loop" : " boundary loops") << "\n";
   }
+  for (const std::string& w : l.warnings) std::cerr << "warning: " << w << "\n";
   return 0;
 }
 }  // namespace

@@ -3,15 +3,25 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <functional>
+#include <iostream>
 #include <mutex>
 #include <numbers>
 #include <optional>
 #include <sstream>
 #include <type_traits>
 #include <variant>
+
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <BRepAdaptor_Curve2d.hxx>
 #include <BRepBndLib.hxx>
@@ -32,13 +42,23 @@
 #include <Geom_RectangularTrimmedSurface.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <IGESControl_Reader.hxx>
+#include <IGESData_GlobalSection.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <STEPConstruct_UnitContext.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
+#include <StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx.hxx>
+#include <StepRepr_GlobalUnitAssignedContext.hxx>
 #include <TColStd_Array1OfReal.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
+#include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
 #include <TopTools_IndexedMapOfShape.hxx>
@@ -46,6 +66,9 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <TopoDS_Wire.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
+#include <XSControl_WorkSession.hxx>
 #include <gp_Ax3.hxx>
 #include <gp_Cone.hxx>
 #include <gp_Cylinder.hxx>
@@ -106,10 +129,130 @@ std::mutex& occt_mutex() {  // OCCT's reader settings are process-wide statics
   return m;
 }
 
+bool in_reader_child = false;  // this process is the reader child of run_guarded
+
+/// Shortest text that reads back to x.
+std::string num(double x) {
+  return Json(x).dump();
+}
+
+double unit_in_mm(const std::string& unit) {
+  static const std::array<std::pair<const char*, double>, 7> units = {{{"mm", 1.0},
+                                                                       {"cm", 10.0},
+                                                                       {"m", 1e3},
+                                                                       {"in", 25.4},
+                                                                       {"ft", 304.8},
+                                                                       {"um", 1e-3},
+                                                                       {"km", 1e6}}};
+  for (const auto& [ours, mm] : units)
+    if (unit == ours) return mm;
+  return 1.0;  // occt_unit has refused it before
+}
+
+/// A declared length unit must be a length: finite, positive, 1e-9 m to 1e9 m.
+void check_file_unit(const std::string& path, double mm, const std::string& name) {
+  if (std::isfinite(mm) && mm >= 1e-6 && mm <= 1e12) return;
+  throw CadError(path + ": the file's length unit" + (name.empty() ? "" : " \"" + name + "\"") +
+                 " is " + num(mm) +
+                 " mm: refused (a length unit must be positive and within 1e-9 m to 1e9 m)");
+}
+
+/// The entity's label in the file ("#13" in STEP, "D5" in IGES), or its number in the model.
+std::string label_of(const Handle(Interface_InterfaceModel) & model, const Interface_Check& check,
+                     int number) {
+  if (!model.IsNull() && check.HasEntity()) {
+    const Handle(TCollection_HAsciiString) l = model->StringLabel(check.Entity());
+    if (!l.IsNull()) return l->ToCString();
+  }
+  return "entity " + std::to_string(number);
+}
+
+/// The entities a check list fails ("#13 (why)"); a failure of the file as a whole (no entity:
+/// a syntax error) is returned in `global`.
+std::vector<std::string> failed_entities(const Interface_CheckIterator& checks,
+                                         const Handle(Interface_InterfaceModel) & model,
+                                         std::string& global) {
+  std::vector<std::string> out;
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& c = checks.Value();
+    if (c.IsNull() || !c->HasFailed()) continue;
+    const std::string why = c->CFail(1);
+    if (checks.Number() == 0 && !c->HasEntity()) {
+      if (global.empty()) global = why;
+      continue;
+    }
+    out.push_back(label_of(model, *c, checks.Number()) + " (" + why + ")");
+  }
+  return out;
+}
+
+/// "FILE: OpenCASCADE could not <what> N entities of the file; skipped: #1 (..), ... and K more".
+std::string skipped(const std::string& path, const char* what,
+                    const std::vector<std::string>& entities) {
+  std::string s = path + ": OpenCASCADE could not " + what + " " + std::to_string(entities.size()) +
+                  (entities.size() == 1 ? " entity" : " entities") + " of the file; skipped: ";
+  const std::size_t shown = std::min<std::size_t>(entities.size(), 3);
+  for (std::size_t i = 0; i < shown; ++i) s += (i ? ", " : "") + entities[i];
+  if (entities.size() > shown) s += " and " + std::to_string(entities.size() - shown) + " more";
+  return s;
+}
+
+struct ReadResult {
+  TopoDS_Shape shape;
+  CadUnits units;
+  std::vector<std::string> warnings;
+};
+
+/// STEP: the names FileUnits reports, and the length unit of every representation context
+/// (each is checked; the first is the file's unit).
+void step_units(STEPControl_Reader& reader, const std::string& path, ReadResult& r) {
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.FileUnits(lengths, angles, solid_angles);
+  for (int i = 1; i <= lengths.Length(); ++i) r.units.names.emplace_back(lengths(i).ToCString());
+  const Handle(Interface_InterfaceModel) model = reader.Model();
+  bool first = true;
+  for (int i = 1; !model.IsNull() && i <= model->NbEntities(); ++i) {
+    const Handle(Standard_Transient) e = model->Value(i);
+    Handle(StepRepr_GlobalUnitAssignedContext) g;
+    if (const auto c =
+            Handle(StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx)::DownCast(e))
+      g = c->GlobalUnitAssignedContext();
+    else
+      g = Handle(StepRepr_GlobalUnitAssignedContext)::DownCast(e);
+    if (g.IsNull()) continue;
+    STEPConstruct_UnitContext u;
+    const int status = u.ComputeFactors(g);
+    if (status != 0 || !u.LengthDone()) {
+      const Handle(TCollection_HAsciiString) label = model->StringLabel(e);
+      r.warnings.push_back(path + ": the length unit of " +
+                           (label.IsNull() ? "entity " + std::to_string(i) : label->ToCString()) +
+                           " is not understood by OpenCASCADE (" + u.StatusMessage(status) + ")");
+      continue;
+    }
+    check_file_unit(path, u.LengthFactor(), r.units.names.empty() ? "" : r.units.names.front());
+    if (first) r.units.file_unit_mm = u.LengthFactor();
+    first = false;
+  }
+}
+
+/// IGES: the global section's unit (OCCT 7.6's GlobalSection::UnitValue is in mm, whatever its
+/// comment says: 25.4 for inches, 1 for mm, whichever unit OCCT is set to convert into).
+void iges_units(IGESControl_Reader& reader, const std::string& path, ReadResult& r) {
+  const Handle(IGESData_IGESModel) model = Handle(IGESData_IGESModel)::DownCast(reader.Model());
+  if (model.IsNull()) return;
+  const IGESData_GlobalSection& g = model->GlobalSection();
+  std::string name = g.UnitName().IsNull() ? "" : g.UnitName()->ToCString();
+  if (name.empty()) name = "unit flag " + std::to_string(g.UnitFlag());
+  r.units.names.push_back(name);
+  check_file_unit(path, g.UnitValue(), name);
+  r.units.file_unit_mm = g.UnitValue();
+}
+
 /// Reads with an XSControl reader (STEP or IGES) in the given OCCT unit. The session unit is a
-/// process-wide setting: set for this read, then put back.
+/// process-wide setting: set for this read, then put back. A syntax error of the file is an
+/// error; entities OpenCASCADE could not read or transfer are warnings.
 template <class Reader>
-TopoDS_Shape read_with(const std::string& path, const char* unit, const char* format) {
+ReadResult read_with(const std::string& path, const char* unit, const char* format) {
   Reader reader;
   const std::string before = Interface_Static::CVal("xstep.cascade.unit");
   struct Restore {
@@ -119,25 +262,60 @@ TopoDS_Shape read_with(const std::string& path, const char* unit, const char* fo
   Interface_Static::SetCVal("xstep.cascade.unit", unit);
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw CadError(path + ": OpenCASCADE cannot read it as " + format);
+  ReadResult r;
+  const Handle(Interface_InterfaceModel) model = reader.Model();
+  std::string global;
+  const std::vector<std::string> unread =
+      failed_entities(reader.WS()->ModelCheckList(), model, global);
+  if (!global.empty()) throw CadError(path + ": the file is malformed: " + global);
+  if constexpr (std::is_same_v<Reader, STEPControl_Reader>)
+    step_units(reader, path, r);
+  else
+    iges_units(reader, path, r);
+  if (!unread.empty()) r.warnings.push_back(skipped(path, "read", unread));
   reader.TransferRoots();
-  return reader.OneShape();
+  const Handle(Transfer_TransientProcess) tp = reader.WS()->TransferReader()->TransientProcess();
+  if (!tp.IsNull()) {
+    std::string ignored;
+    const std::vector<std::string> untransferred =
+        failed_entities(tp->CheckList(false), model, ignored);
+    if (!untransferred.empty()) r.warnings.push_back(skipped(path, "transfer", untransferred));
+  }
+  r.shape = reader.OneShape();
+  return r;
 }
 
-TopoDS_Shape read_shape(const std::string& path, const std::string& unit) {
+void check_file(const std::string& path) {
+  (void)cad_format(path);
+  std::error_code ec;
+  const std::filesystem::file_status st = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(st)) throw CadError(path + ": is a directory, not a CAD file");
+  if (!std::filesystem::exists(st)) throw CadError(path + ": no such file");
+  if (!std::filesystem::is_regular_file(st)) throw CadError(path + ": not a regular file");
+  if (std::filesystem::file_size(path, ec) == 0 && !ec)
+    throw CadError(path + ": the file is empty");
+}
+
+ReadResult read_shape(const std::string& path, const std::string& unit) {
   const std::string format = cad_format(path);
-  if (!std::filesystem::is_regular_file(path)) throw CadError(path + ": no such file");
+  check_file(path);
   silence_occt();
-  const std::lock_guard<std::mutex> lock(occt_mutex());
+  // In the reader child no other thread exists (and a lock another thread of the parent held
+  // at the fork would never be released).
+  std::unique_lock<std::mutex> lock(occt_mutex(), std::defer_lock);
+  if (!in_reader_child) lock.lock();
   const char* u = occt_unit(unit);
-  TopoDS_Shape shape;
+  ReadResult r;
   try {
-    shape = format == "step" ? read_with<STEPControl_Reader>(path, u, "STEP")
-                             : read_with<IGESControl_Reader>(path, u, "IGES");
+    r = format == "step" ? read_with<STEPControl_Reader>(path, u, "STEP")
+                         : read_with<IGESControl_Reader>(path, u, "IGES");
   } catch (const Standard_Failure& e) {
     throw CadError(path + ": OpenCASCADE failed reading it: " + e.GetMessageString());
   }
-  if (shape.IsNull()) throw CadError(path + ": the file holds no shape");
-  return shape;
+  if (r.shape.IsNull()) throw CadError(path + ": the file holds no shape");
+  r.units.unit = unit;
+  r.units.factor = r.units.file_unit_mm / unit_in_mm(unit);
+  return r;
 }
 
 std::vector<TopoDS_Face> faces_of(const TopoDS_Shape& shape) {
@@ -602,60 +780,396 @@ std::string cad_format(const std::string& path) {
   throw CadError(path + ": not a CAD file this program reads (.step, .stp, .iges, .igs)");
 }
 
-std::vector<CadFace> list_cad_faces(const std::string& path, const std::string& unit) {
-  const std::vector<TopoDS_Face> faces = faces_of(read_shape(path, unit));
+namespace {
+
+// ---- the import loop ----------------------------------------------------------------------------
+
+constexpr double kModelBound = 1e100;  // geometry_io's bound on every number of a model
+
+/// Every number of the entity as the model file would hold it is within the model bounds.
+void check_bounds(const Json& j, const std::string& type) {
+  if (j.is_number()) {
+    const double x = j.get<double>();
+    if (!std::isfinite(x) || std::abs(x) > kModelBound)
+      throw CadError("a number of the converted " + type + " is " + num(x) +
+                     ", beyond the model bounds (|x| <= 1e100)");
+  } else if (j.is_structured()) {
+    for (const Json& v : j) check_bounds(v, type);
+  }
+}
+
+/// The face described; its size and area within the model bounds.
+CadFace describe_checked(const TopoDS_Face& face, int index) {
+  CadFace f = describe(face, index);
+  bool ok = std::isfinite(f.area);  // a length squared: finite is enough
+  for (int i = 0; i < 3; ++i)
+    ok = ok && std::isfinite(f.box_lo[i]) && std::isfinite(f.box_hi[i]) &&
+         std::abs(f.box_lo[i]) <= kModelBound && std::abs(f.box_hi[i]) <= kModelBound;
+  if (!ok) {
+    f.area = 0.0;
+    f.box_lo.setZero();
+    f.box_hi.setZero();
+    throw CadError("its size is beyond the model bounds (|x| <= 1e100)");
+  }
+  return f;
+}
+
+/// The face converted (f's entity_type, exact and tolerance set), or nullopt and `why`.
+std::optional<GeometryEntity> try_convert(const TopoDS_Face& face, CadFace& f, std::string& why) {
+  try {
+    const UvBox b = uv_bounds(face);
+    const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
+    f.entity_type = entity_type(c.entity);
+    f.exact = c.exact;
+    f.tolerance = c.tolerance;
+    GeometryEntity e = c.entity;
+    if (f.trimmed) {
+      if (!c.mapped)
+        throw CadError("trimmed, on a surface OpenCASCADE had to reparametrize (" + f.cad_type +
+                       "): its trimming curves cannot follow; not supported");
+      e = trimmed_face(face, *as_surface(c.entity), c.map, b);
+      f.entity_type = "trimmed " + entity_type(c.entity);
+    }
+    check_bounds(entity_to_json(e), f.entity_type);
+    return e;
+  } catch (const CadError& e) {
+    why = e.what();
+  } catch (const std::exception& e) {  // GeometryError of our constructors
+    why = std::string("cannot be imported: ") + e.what();
+  } catch (const Standard_Failure& e) {
+    why = std::string("OpenCASCADE failed: ") + e.GetMessageString();
+  }
+  f.entity_type.clear();
+  return std::nullopt;
+}
+
+// ---- the result through a pipe ----------------------------------------------------------------
+
+Json vec_json(const Eigen::Vector3d& v) {
+  return Json::array({v.x(), v.y(), v.z()});
+}
+Eigen::Vector3d vec_from(const Json& j) {
+  return {j.at(0).get<double>(), j.at(1).get<double>(), j.at(2).get<double>()};
+}
+
+Json face_json(const CadFace& f) {
+  return Json{{"index", f.index},
+              {"cad_type", f.cad_type},
+              {"entity_type", f.entity_type},
+              {"exact", f.exact},
+              {"tolerance", f.tolerance},
+              {"trimmed", f.trimmed},
+              {"wires", f.wires},
+              {"area", f.area},
+              {"box_lo", vec_json(f.box_lo)},
+              {"box_hi", vec_json(f.box_hi)},
+              {"message", f.message}};
+}
+CadFace face_from(const Json& j) {
+  CadFace f;
+  f.index = j.at("index").get<int>();
+  f.cad_type = j.at("cad_type").get<std::string>();
+  f.entity_type = j.at("entity_type").get<std::string>();
+  f.exact = j.at("exact").get<bool>();
+  f.tolerance = j.at("tolerance").get<double>();
+  f.trimmed = j.at("trimmed").get<bool>();
+  f.wires = j.at("wires").get<int>();
+  f.area = j.at("area").get<double>();
+  f.box_lo = vec_from(j.at("box_lo"));
+  f.box_hi = vec_from(j.at("box_hi"));
+  f.message = j.at("message").get<std::string>();
+  return f;
+}
+
+Json units_json(const CadUnits& u) {
+  return Json{
+      {"names", u.names}, {"file_unit_mm", u.file_unit_mm}, {"unit", u.unit}, {"factor", u.factor}};
+}
+CadUnits units_from(const Json& j) {
+  CadUnits u;
+  u.names = j.at("names").get<std::vector<std::string>>();
+  u.file_unit_mm = j.at("file_unit_mm").get<double>();
+  u.unit = j.at("unit").get<std::string>();
+  u.factor = j.at("factor").get<double>();
+  return u;
+}
+
+Json faces_json(const std::vector<CadFace>& faces) {
+  Json a = Json::array();
+  for (const CadFace& f : faces) a.push_back(face_json(f));
+  return a;
+}
+std::vector<CadFace> faces_from(const Json& j) {
   std::vector<CadFace> out;
-  for (std::size_t k = 0; k < faces.size(); ++k)
-    out.push_back(describe(faces[k], static_cast<int>(k)));
+  for (const Json& f : j) out.push_back(face_from(f));
+  return out;
+}
+
+const char* signal_name(int s) {
+  switch (s) {
+    case SIGSEGV:
+      return "SIGSEGV";
+    case SIGBUS:
+      return "SIGBUS";
+    case SIGABRT:
+      return "SIGABRT";
+    case SIGFPE:
+      return "SIGFPE";
+    case SIGILL:
+      return "SIGILL";
+    case SIGKILL:
+      return "SIGKILL";
+    case SIGTERM:
+      return "SIGTERM";
+    default:
+      return "a signal";
+  }
+}
+
+void write_all(int fd, const std::string& text) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n > 0)
+      done += static_cast<std::size_t>(n);
+    else if (n < 0 && errno == EINTR)
+      continue;
+    else
+      return;
+  }
+}
+
+/// Runs `work` (reading, transfer and conversion) in a child process and returns its result; a
+/// CadError of the child is thrown here, a crash of the child is a CadError naming the file.
+/// The child writes {"result": ...} or {"error": ..., "face_option": ...} to a pipe and ends
+/// with _exit (no destructors, no atexit handlers: nothing of the parent's state is run twice,
+/// and a sanitizer's leak check is the parent's alone).
+Json run_guarded(const std::string& path, const std::function<Json()>& work) {
+  std::cout.flush();
+  std::cerr.flush();
+  std::fflush(nullptr);  // what is buffered is written once, by the parent
+  int fds[2];
+  if (::pipe(fds) != 0)
+    throw CadError(path + ": cannot start the reader process: " + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int err = errno;
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw CadError(path + ": cannot start the reader process: " + std::strerror(err));
+  }
+  if (pid == 0) {  // the child
+    ::close(fds[0]);
+    in_reader_child = true;
+    // A crash ends the child by its signal, which the parent reports: no core file, and no
+    // handler of the parent's (a test framework's, a sanitizer's) reporting it as its own.
+    const rlimit no_core{0, 0};
+    ::setrlimit(RLIMIT_CORE, &no_core);
+    for (const int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(s, SIG_DFL);
+    std::string text;
+    try {
+      Json answer;
+      try {
+        answer = Json{{"result", work()}};
+      } catch (const CadError& e) {
+        answer = Json{{"error", e.what()}, {"face_option", e.face_option}};
+      } catch (const std::exception& e) {
+        answer = Json{{"error", path + ": " + e.what()}};
+      } catch (const Standard_Failure& e) {
+        answer = Json{{"error", path + ": OpenCASCADE failed: " + e.GetMessageString()}};
+      }
+      // Messages may quote the file's bytes: not necessarily UTF-8.
+      text = answer.dump(-1, ' ', false, Json::error_handler_t::replace);
+    } catch (...) {
+      text = Json{{"error", path + ": the reader process failed"}}.dump(
+          -1, ' ', false, Json::error_handler_t::replace);
+    }
+    write_all(fds[1], text);
+    ::close(fds[1]);
+    ::_exit(0);
+  }
+  ::close(fds[1]);
+  std::string text;
+  std::array<char, 65536> buf;
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buf.data(), buf.size());
+    if (n > 0)
+      text.append(buf.data(), static_cast<std::size_t>(n));
+    else if (n < 0 && errno == EINTR)
+      continue;
+    else
+      break;
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0)
+    if (errno != EINTR) throw CadError(path + ": lost the reader process: " + std::strerror(errno));
+  if (WIFSIGNALED(status)) {
+    const int s = WTERMSIG(status);
+    throw CadError("OpenCASCADE crashed (signal " + std::to_string(s) + ", " + signal_name(s) +
+                   ") while reading " + path);
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw CadError("OpenCASCADE failed (its reader process ended with status " +
+                   std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
+                   ") while reading " + path);
+  const Json answer = Json::parse(text, nullptr, false);
+  if (answer.is_discarded() || !answer.is_object() ||
+      !(answer.contains("result") || answer.contains("error")))
+    throw CadError(path + ": internal error: the reader process's answer is malformed");
+  if (answer.contains("error"))
+    throw CadError(answer["error"].is_string() ? answer["error"].get<std::string>()
+                                               : path + ": the reader process failed",
+                   answer.value("face_option", -1));
+  return answer["result"];
+}
+
+/// Reads the parent's copy of what the child sent; the entities through geometry_io's reader
+/// (its checks and bounds: what `iga info` would accept of the written model).
+template <class F>
+auto from_answer(const std::string& path, F read) {
+  try {
+    return read();
+  } catch (const ModelError& e) {
+    throw CadError(path + ": the converted faces are refused: " + e.what());
+  } catch (const Json::exception& e) {
+    throw CadError(path + ": internal error: the reader process's answer is malformed (" +
+                   std::string(e.what()) + ")");
+  }
+}
+
+}  // namespace
+
+std::vector<CadFace> list_cad_faces(const std::string& path, const std::string& unit) {
+  return list_cad(path, unit).faces;
+}
+
+CadListing list_cad_in_process(const std::string& path, const std::string& unit) {
+  const auto t0 = std::chrono::steady_clock::now();
+  CadListing out;
+  out.format = cad_format(path);
+  ReadResult r = read_shape(path, unit);
+  out.units = r.units;
+  out.warnings = r.warnings;
+  try {
+    const std::vector<TopoDS_Face> faces = faces_of(r.shape);
+    for (std::size_t k = 0; k < faces.size(); ++k) {
+      CadFace f;
+      f.index = static_cast<int>(k);
+      try {
+        f = describe_checked(faces[k], f.index);
+      } catch (const CadError& e) {
+        f.message = e.what();
+      } catch (const Standard_Failure& e) {
+        f.message = std::string("OpenCASCADE failed describing it: ") + e.GetMessageString();
+      }
+      if (f.cad_type.empty())
+        f.cad_type = type_name(GeomAdaptor_Surface(BRep_Tool::Surface(faces[k])).GetType());
+      if (f.message.empty() && !try_convert(faces[k], f, f.message)) f.entity_type.clear();
+      out.faces.push_back(f);
+    }
+  } catch (const Standard_Failure& e) {
+    throw CadError(path + ": OpenCASCADE failed: " + e.GetMessageString());
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+CadListing list_cad(const std::string& path, const std::string& unit) {
+  const auto t0 = std::chrono::steady_clock::now();
+  (void)occt_unit(unit);
+  check_file(path);
+  const Json j = run_guarded(path, [&] {
+    const CadListing l = list_cad_in_process(path, unit);
+    return Json{{"format", l.format},
+                {"units", units_json(l.units)},
+                {"faces", faces_json(l.faces)},
+                {"warnings", l.warnings}};
+  });
+  CadListing out = from_answer(path, [&] {
+    CadListing l;
+    l.format = j.at("format").get<std::string>();
+    l.units = units_from(j.at("units"));
+    l.faces = faces_from(j.at("faces"));
+    l.warnings = j.at("warnings").get<std::vector<std::string>>();
+    return l;
+  });
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+CadImport import_cad_in_process(const std::string& path, const std::string& prefix,
+                                const CadOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ReadResult r = read_shape(path, options.unit);
+  if (options.strict && !r.warnings.empty())
+    throw CadError(r.warnings.front() + " (refused: strict import)");
+  CadImport out;
+  out.units = r.units;
+  out.warnings = r.warnings;
+  try {
+    const std::vector<TopoDS_Face> all = faces_of(placed(r.shape, options.placement));
+    if (all.empty()) throw CadError(path + ": the file holds no faces");
+    std::vector<int> chosen = options.faces;
+    if (chosen.empty())
+      for (std::size_t k = 0; k < all.size(); ++k) chosen.push_back(static_cast<int>(k));
+    for (std::size_t i = 0; i < chosen.size(); ++i) {
+      const int k = chosen[i];
+      if (k < 0 || k >= static_cast<int>(all.size()))
+        throw CadError(path + ": face " + std::to_string(k) + " does not exist (the file has " +
+                           std::to_string(all.size()) + " faces, numbered from 0)",
+                       options.faces.empty() ? -1 : static_cast<int>(i));
+      const TopoDS_Face& face = all[static_cast<std::size_t>(k)];
+      CadFace f;
+      f.cad_type = type_name(GeomAdaptor_Surface(BRep_Tool::Surface(face)).GetType());
+      std::string why;
+      try {
+        f = describe_checked(face, k);
+      } catch (const CadError& e) {
+        why = e.what();
+      }
+      std::optional<GeometryEntity> e;
+      if (why.empty()) e = try_convert(face, f, why);
+      if (!e)
+        throw CadError(path + ": face " + std::to_string(k) + " (" + f.cad_type + "): " + why);
+      out.entities.emplace_back(prefix + ".face" + std::to_string(k), std::move(*e));
+      out.faces.push_back(f);
+    }
+  } catch (const Standard_Failure& e) {
+    throw CadError(path + ": OpenCASCADE failed: " + e.GetMessageString());
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
 
 CadImport import_cad(const std::string& path, const std::string& prefix,
                      const CadOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::vector<TopoDS_Face> all =
-      faces_of(placed(read_shape(path, options.unit), options.placement));
-  if (all.empty()) throw CadError(path + ": the file holds no faces");
-  std::vector<int> chosen = options.faces;
-  if (chosen.empty())
-    for (std::size_t k = 0; k < all.size(); ++k) chosen.push_back(static_cast<int>(k));
-  CadImport out;
-  for (const int k : chosen) {
-    if (k < 0 || k >= static_cast<int>(all.size()))
-      throw CadError(path + ": face " + std::to_string(k) + " does not exist (the file has " +
-                     std::to_string(all.size()) + " faces, numbered from 0)");
-    out.faces.push_back(describe(all[static_cast<std::size_t>(k)], k));
-  }
-  for (CadFace& f : out.faces) {
-    const TopoDS_Face& face = all[static_cast<std::size_t>(f.index)];
-    try {
-      const UvBox b = uv_bounds(face);
-      const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
-      f.entity_type = entity_type(c.entity);
-      f.exact = c.exact;
-      f.tolerance = c.tolerance;
-      const std::string name = prefix + ".face" + std::to_string(f.index);
-      if (!f.trimmed) {
-        out.entities.emplace_back(name, c.entity);
-        continue;
-      }
-      if (!c.mapped)
-        throw CadError("trimmed, on a surface OpenCASCADE had to reparametrize (" + f.cad_type +
-                       "): its trimming curves cannot follow; not supported");
-      TrimmedSurface t = trimmed_face(face, *as_surface(c.entity), c.map, b);
-      f.entity_type = "trimmed " + entity_type(c.entity);
-      out.entities.emplace_back(name, std::move(t));
-    } catch (const CadError& e) {
-      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
-                     "): " + e.what());
-    } catch (const std::exception& e) {  // GeometryError of our constructors, Standard_Failure
-      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
-                     "): cannot be imported: " + e.what());
-    } catch (const Standard_Failure& e) {
-      throw CadError(path + ": face " + std::to_string(f.index) + " (" + f.cad_type +
-                     "): OpenCASCADE failed: " + e.GetMessageString());
+  (void)occt_unit(options.unit);
+  check_file(path);
+  const Json j = run_guarded(path, [&] {
+    const CadImport imp = import_cad_in_process(path, prefix, options);
+    Json entities = Json::array();
+    for (const auto& [name, e] : imp.entities)
+      entities.push_back(Json::array({name, entity_to_json(e)}));
+    return Json{{"entities", std::move(entities)},
+                {"faces", faces_json(imp.faces)},
+                {"units", units_json(imp.units)},
+                {"warnings", imp.warnings}};
+  });
+  CadImport out = from_answer(path, [&] {
+    CadImport imp;
+    for (const Json& pair : j.at("entities")) {
+      Json one = Json::object();
+      one[pair.at(0).get<std::string>()] = pair.at(1);
+      GeometryModel m = parse_geometry(one, path, JsonPointer());
+      imp.entities.push_back(std::move(m.entities.front()));
     }
-  }
+    imp.faces = faces_from(j.at("faces"));
+    imp.units = units_from(j.at("units"));
+    imp.warnings = j.at("warnings").get<std::vector<std::string>>();
+    return imp;
+  });
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }

@@ -19,6 +19,20 @@
 // Cone (OCCT): P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z, A the semi-angle;
 // here: apex c, radius s = R0 + v sin A, alpha = pi/2 - |A| (angle to the plane normal to
 // the axis, (B.23)).
+//
+// Reading is guarded (issue 34): OpenCASCADE reads, transfers and converts in a child process
+// (fork), which sends the result back through a pipe as JSON (the entities with
+// geometry_io's writer, read back with its reader and its bounds); a failure inside
+// OpenCASCADE, a crash included, becomes a CadError naming the file. The *_in_process entry
+// points do the same work in this process (fuzzing, or where a crash is wanted).
+//
+// Units: "file unit" is the length unit the file declares (STEP: the length unit of its
+// representation contexts; IGES: the global section's unit); "factor" = (file unit) / (the
+// chosen unit), what OpenCASCADE multiplies the file's lengths by. A file unit that is not
+// finite, not positive or outside [1e-9 m, 1e9 m] is refused; every number of an imported
+// entity is within geometry_io's model bounds (|x| <= 1e100) or the import is refused.
+// Skipped entities (entities of the file OpenCASCADE could not read or transfer) are warnings
+// (CadImport::warnings), errors with CadOptions::strict.
 #pragma once
 
 #include <stdexcept>
@@ -37,6 +51,10 @@ namespace iga {
 class CadError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+  /// For a face number out of range: its position in CadOptions::faces (else -1), so that a
+  /// model's "faces" list can be located at the bad entry.
+  CadError(const std::string& what, int option) : std::runtime_error(what), face_option(option) {}
+  int face_option = -1;
 };
 
 /// Rigid placement of the imported shape: first the rotation by `angle` (radians, right-handed)
@@ -56,6 +74,8 @@ struct CadOptions {
   /// "in", "ft", "um", "km".
   std::string unit = "mm";
   CadPlacement placement;
+  /// Entities of the file skipped by OpenCASCADE (CadImport::warnings) are an error.
+  bool strict = false;
 };
 
 /// One face of the file as read.
@@ -69,6 +89,16 @@ struct CadFace {
   int wires = 0;            ///< boundary loops (outer + holes)
   double area = 0.0;
   Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();
+  /// Listing only: why the face cannot be imported (entity_type then empty); empty if it can.
+  std::string message;
+};
+
+/// The length unit the file declares, and the factor applied to its lengths.
+struct CadUnits {
+  std::vector<std::string> names;  ///< as declared ("millimetre", "INCH", ...); may be empty
+  double file_unit_mm = 1.0;       ///< the file's length unit in mm
+  std::string unit = "mm";         ///< the unit lengths are converted into
+  double factor = 1.0;             ///< file lengths x factor = lengths in `unit`
 };
 
 /// The imported faces, named `<prefix>.face<k>` (k the face number), and what each was.
@@ -76,6 +106,20 @@ struct CadImport {
   std::vector<std::pair<std::string, GeometryEntity>> entities;
   std::vector<CadFace> faces;  ///< the chosen faces, same order as entities
   double seconds = 0.0;        ///< wall time of reading and converting
+  CadUnits units;
+  /// What OpenCASCADE skipped (entities it could not read or transfer), one sentence each,
+  /// naming the file; empty for a complete import.
+  std::vector<std::string> warnings;
+};
+
+/// Every face of a file, described and tried (CadFace::message for a face that does not
+/// convert).
+struct CadListing {
+  std::string format;  ///< "step" or "iges"
+  CadUnits units;
+  std::vector<CadFace> faces;
+  std::vector<std::string> warnings;  ///< as CadImport::warnings
+  double seconds = 0.0;
 };
 
 /// The file's format from its extension: "step" (.step, .stp) or "iges" (.iges, .igs), any
@@ -86,10 +130,21 @@ std::string cad_format(const std::string& path);
 /// (geometry/trimmed_surface.hpp: its base as above, its loops and edges). Throws CadError if
 /// the file cannot be read, a face number is out of range, or a face cannot be converted (a
 /// trimmed face on a surface OCCT must reparametrize); the message names file and face.
+/// Also throws if the file's unit or a converted number is out of bounds (see above), or,
+/// with options.strict, if OpenCASCADE skipped entities. Guarded: runs in a child process.
 CadImport import_cad(const std::string& path, const std::string& prefix,
                      const CadOptions& options = {});
+/// The same in this process: a crash inside OpenCASCADE is this process's crash.
+CadImport import_cad_in_process(const std::string& path, const std::string& prefix,
+                                const CadOptions& options = {});
 
-/// Every face of the file, described (nothing converted, trimmed faces included).
+/// Every face of the file with its OpenCASCADE type, trim loops and whether and to what it
+/// converts; a face that does not convert has a message and the listing goes on. Throws
+/// CadError only if the file cannot be read (or its unit is refused). Guarded as import_cad.
+CadListing list_cad(const std::string& path, const std::string& unit = "mm");
+CadListing list_cad_in_process(const std::string& path, const std::string& unit = "mm");
+
+/// list_cad(path, unit).faces.
 std::vector<CadFace> list_cad_faces(const std::string& path, const std::string& unit = "mm");
 
 }  // namespace iga

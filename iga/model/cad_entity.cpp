@@ -2,6 +2,7 @@
 #include "iga/model/cad_entity.hpp"
 
 #include <filesystem>
+#include <iostream>
 
 #include "cad/cad_import.hpp"
 #include "iga/model/sections.hpp"
@@ -36,7 +37,7 @@ CadPlacement parse_placement(const JsonCursor& c) {
 
 EntityExpander cad_entity_expander(const std::string& model_file) {
   return [model_file](const JsonCursor& e, const std::string& name) {
-    e.expect_object({"type", "file", "faces", "unit", "placement"});
+    e.expect_object({"type", "file", "faces", "unit", "placement", "strict"});
     const JsonCursor fc = e["file"];
     std::filesystem::path path = fc.as_string();
     if (path.is_relative()) path = std::filesystem::path(model_file).parent_path() / path;
@@ -52,14 +53,20 @@ EntityExpander cad_entity_expander(const std::string& model_file) {
     }
     if (e.has("unit")) opt.unit = one_of(e["unit"], {"mm", "cm", "m", "in", "ft", "um", "km"});
     if (e.has("placement")) opt.placement = parse_placement(e["placement"]);
+    if (e.has("strict")) opt.strict = e["strict"].as_bool();
     try {
       CadImport imported = import_cad(path.string(), name, opt);
       std::vector<std::pair<std::string, GeometryEntity>> out = std::move(imported.entities);
       PatchGroup group;
       for (const auto& [member, entity] : out) group.patches.push_back(member);
       out.emplace_back(name, std::move(group));
+      // What OpenCASCADE skipped (an error with "strict"): said where the model is read.
+      for (const std::string& w : imported.warnings)
+        std::cerr << "warning: " << fc.file() << ": " << fc.path().to_string() << ": " << w << "\n";
       return out;
     } catch (const CadError& err) {
+      if (err.face_option >= 0)
+        e["faces"][static_cast<std::size_t>(err.face_option)].fail_plain(err.what());
       fc.fail_plain(err.what());
     }
   };

@@ -2,7 +2,9 @@
 // (cad/cad_import.hpp) becomes, under the entity's name, a patch group of the file's faces,
 // named <name>.face<k>. docs/model_format.md, section 3.
 //   {"type": "cad", "file": "die.step", ["faces": [0, 2]], ["unit": "mm"],
-//    ["placement": {"rotation": {"point", "axis", "angle"}, "translation": {"vector"}}]}
+//    ["placement": {"rotation": {"point", "axis", "angle"}, "translation": {"vector"}}],
+//    ["strict": false]}   (strict: entities of the file OpenCASCADE skipped are an error, not
+//    a warning on stderr)
 #pragma once
 
 #include <string>

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -78,6 +79,22 @@ TEST_CASE("cad entity: bad entries name the model file, the JSON path and the CA
              Catch::Contains("not a CAD file this program reads"));
   CHECK_THAT(error([](Json& e) { e["faces"] = Json::array({5}); }),
              Catch::Contains("face 5 does not exist (the file has 3 faces"));
+  // issue 34: a face number out of range is located at its entry, not at "file"
+  CHECK_THAT(error([](Json& e) {
+               e["faces"] = Json::array({0, 99});
+             }),
+             Catch::Contains("m.json: /geometry/cylinder_step/faces/1: ") &&
+                 Catch::Contains("face 99 does not exist (the file has 3 faces"));
+  {  // a folder named like a CAD file is said to be one
+    const std::string dir = test::fresh_out_dir("cad_entity", "folder") + "/x.step";
+    std::filesystem::create_directories(dir);
+    CHECK_THAT(error([&](Json& e) { e["file"] = dir; }),
+               Catch::Contains("/geometry/cylinder_step/file: ") &&
+                   Catch::Contains("x.step: is a directory"));
+  }
+  CHECK(error([](Json& e) { e["strict"] = true; }) == "no error");  // a complete file
+  CHECK_THAT(error([](Json& e) { e["strict"] = "yes"; }),
+             Catch::Contains("/geometry/cylinder_step/strict"));
   CHECK(error([](Json& e) { e.erase("faces"); }) == "no error");  // trimmed end discs too
   CHECK_THAT(error([](Json& e) { e["faces"] = Json::array({-1}); }),
              Catch::Contains("/geometry/cylinder_step/faces/0: face numbers start at 0"));
