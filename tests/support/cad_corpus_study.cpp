@@ -78,7 +78,8 @@ int main(int argc, char** argv) {
         std::cout << "\tcmpfail\t" << one_line(c.failure) << '\n';
       } else {
         std::cout << "\tcmp\t" << c.points << '\t' << c.same << '\t' << c.ours_closer << '\t'
-                  << c.occt_none << '\t' << c.worst << '\t' << c.bound_apart << '\n';
+                  << c.occt_none << '\t' << c.worst << '\t' << c.bound_apart << '\t'
+                  << c.occt_outside << '\n';
       }
     } catch (const std::exception& e) {
       std::cout << "?\tfail\t" << one_line(e.what()) << '\n';

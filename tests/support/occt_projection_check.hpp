@@ -8,7 +8,8 @@
 // Ours: the closest point of x on the imported base surface (a trimmed face's base, untrimmed:
 // OCCT's projection knows no trimming), foot y, distance d = |x - y|. OCCT's:
 // GeomAPI_ProjectPointOnSurf restricted to B, nearest extremum y_o, d_o = |x - y_o|.
-// A point passes when
+// A point passes when (for an untrimmed face whose UV box is larger than the face, a planar
+// rectangle re-framed on its sides, OCCT's foot outside the face is not compared: occt_outside)
 //   - y lies on S within B (OCCT's projection of y, restricted to B, is within 1e-9 h), and
 //   - OCCT finds no extremum, or d <= d_o + 1e-9 h; where |d - d_o| <= 1e-9 h also
 //     |y - y_o| <= 1e-9 h (the same foot). Ours closer (d < d_o - 1e-9 h): OCCT's answer is a
@@ -25,17 +26,20 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
 
 #include <BRepBndLib.hxx>
+#include <BRepClass_FaceClassifier.hxx>
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GeomAPI_ProjectPointOnSurf.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_Surface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
 #include <Standard_Failure.hxx>
 #include <TopoDS_Face.hxx>
 
@@ -46,13 +50,14 @@
 namespace iga::test {
 
 struct OcctComparison {
-  int points = 0;       ///< points compared
-  int same = 0;         ///< same foot as OCCT's
-  int ours_closer = 0;  ///< ours nearer than OCCT's extremum
-  int occt_none = 0;    ///< OCCT found no extremum in B (ours still checked on S)
-  int bound_apart = 0;  ///< equal distances, our foot on B's bound, OCCT's apart along it
-  double worst = 0.0;   ///< largest |y - y_o| / h over the same feet
-  std::string failure;  ///< empty: every point passed; else the first failure, described
+  int points = 0;        ///< points compared
+  int same = 0;          ///< same foot as OCCT's
+  int ours_closer = 0;   ///< ours nearer than OCCT's extremum
+  int occt_none = 0;     ///< OCCT found no extremum in B (ours still checked on S)
+  int occt_outside = 0;  ///< untrimmed: OCCT's foot outside the face (B larger than the face)
+  int bound_apart = 0;   ///< equal distances, our foot on B's bound, OCCT's apart along it
+  double worst = 0.0;    ///< largest |y - y_o| / h over the same feet
+  std::string failure;   ///< empty: every point passed; else the first failure, described
 };
 
 /// OCCT's UV box of the face, clamped into a non-periodic B-spline's range.
@@ -78,7 +83,9 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
     out.failure = "not a surface";
     return out;
   }
-  if (const auto* t = dynamic_cast<const TrimmedSurface*>(surf)) surf = &t->base();
+  const auto* trim = dynamic_cast<const TrimmedSurface*>(surf);
+  const bool trimmed = trim != nullptr;
+  if (trimmed) surf = &trim->base();
   RigidSurface rs;
   if (const auto* nu = dynamic_cast<const NurbsSurface*>(surf))
     rs.add(*nu);
@@ -115,13 +122,22 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
     try {
       const gp_Pnt Y(ours.point.x(), ours.point.y(), ours.point.z());
       GeomAPI_ProjectPointOnSurf on(Y, s, u0, u1, v0, v1);
-      // Our foot on OCCT's surface: its own projection, or (an extremum OCCT misses at a
-      // corner or singular point) a corner or the nearest of a dense grid of B is that point.
+      // Our foot on OCCT's surface within B: OCCT's projection restricted to B, or (a foot on
+      // B's bound or at a degenerate side, where Extrema finds no interior extremum)
+      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B.
       double off = on.NbPoints() > 0 ? on.LowerDistance() : 1e300;
-      for (int j = 0; j <= 64 && off > tol; ++j)
-        for (int i = 0; i <= 64; ++i)
-          off =
-              std::min(off, Y.Distance(s->Value(u0 + (u1 - u0) * i / 64, v0 + (v1 - v0) * j / 64)));
+      if (off > tol) {
+        ShapeAnalysis_Surface sas(s);
+        const gp_Pnt2d q = sas.ValueOfUV(Y, 1e-3 * tol);
+        const double pu = 1e-9 * (u1 - u0), pv = 1e-9 * (v1 - v0);
+        double qu = q.X(), qv = q.Y();
+        if (s->IsUPeriodic())
+          qu = u0 + std::remainder(qu - u0 - 0.5 * (u1 - u0), s->UPeriod()) + 0.5 * (u1 - u0);
+        if (s->IsVPeriodic())
+          qv = v0 + std::remainder(qv - v0 - 0.5 * (v1 - v0), s->VPeriod()) + 0.5 * (v1 - v0);
+        if (qu >= u0 - pu && qu <= u1 + pu && qv >= v0 - pv && qv <= v1 + pv)
+          off = std::min(off, sas.Gap());
+      }
       if (off > tol) {
         why << "our foot (" << ours.point.transpose() << ") is " << off / h
             << " h off OCCT's surface within the face's UV box";
@@ -136,6 +152,18 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
       }
       const double dO = proj.LowerDistance();
       const gp_Pnt yO = proj.NearestPoint();
+      if (!trimmed) {
+        // Our untrimmed surface is the face itself (its natural rectangle, or a planar
+        // rectangle re-framed on its sides whose UV box B is larger): OCCT's foot outside the
+        // face is not a point of it.
+        double fu = 0, fv = 0;
+        proj.LowerDistanceParameters(fu, fv);
+        const BRepClass_FaceClassifier in(face, gp_Pnt2d(fu, fv), 1e-9 * h);
+        if (in.State() == TopAbs_OUT) {
+          ++out.occt_outside;
+          continue;
+        }
+      }
       if (d > dO + tol) {
         why << "ours " << d << " farther than OCCT's " << dO << " (h = " << h << ")";
         out.failure = why.str();
