@@ -473,7 +473,15 @@ Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, con
     if (z - a > period + std::max(round_off, Precision::PConfusion()))
       throw CadError(std::string("its ") + (dir == 0 ? "u" : "v") + " range [" + number(a) + ", " +
                      number(z) + "] is longer than the B-spline's period " + number(period));
-    across = across || a < lo - round_off || z > hi + round_off;
+    // Past the period's ends by at most OCCT's parametric confusion (1e-9): the same
+    // parameter to OCCT (Segment snaps to it), clamped; farther: across the seam.
+    const double snap = std::max(round_off, Precision::PConfusion());
+    if (a >= lo - snap && z <= hi + snap) {
+      (dir == 0 ? g.u0 : g.v0) = std::max(a, lo);
+      (dir == 0 ? g.u1 : g.v1) = std::min(z, hi);
+    } else {
+      across = true;
+    }
   }
   Converted c;
   c.box = g;
@@ -490,10 +498,13 @@ Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, con
       const double new_len = dir == 0 ? u1 - u0 : v1 - v0;
       const double P = periods[static_cast<std::size_t>(dir)];
       const double turns = periodic[static_cast<std::size_t>(dir)] ? std::round(shift / P) : 0.0;
-      if (std::abs(shift - turns * P) > 1e-12 * P || std::abs(new_len - len) > 1e-12 * P)
-        throw CadError("internal error: OpenCASCADE's cut across the periodic seam moved the " +
-                       std::string(dir == 0 ? "u" : "v") + " range by " + number(shift) +
-                       ", not a whole number of periods");
+      const double snap = std::max(1e-12 * P, Precision::PConfusion());
+      if (std::abs(shift - turns * P) > snap || std::abs(new_len - len) > snap)
+        throw CadError("internal error: OpenCASCADE's cut across the periodic seam made the " +
+                       std::string(dir == 0 ? "u" : "v") + " range " + number(len) +
+                       " long, shifted by " + number(shift) + ", into one " + number(new_len) +
+                       " long (expected the same length shifted by whole periods " + number(P) +
+                       ")");
       (dir == 0 ? c.map.bu : c.map.bv) = turns * P;
     }
   } else {
@@ -792,9 +803,12 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
   const double deflection = 1e-6 * std::hypot(b.u1 - b.u0, b.v1 - b.v0);
   const Domain2 dom = base.domain();
   std::vector<TrimmedSurface::Loop> loops;
+  int wires = 0, short_wires = 0, walked = 0, edges_in_wires = 0;
   for (TopExp_Explorer w(f, TopAbs_WIRE); w.More(); w.Next()) {
+    ++wires;
+    for (TopExp_Explorer e(w.Current(), TopAbs_EDGE); e.More(); e.Next()) ++edges_in_wires;
     TrimmedSurface::Loop loop;
-    for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), f); e.More(); e.Next()) {
+    for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), f); e.More(); e.Next(), ++walked) {
       const BRepAdaptor_Curve2d c(e.Current(), f);
       const GCPnts_QuasiUniformDeflection pts(c, deflection);
       if (!pts.IsDone()) throw CadError("OpenCASCADE could not sample a trimming curve");
@@ -810,8 +824,17 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
                           std::clamp(map.av * q.Y() + map.bv, dom.v.lo, dom.v.hi));
       }
     }
-    if (loop.size() >= 3) loops.push_back(std::move(loop));
+    if (loop.size() >= 3)
+      loops.push_back(std::move(loop));
+    else
+      ++short_wires;
   }
+  if (loops.empty())
+    throw CadError("none of its " + std::to_string(wires) +
+                   " boundary wires gives a loop of 3 or more points in its parameters (" +
+                   std::to_string(short_wires) + " too short; " + std::to_string(walked) + " of " +
+                   std::to_string(edges_in_wires) +
+                   " edges reached walking the wires: fewer means a wire that is not connected)");
   std::vector<NurbsCurve> edges;
   // Length scale of the face's coordinates (its position and its corner-to-corner extent).
   const Vector3d lo = base.point(dom.u.lo, dom.v.lo), hi = base.point(dom.u.hi, dom.v.hi);
