@@ -612,11 +612,13 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
   c.mapped = false;
   const Handle(Geom_RectangularTrimmedSurface) patch =
       new Geom_RectangularTrimmedSurface(s, b.u0, b.u1, b.v0, b.v1);
-  // Exact for revolutions and extrusions (of conics and B-spline curves); for other types
+  // Exact for revolutions and extrusions (of conics and B-spline curves) and cones (rational
+  // quadratic in u, linear in v: Convert_ConeToBSplineSurface); for other types
   // (offset surfaces) GeomConvert approximates silently, so they take the approximation below,
   // whose bound is known.
   const GeomAbs_SurfaceType type = GeomAdaptor_Surface(s).GetType();
-  if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion) {
+  if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion ||
+      type == GeomAbs_Cone) {  // a cone face across its apex (convert)
     try {
       c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
       return c;

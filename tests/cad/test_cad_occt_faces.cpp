@@ -5,7 +5,9 @@
 // beyond it, with a message that says so.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -14,6 +16,7 @@
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_ConicalSurface.hxx>
 #include <IGESControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -172,4 +175,40 @@ TEST_CASE(
                             Contains("more than the edge's tolerance") &&
                             !Contains("periodic seam"));
   }
+}
+
+TEST_CASE(
+    "cad import: cone faces on either nappe are our cones, a face across the apex exact "
+    "NURBS, all projecting as OpenCASCADE's",
+    "[cad]") {
+  // OCCT's cone: P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z, apex at v = -R0 / sin A
+  // = -4 here (R0 = 2, A = pi/6); frames right- and left-handed, both signs of A.
+  const double R0 = 2.0;
+  for (const double A : {std::numbers::pi / 6, -std::numbers::pi / 6})
+    for (const bool direct : {true, false}) {
+      gp_Ax3 ax(gp_Pnt(1, -2, 0.5), gp_Dir(1, 2, 3), gp_Dir(3, 0, -1));
+      if (!direct) ax.YReverse();
+      const Handle(Geom_ConicalSurface) cone = new Geom_ConicalSurface(ax, A, R0);
+      const double apex = -R0 / std::sin(A);
+      struct Case {
+        double v0, v1;
+        const char* entity;
+      };
+      // Beyond the apex (radius < 0), on the near side, and across it.
+      const Case cases[] = {{apex + (A > 0 ? -3.0 : 0.5), apex + (A > 0 ? -0.5 : 3.0), "cone"},
+                            {apex + (A > 0 ? 0.5 : -3.0), apex + (A > 0 ? 3.0 : -0.5), "cone"},
+                            {apex - 1.5, apex + 2.0, "nurbs_surface"}};
+      for (const Case& c : cases) {
+        const TopoDS_Face f = BRepBuilderAPI_MakeFace(cone, 0.3, 4.0, c.v0, c.v1, 1e-7).Face();
+        INFO("A = " << A << (direct ? ", right-handed" : ", left-handed") << ", v in [" << c.v0
+                    << ", " << c.v1 << "]");
+        const auto [entity, d] = import_face(f, 0);
+        CHECK(d.entity_type == c.entity);
+        CHECK(d.exact);
+        const test::OcctComparison cmp = test::compare_with_occt(f, entity);
+        INFO(cmp.failure);
+        CHECK(cmp.failure.empty());
+        CHECK(cmp.same >= cmp.points / 2);
+      }
+    }
 }
