@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepTools.hxx>
 #include <BRep_Builder.hxx>
 #include <BRep_Tool.hxx>
 #include <Geom2d_Curve.hxx>
@@ -120,6 +121,29 @@ TEST_CASE(
   REQUIRE_FALSE(imp.faces.empty());
   CHECK(imp.faces[0].cad_type == "bspline");
   const Totals t = import_and_compare("OCC26138_Torus.igs");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import (OCCT data): B-spline faces whose boundary overshoots the surface's range "
+    "within the edge tolerance import clamped (trj9_ap209-td.stp, whole)",
+    "[cad][occt]") {
+  const std::string path = occt_file("trj9_ap209-td.stp");
+  // The file exercises the clamping: faces whose UV box leaves a non-periodic B-spline's range.
+  int overshooting = 0;
+  for (const TopoDS_Face& f : faces_of_file(path)) {
+    const Handle(Geom_BSplineSurface) bs =
+        Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(f));
+    if (bs.IsNull()) continue;
+    double a = 0, b = 0, c = 0, d = 0, u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    BRepTools::UVBounds(f, a, b, c, d);
+    bs->Bounds(u0, u1, v0, v1);
+    const double du = 1e-12 * (u1 - u0), dv = 1e-12 * (v1 - v0);
+    overshooting += (!bs->IsUPeriodic() && (a < u0 - du || b > u1 + du)) ||
+                    (!bs->IsVPeriodic() && (c < v0 - dv || d > v1 + dv));
+  }
+  CHECK(overshooting >= 1);
+  const Totals t = import_and_compare("trj9_ap209-td.stp");
   CHECK(t.same >= t.points / 2);
 }
 
