@@ -620,7 +620,24 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
   if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion ||
       type == GeomAbs_Cone) {  // a cone face across its apex (convert)
     try {
-      c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
+      const Handle(Geom_BSplineSurface) bs = GeomConvert::SurfaceToBSplineSurface(patch);
+      c.entity = nurbs_of(*bs);
+      // Where the conversion kept OCCT's parameters (an extrusion of a B-spline curve keeps
+      // the curve's u and the length v along the direction): the same rectangle and the same
+      // points at equal (u, v) on a 9 x 9 grid, within 1e-10 of the size; then the map is the
+      // identity and a trimmed face's loops follow (convert checks its grid again).
+      double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+      bs->Bounds(u0, u1, v0, v1);
+      const double pt =
+          1e-12 * std::max({1.0, std::abs(b.u0), std::abs(b.u1), std::abs(b.v0), std::abs(b.v1)});
+      bool kept = std::abs(u0 - b.u0) <= pt && std::abs(u1 - b.u1) <= pt &&
+                  std::abs(v0 - b.v0) <= pt && std::abs(v1 - b.v1) <= pt;
+      for (int j = 0; j <= 8 && kept; ++j)
+        for (int i = 0; i <= 8 && kept; ++i) {
+          const double u = b.u0 + (b.u1 - b.u0) * i / 8, v = b.v0 + (b.v1 - b.v0) * j / 8;
+          kept = s->Value(u, v).Distance(bs->Value(u, v)) <= 1e-10 * std::max(size, 1.0);
+        }
+      c.mapped = kept;
       return c;
     } catch (const Standard_Failure&) {  // not convertible exactly: approximate
     }

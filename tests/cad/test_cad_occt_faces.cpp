@@ -148,6 +148,19 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "cad import (OCCT data): trimmed extrusions of B-spline curves keep OCCT's parameters "
+    "and import trimmed (trj4_k1_top-pe-203.stp, whole)",
+    "[cad][occt]") {
+  const CadImport imp = import_cad(occt_file("trj4_k1_top-pe-203.stp"), "k1");
+  int trimmed_extrusions = 0;
+  for (const CadFace& f : imp.faces)
+    trimmed_extrusions += f.cad_type == "extrusion" && f.entity_type == "trimmed nurbs_surface";
+  CHECK(trimmed_extrusions >= 3);
+  const Totals t = import_and_compare("trj4_k1_top-pe-203.stp");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
     "cad import: a B-spline face overshooting its surface's range is clamped within the "
     "edge tolerance, refused beyond it",
     "[cad]") {
