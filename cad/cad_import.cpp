@@ -340,11 +340,12 @@ std::string number(double x) {
 }
 
 /// The face's box `b` on a non-periodic direction [lo, hi] of the B-spline `bs` (u: dir 0,
-/// v: dir 1), clamped into it. An edge whose parameter curve leaves the range by delta is
-/// accepted when delta times the largest parametric speed |S_u| (|S_v|) along that side of
-/// the face, a first-order bound of the 3-D distance from the clamped boundary, is within the
-/// edge's tolerance (BRep_Tool::Tolerance: the distance OCCT itself allows between the edge
-/// and the face); otherwise the face does not lie on its surface and is refused.
+/// v: dir 1), clamped into it. An edge whose parameter curve p(t) leaves the range is accepted
+/// when clamping moves its points by at most the edge's tolerance (BRep_Tool::Tolerance: the
+/// distance OCCT itself allows between the edge and the face): at 65 points of the edge,
+/// where p(t) is outside, the 3-D distance from S(p(t)) (OCCT's polynomial continuation of
+/// the end span) to S(clamp(p(t))). Otherwise the face does not lie on its surface and is
+/// refused, the message giving the overshoot in parameter and in 3-D.
 void clamp_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir, double lo,
                       double hi, UvBox& b) {
   double& a = dir == 0 ? b.u0 : b.v0;
@@ -355,34 +356,32 @@ void clamp_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int d
     z = std::min(z, hi);
     return;
   }
+  double su0 = 0, su1 = 0, sv0 = 0, sv1 = 0;
+  bs.Bounds(su0, su1, sv0, sv1);
   const char* name = dir == 0 ? "u" : "v";
   int k = 0;
   for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next(), ++k) {
     const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
-    double eu0 = 0, eu1 = 0, ev0 = 0, ev1 = 0;
-    BRepTools::UVBounds(f, edge, eu0, eu1, ev0, ev1);
-    const double e0 = dir == 0 ? eu0 : ev0, e1 = dir == 0 ? eu1 : ev1;
-    const double o0 = dir == 0 ? std::max(ev0, b.v0) : std::max(eu0, b.u0);  // other param
-    const double o1 = dir == 0 ? std::min(ev1, b.v1) : std::min(eu1, b.u1);
-    for (const double side : {lo, hi}) {
-      const double delta = side == lo ? lo - e0 : e1 - hi;
-      if (delta <= round_off) continue;
-      double speed = 0.0;
-      for (int i = 0; i <= 8; ++i) {
-        const double o = o0 + (o1 - o0) * i / 8;
-        gp_Pnt P;
-        gp_Vec Su, Sv;
-        dir == 0 ? bs.D1(side, o, P, Su, Sv) : bs.D1(o, side, P, Su, Sv);
-        speed = std::max(speed, (dir == 0 ? Su : Sv).Magnitude());
-      }
-      const double reach = delta * speed, tol = BRep_Tool::Tolerance(edge);
-      if (!(reach <= tol))
-        throw CadError("its boundary (edge " + std::to_string(k) + ") reaches " + number(delta) +
-                       " past the B-spline surface's " + name + " range [" + number(lo) + ", " +
-                       number(hi) + "], about " + number(reach) +
-                       " in 3-D, more than the edge's tolerance " + number(tol) +
-                       ": the face does not lie on its surface");
+    const BRepAdaptor_Curve2d pc(edge, f);
+    const double t0 = pc.FirstParameter(), t1 = pc.LastParameter();
+    double delta = 0.0, reach = 0.0;
+    for (int i = 0; i <= 64; ++i) {
+      const double t = t0 + (t1 - t0) * i / 64;
+      const gp_Pnt2d q = pc.Value(t);
+      const double w = dir == 0 ? q.X() : q.Y();
+      const double past = std::max(lo - w, w - hi);
+      if (past <= round_off) continue;
+      delta = std::max(delta, past);
+      const gp_Pnt on = bs.Value(std::clamp(q.X(), su0, su1), std::clamp(q.Y(), sv0, sv1));
+      reach = std::max(reach, on.Distance(bs.Value(q.X(), q.Y())));
     }
+    const double tol = BRep_Tool::Tolerance(edge);
+    if (!(reach <= tol))
+      throw CadError("its boundary (edge " + std::to_string(k) + ") reaches " + number(delta) +
+                     " past the B-spline surface's " + name + " range [" + number(lo) + ", " +
+                     number(hi) + "], " + number(reach) +
+                     " in 3-D, more than the edge's tolerance " + number(tol) +
+                     ": the face does not lie on its surface");
   }
   a = std::max(a, lo);
   z = std::min(z, hi);
