@@ -668,6 +668,10 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
 }
 
 Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
+  if (!(b.u0 < b.u1 && b.v0 < b.v1))
+    throw CadError("its boundary spans no area in its surface's parameters (u [" + number(b.u0) +
+                   ", " + number(b.u1) + "], v [" + number(b.v0) + ", " + number(b.v1) +
+                   "]): a degenerate face");
   const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
   const GeomAdaptor_Surface ad(s);
   Converted c;
