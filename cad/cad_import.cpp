@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <iostream>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <optional>
@@ -51,6 +52,7 @@
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <Message_PrinterOStream.hxx>
+#include <Precision.hxx>
 #include <STEPConstruct_UnitContext.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
@@ -76,6 +78,10 @@
 #include <gp_Sphere.hxx>
 #include <gp_Torus.hxx>
 #include <gp_Trsf.hxx>
+
+#include "cad/cad_face.hpp"
+#include "geometry/bspline_basis.hpp"
+#include "geometry/fitting.hpp"
 
 namespace iga {
 
@@ -478,6 +484,9 @@ struct UvMap {
 struct Converted {
   GeometryEntity entity;
   const Surface* surface = nullptr;
+  /// The OCCT parameter box the surface was made on: the face's, or (B-spline faces whose
+  /// boundary overshoots the surface's range within the edges' tolerance) clamped into it.
+  std::optional<UvBox> box;
   UvMap map;           // our (u, v) from OCCT's (analytic faces and unchanged NURBS)
   bool mapped = true;  // false: OCCT reparametrized it (exact conversion or approximation)
   bool exact = true;
@@ -501,25 +510,209 @@ NurbsSurface nurbs_of(const Geom_BSplineSurface& bs) {
   return {p, std::move(knots_u), q, std::move(knots_v), points, weights};
 }
 
-Converted from_bspline(Handle(Geom_BSplineSurface) bs, const UvBox& b) {
+std::string number(double x) {
+  std::ostringstream os;
+  os.precision(3);
+  os << x;
+  return os.str();
+}
+
+/// The face's box `b` on a non-periodic direction [lo, hi] of the B-spline `bs` (u: dir 0,
+/// v: dir 1), clamped into it. An edge whose parameter curve p(t) leaves the range is accepted
+/// when clamping moves its points by at most the edge's tolerance (BRep_Tool::Tolerance: the
+/// distance OCCT itself allows between the edge and the face): at 65 points of the edge,
+/// where p(t) is outside, the 3-D distance from S(p(t)) (OCCT's polynomial continuation of
+/// the end span) to S(clamp(p(t))). Otherwise the face does not lie on its surface and is
+/// refused, the message giving the overshoot in parameter and in 3-D.
+void clamp_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir, double lo,
+                      double hi, UvBox& b) {
+  double& a = dir == 0 ? b.u0 : b.v0;
+  double& z = dir == 0 ? b.u1 : b.v1;
+  const double round_off = 1e-12 * (hi - lo);
+  if (a >= lo - round_off && z <= hi + round_off) {
+    a = std::max(a, lo);
+    z = std::min(z, hi);
+    return;
+  }
+  double su0 = 0, su1 = 0, sv0 = 0, sv1 = 0;
+  bs.Bounds(su0, su1, sv0, sv1);
+  const char* name = dir == 0 ? "u" : "v";
+  int k = 0;
+  for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next(), ++k) {
+    const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+    const BRepAdaptor_Curve2d pc(edge, f);
+    const double t0 = pc.FirstParameter(), t1 = pc.LastParameter();
+    double delta = 0.0, reach = 0.0;
+    for (int i = 0; i <= 64; ++i) {
+      const double t = t0 + (t1 - t0) * i / 64;
+      const gp_Pnt2d q = pc.Value(t);
+      const double w = dir == 0 ? q.X() : q.Y();
+      const double past = std::max(lo - w, w - hi);
+      if (past <= round_off) continue;
+      delta = std::max(delta, past);
+      const gp_Pnt on = bs.Value(std::clamp(q.X(), su0, su1), std::clamp(q.Y(), sv0, sv1));
+      reach = std::max(reach, on.Distance(bs.Value(q.X(), q.Y())));
+    }
+    const double tol = BRep_Tool::Tolerance(edge);
+    if (!(reach <= tol))
+      throw CadError("its boundary (edge " + std::to_string(k) + ") reaches " + number(delta) +
+                     " past the B-spline surface's " + name + " range [" + number(lo) + ", " +
+                     number(hi) + "], " + number(reach) +
+                     " in 3-D, more than the edge's tolerance " + number(tol) +
+                     ": the face does not lie on its surface");
+  }
+  a = std::max(a, lo);
+  z = std::min(z, hi);
+}
+
+/// A B-spline of degree above kMaxDegree as a polynomial B-spline of degree 7 on the same
+/// parameter rectangle: least squares with fixed ends ([PT97] Sect. 9.4.1, fit_curve) on a
+/// uniform grid of (2 (n + 7) + 1)^2 samples S(u_i, v_j), n uniform spans per direction:
+/// first every row of samples along u, then every column of the rows' control points along v
+/// (the tensor-product fit, separable on a grid). n doubles from 4 to 64 until the deviation
+/// |ours(u, v) - S(u, v)| at equal parameters, sampled on a 41 x 41 grid off the fitting
+/// samples, is within 1e-10 of the face's size; `bound` is that deviation (the last one if
+/// 1e-10 is not reached).
+NurbsSurface fit_high_degree(const Geom_BSplineSurface& bs, double size, double& bound) {
+  constexpr int p = 7;
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs.Bounds(u0, u1, v0, v1);
+  NurbsSurface best;
+  bound = std::numeric_limits<double>::infinity();
+  for (int n = 4; n <= 64 && !(bound <= 1e-10 * size); n *= 2) {
+    const int m = 2 * (n + p) + 1;
+    auto knots = [&](double lo, double hi) {
+      std::vector<double> k(p + 1, lo);
+      for (int i = 1; i < n; ++i) k.push_back(lo + (hi - lo) * i / n);
+      k.insert(k.end(), p + 1, hi);
+      return k;
+    };
+    const std::vector<double> ku = knots(u0, u1), kv = knots(v0, v1);
+    std::vector<double> tu(static_cast<std::size_t>(m)), tv(static_cast<std::size_t>(m));
+    for (int i = 0; i < m; ++i) {
+      tu[static_cast<std::size_t>(i)] = i == m - 1 ? u1 : u0 + (u1 - u0) * i / (m - 1);
+      tv[static_cast<std::size_t>(i)] = i == m - 1 ? v1 : v0 + (v1 - v0) * i / (m - 1);
+    }
+    const int nc = n + p;                     // control points per direction
+    std::vector<std::vector<Vector3d>> rows;  // rows[j][k]: control point k of row v_j
+    for (int j = 0; j < m; ++j) {
+      std::vector<Vector3d> q;
+      for (int i = 0; i < m; ++i)
+        q.push_back(
+            vec(bs.Value(tu[static_cast<std::size_t>(i)], tv[static_cast<std::size_t>(j)])));
+      rows.push_back(fit_curve(q, tu, p, ku).curve.control_points());
+    }
+    std::vector<Vector3d> net(static_cast<std::size_t>(nc * nc));
+    for (int k = 0; k < nc; ++k) {
+      std::vector<Vector3d> q;
+      for (int j = 0; j < m; ++j)
+        q.push_back(rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)]);
+      const std::vector<Vector3d> col = fit_curve(q, tv, p, kv).curve.control_points();
+      for (int l = 0; l < nc; ++l)
+        net[static_cast<std::size_t>(l * nc + k)] = col[static_cast<std::size_t>(l)];  // u fastest
+    }
+    NurbsSurface fit(p, ku, p, kv, net, {});
+    double dev = 0.0;
+    for (int j = 0; j <= 40; ++j)
+      for (int i = 0; i <= 40; ++i) {
+        const double u = u0 + (u1 - u0) * (i + 0.37 * (i < 40)) / 40;
+        const double v = v0 + (v1 - v0) * (j + 0.41 * (j < 40)) / 40;
+        dev = std::max(dev, (fit.point(u, v) - vec(bs.Value(u, v))).norm());
+      }
+    if (dev < bound) {
+      bound = dev;
+      best = std::move(fit);
+    }
+  }
+  return best;
+}
+
+Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, const UvBox& b,
+                       double size) {
   bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs->Bounds(u0, u1, v0, v1);  // a periodic direction: its first period
+  UvBox g = b;
+  // A periodic direction: the face may cross the seam (its range anywhere, not longer than
+  // the period); Segment of the periodic surface cuts it there, exactly (knot insertion), with
+  // the face's own parameters. A non-periodic one: within the range, or clamped into it.
+  bool across = false;
+  const std::array<bool, 2> periodic = {bs->IsUPeriodic(), bs->IsVPeriodic()};
+  const std::array<double, 2> periods = {u1 - u0, v1 - v0};
+  for (int dir = 0; dir < 2; ++dir) {
+    const double lo = dir == 0 ? u0 : v0, hi = dir == 0 ? u1 : v1;
+    const double a = dir == 0 ? g.u0 : g.v0, z = dir == 0 ? g.u1 : g.v1;
+    if (!periodic[static_cast<std::size_t>(dir)]) {
+      clamp_into_range(f, *bs, dir, lo, hi, g);
+      continue;
+    }
+    const double period = hi - lo, round_off = 1e-12 * period;
+    if (z - a > period + std::max(round_off, Precision::PConfusion()))
+      throw CadError(std::string("its ") + (dir == 0 ? "u" : "v") + " range [" + number(a) + ", " +
+                     number(z) + "] is longer than the B-spline's period " + number(period));
+    // Past the period's ends by at most OCCT's parametric confusion (1e-9): the same
+    // parameter to OCCT (Segment snaps to it), clamped; farther: across the seam.
+    const double snap = std::max(round_off, Precision::PConfusion());
+    if (a >= lo - snap && z <= hi + snap) {
+      (dir == 0 ? g.u0 : g.v0) = std::max(a, lo);
+      (dir == 0 ? g.u1 : g.v1) = std::min(z, hi);
+    } else {
+      across = true;
+    }
+  }
+  Converted c;
+  c.box = g;
+  if (across) {
+    // Segment puts the piece's parameters into the first period: ours are OCCT's shifted by a
+    // whole number of periods, u' = u + b_u (v alike), found from the new bounds and checked.
+    bs->Segment(g.u0, g.u1, g.v0, g.v1);
+    bs->Bounds(u0, u1, v0, v1);
+    c.map.bu = u0 - g.u0;
+    c.map.bv = v0 - g.v0;
+    for (int dir = 0; dir < 2; ++dir) {
+      const double shift = dir == 0 ? c.map.bu : c.map.bv;
+      const double len = dir == 0 ? g.u1 - g.u0 : g.v1 - g.v0;
+      const double new_len = dir == 0 ? u1 - u0 : v1 - v0;
+      const double P = periods[static_cast<std::size_t>(dir)];
+      const double turns = periodic[static_cast<std::size_t>(dir)] ? std::round(shift / P) : 0.0;
+      const double snap = std::max(1e-12 * P, Precision::PConfusion());
+      if (std::abs(shift - turns * P) > snap || std::abs(new_len - len) > snap)
+        throw CadError("internal error: OpenCASCADE's cut across the periodic seam made the " +
+                       std::string(dir == 0 ? "u" : "v") + " range " + number(len) +
+                       " long, shifted by " + number(shift) + ", into one " + number(new_len) +
+                       " long (expected the same length shifted by whole periods " + number(P) +
+                       ")");
+      (dir == 0 ? c.map.bu : c.map.bv) = turns * P;
+    }
+  } else {
+    if (bs->IsUPeriodic()) bs->SetUNotPeriodic();
+    if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
+    bs->Bounds(u0, u1, v0, v1);
+    const double tu = 1e-12 * (u1 - u0), tv = 1e-12 * (v1 - v0);
+    // A face using part of its surface, or ends not clamped (a periodic surface made
+    // non-periodic keeps its knot pattern): cut to the face's range, exactly (knot insertion).
+    const bool clamped = bs->UMultiplicity(1) == bs->UDegree() + 1 &&
+                         bs->UMultiplicity(bs->NbUKnots()) == bs->UDegree() + 1 &&
+                         bs->VMultiplicity(1) == bs->VDegree() + 1 &&
+                         bs->VMultiplicity(bs->NbVKnots()) == bs->VDegree() + 1;
+    g.u0 = std::max(g.u0, u0), g.u1 = std::min(g.u1, u1);
+    g.v0 = std::max(g.v0, v0), g.v1 = std::min(g.v1, v1);
+    if (!clamped || g.u0 > u0 + tu || g.u1 < u1 - tu || g.v0 > v0 + tv || g.v1 < v1 - tv)
+      bs->Segment(g.u0, g.u1, g.v0, g.v1);
+  }
   if (bs->IsUPeriodic()) bs->SetUNotPeriodic();
   if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  bs->Bounds(u0, u1, v0, v1);
-  const double tu = 1e-12 * (u1 - u0), tv = 1e-12 * (v1 - v0);
-  if (b.u0 < u0 - tu || b.u1 > u1 + tu || b.v0 < v0 - tv || b.v1 > v1 + tv)
-    throw CadError("its parameter range crosses the B-spline's periodic seam");
-  // A face using part of its surface, or ends not clamped (a periodic surface made
-  // non-periodic keeps its knot pattern): cut to the face's range, exactly (knot insertion).
-  const bool clamped = bs->UMultiplicity(1) == bs->UDegree() + 1 &&
-                       bs->UMultiplicity(bs->NbUKnots()) == bs->UDegree() + 1 &&
-                       bs->VMultiplicity(1) == bs->VDegree() + 1 &&
-                       bs->VMultiplicity(bs->NbVKnots()) == bs->VDegree() + 1;
-  if (!clamped || b.u0 > u0 + tu || b.u1 < u1 - tu || b.v0 > v0 + tv || b.v1 < v1 - tv)
-    bs->Segment(b.u0, b.u1, b.v0, b.v1);
-  Converted c;
-  c.entity = nurbs_of(*bs);
+  if (bs->UDegree() <= kMaxDegree && bs->VDegree() <= kMaxDegree) {
+    c.entity = nurbs_of(*bs);
+    return c;
+  }
+  // Our B-spline basis stops at degree kMaxDegree (fixed-size scratch space,
+  // geometry/bspline_basis.hpp): a higher degree is approximated on the same parameters
+  // (fit_high_degree), the bound reported.
+  double bound = 0.0;
+  c.entity = fit_high_degree(*bs, size, bound);
+  c.exact = false;
+  c.tolerance = bound;
   return c;
 }
 
@@ -554,24 +747,34 @@ Converted from_analytic(const GeomAdaptor_Surface& ad, const UvBox& b) {
       break;
     }
     case GeomAbs_Cone: {
-      // P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z: apex at v_a = -R0 / sin A, and
-      // from there height = rho (s cot A) along Zeff (s = -1 for a left-handed frame).
+      // P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z: apex at v_a = -R0 / sin A; with
+      // rho = R0 + v sin A (signed radius), P - apex = |rho| e_r(u + delta) + rho cot A Z,
+      // delta = 0 on the nappe rho > 0 and pi on the other (rho < 0). Each nappe is one of our
+      // cones: radius v' = |rho|, axis along the side it opens to (sign of rho cot A along
+      // Zeff = s Z, s = -1 for a left-handed frame, Y = Zeff x X); where that is -Zeff the
+      // frame turns over X (e_y = -Y) and u' = -(u + delta) + 2 pi.
       const gp_Cone g = ad.Cone();
       const double A = g.SemiAngle(), R0 = g.RefRadius();
       Placement p = placement_of(g.Position(), flip);
       const double s = flip ? -1.0 : 1.0;
       const double va = -R0 / std::sin(A);
       p.center = vec(g.Position().Location()) + va * std::cos(A) * vec(g.Position().Direction());
-      c.map.av = std::sin(A);
-      c.map.bv = R0;                            // v' = rho, the radius
-      if (s * std::cos(A) / std::sin(A) < 0) {  // opens along -Zeff: turn the frame over X
+      const double rho0 = R0 + b.v0 * std::sin(A), rho1 = R0 + b.v1 * std::sin(A);
+      const double tol = 1e-12 * std::max(std::abs(rho0), std::abs(rho1));
+      const double nappe = rho0 + rho1 >= 0 ? 1.0 : -1.0;  // sign of rho on the face
+      if (std::min(nappe * rho0, nappe * rho1) < -tol)
+        throw CadError("internal error: a face across the cone's apex reached from_analytic");
+      const double delta = nappe > 0 ? 0.0 : kPi;
+      c.map.av = nappe * std::sin(A);
+      c.map.bv = nappe * R0;  // v' = |rho|, the radius
+      if (s * nappe * std::cos(A) / std::sin(A) > 0) {
+        c.map.bu = delta;
+      } else {  // opens along -Zeff: turn the frame over X
         p.axis = -p.axis;
         c.map.au = -1;
-        c.map.bu = 2 * kPi;
+        c.map.bu = 2 * kPi - delta;
       }
       const Domain2 d = c.map.domain(b);
-      if (d.v.lo < -1e-12 * d.v.hi)
-        throw CadError("the face reaches the cone's other nappe (negative radius)");
       c.entity = Cone(p, 0.5 * kPi - std::abs(A), {d.u, {std::max(d.v.lo, 0.0), d.v.hi}});
       break;
     }
@@ -586,13 +789,32 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
   c.mapped = false;
   const Handle(Geom_RectangularTrimmedSurface) patch =
       new Geom_RectangularTrimmedSurface(s, b.u0, b.u1, b.v0, b.v1);
-  // Exact for revolutions and extrusions (of conics and B-spline curves); for other types
+  // Exact for revolutions and extrusions (of conics and B-spline curves) and cones (rational
+  // quadratic in u, linear in v: Convert_ConeToBSplineSurface); for other types
   // (offset surfaces) GeomConvert approximates silently, so they take the approximation below,
   // whose bound is known.
   const GeomAbs_SurfaceType type = GeomAdaptor_Surface(s).GetType();
-  if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion) {
+  if (type == GeomAbs_SurfaceOfRevolution || type == GeomAbs_SurfaceOfExtrusion ||
+      type == GeomAbs_Cone) {  // a cone face across its apex (convert)
     try {
-      c.entity = nurbs_of(*GeomConvert::SurfaceToBSplineSurface(patch));
+      const Handle(Geom_BSplineSurface) bs = GeomConvert::SurfaceToBSplineSurface(patch);
+      c.entity = nurbs_of(*bs);
+      // Where the conversion kept OCCT's parameters (an extrusion of a B-spline curve keeps
+      // the curve's u and the length v along the direction): the same rectangle and the same
+      // points at equal (u, v) on a 9 x 9 grid, within 1e-10 of the size; then the map is the
+      // identity and a trimmed face's loops follow (convert checks its grid again).
+      double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+      bs->Bounds(u0, u1, v0, v1);
+      const double pt =
+          1e-12 * std::max({1.0, std::abs(b.u0), std::abs(b.u1), std::abs(b.v0), std::abs(b.v1)});
+      bool kept = std::abs(u0 - b.u0) <= pt && std::abs(u1 - b.u1) <= pt &&
+                  std::abs(v0 - b.v0) <= pt && std::abs(v1 - b.v1) <= pt;
+      for (int j = 0; j <= 8 && kept; ++j)
+        for (int i = 0; i <= 8 && kept; ++i) {
+          const double u = b.u0 + (b.u1 - b.u0) * i / 8, v = b.v0 + (b.v1 - b.v0) * j / 8;
+          kept = s->Value(u, v).Distance(bs->Value(u, v)) <= 1e-10 * std::max(size, 1.0);
+        }
+      c.mapped = kept;
       return c;
     } catch (const Standard_Failure&) {  // not convertible exactly: approximate
     }
@@ -624,6 +846,10 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
 }
 
 Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
+  if (!(b.u0 < b.u1 && b.v0 < b.v1))
+    throw CadError("its boundary spans no area in its surface's parameters (u [" + number(b.u0) +
+                   ", " + number(b.u1) + "], v [" + number(b.v0) + ", " + number(b.v1) +
+                   "]): a degenerate face");
   const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
   const GeomAdaptor_Surface ad(s);
   Converted c;
@@ -652,14 +878,25 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
       case GeomAbs_Cylinder:
       case GeomAbs_Sphere:
       case GeomAbs_Torus:
-      case GeomAbs_Cone:
         c = from_analytic(ad, b);
         break;
+      case GeomAbs_Cone: {
+        // A face across the apex (its signed radius R0 + v sin A changes sign) holds parts of
+        // both nappes: one of our cones is one nappe, so it becomes the exact NURBS of OCCT's
+        // conversion (reparametrized in u: a trimmed one is refused in import_cad).
+        const gp_Cone g = ad.Cone();
+        const double A = g.SemiAngle(), R0 = g.RefRadius();
+        const double rho0 = R0 + b.v0 * std::sin(A), rho1 = R0 + b.v1 * std::sin(A);
+        const double tol = 1e-12 * std::max(std::abs(rho0), std::abs(rho1));
+        c = std::min(rho0, rho1) < -tol && std::max(rho0, rho1) > tol ? from_other(s, b, size)
+                                                                      : from_analytic(ad, b);
+        break;
+      }
       case GeomAbs_BSplineSurface:
-        c = from_bspline(ad.BSpline(), b);
+        c = from_bspline(f, ad.BSpline(), b, size);
         break;
       case GeomAbs_BezierSurface:
-        c = from_bspline(GeomConvert::SurfaceToBSplineSurface(ad.Bezier()), b);
+        c = from_bspline(f, GeomConvert::SurfaceToBSplineSurface(ad.Bezier()), b, size);
         break;
       default:
         c = from_other(s, b, size);
@@ -672,12 +909,14 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
           throw CadError("internal error: a face became a " + entity_type(GeometryEntity(e)));
       },
       c.entity);
-  // Where the parametrization was kept: the same points as OCCT's, checked on a grid.
-  const double tol = 1e-10 * std::max(size, 1.0);
+  // Where the parametrization was kept: the same points as OCCT's, checked on a grid (an
+  // approximation on the same parameters: within its bound).
+  const double tol = std::max(1e-10 * std::max(size, 1.0), c.exact ? 0.0 : c.tolerance);
+  const UvBox g = c.box.value_or(b);
   double worst = 0.0;
   for (int j = 0; j <= 4 && c.mapped; ++j)
     for (int i = 0; i <= 4; ++i) {
-      const double u = b.u0 + (b.u1 - b.u0) * i / 4, v = b.v0 + (b.v1 - b.v0) * j / 4;
+      const double u = g.u0 + (g.u1 - g.u0) * i / 4, v = g.v0 + (g.v1 - g.v0) * j / 4;
       const Vector3d theirs = vec(s->Value(u, v));
       const Vector3d mine = ours.point(c.map.au * u + c.map.bu, c.map.av * v + c.map.bv);
       worst = std::max(worst, (mine - theirs).norm());
@@ -691,7 +930,7 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
   // The face's own normal (OCCT's orientation included): compared at an inner point, OCCT's
   // parameters mapped to ours (a reparametrization by OCCT keeps both directions).
   const double fu = 0.623, fv = 0.571;
-  const double um = b.u0 + fu * (b.u1 - b.u0), vm = b.v0 + fv * (b.v1 - b.v0);
+  const double um = g.u0 + fu * (g.u1 - g.u0), vm = g.v0 + fv * (g.v1 - g.v0);
   gp_Pnt P;
   gp_Vec Su, Sv;
   s->D1(um, vm, P, Su, Sv);
@@ -724,16 +963,52 @@ NurbsCurve nurbs_of(Handle(Geom_BSplineCurve) bs) {
   return {p, std::vector<double>(k.begin(), k.end()), points, weights};
 }
 
+/// An edge's B-spline curve as ours; a degree above kMaxDegree (our basis' limit) fitted at
+/// degree 7 on the same parameter (least squares with fixed ends, fit_curve, n uniform spans,
+/// n doubling from 4 to 256 until the deviation at equal parameters, sampled at 401 points off
+/// the fitting samples, is within 1e-12 of `scale`, else the closest fit is kept).
+NurbsCurve curve_of(const Handle(Geom_BSplineCurve) & bs, double scale) {
+  if (bs->Degree() <= kMaxDegree) return nurbs_of(bs);
+  constexpr int p = 7;
+  const double t0 = bs->FirstParameter(), t1 = bs->LastParameter();
+  NurbsCurve best;
+  double bound = std::numeric_limits<double>::infinity();
+  for (int n = 4; n <= 256 && !(bound <= 1e-12 * scale); n *= 2) {
+    std::vector<double> k(p + 1, t0);
+    for (int i = 1; i < n; ++i) k.push_back(t0 + (t1 - t0) * i / n);
+    k.insert(k.end(), p + 1, t1);
+    const int m = 2 * (n + p) + 1;
+    std::vector<double> t;
+    std::vector<Vector3d> q;
+    for (int i = 0; i < m; ++i) {
+      t.push_back(i == m - 1 ? t1 : t0 + (t1 - t0) * i / (m - 1));
+      q.push_back(vec(bs->Value(t.back())));
+    }
+    NurbsCurve fit = fit_curve(q, t, p, k).curve;
+    double dev = 0.0;
+    for (int i = 0; i < 400; ++i) {
+      const double s = t0 + (t1 - t0) * (i + 0.43) / 400;
+      dev = std::max(dev, (fit.point(s) - vec(bs->Value(s))).norm());
+    }
+    if (dev < bound) bound = dev, best = std::move(fit);
+  }
+  return best;
+}
+
 /// The face's trimming: its loops as polylines in our (u, v) (each edge's parameter curve
 /// traversed along the wire, sampled within `deflection` by OCCT), its edges as exact NURBS
 /// curves in 3-D (degenerate edges, e.g. at a pole, have none).
 TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvMap& map,
                             const UvBox& b) {
   const double deflection = 1e-6 * std::hypot(b.u1 - b.u0, b.v1 - b.v0);
+  const Domain2 dom = base.domain();
   std::vector<TrimmedSurface::Loop> loops;
+  int wires = 0, short_wires = 0, walked = 0, edges_in_wires = 0;
   for (TopExp_Explorer w(f, TopAbs_WIRE); w.More(); w.Next()) {
+    ++wires;
+    for (TopExp_Explorer e(w.Current(), TopAbs_EDGE); e.More(); e.Next()) ++edges_in_wires;
     TrimmedSurface::Loop loop;
-    for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), f); e.More(); e.Next()) {
+    for (BRepTools_WireExplorer e(TopoDS::Wire(w.Current()), f); e.More(); e.Next(), ++walked) {
       const BRepAdaptor_Curve2d c(e.Current(), f);
       const GCPnts_QuasiUniformDeflection pts(c, deflection);
       if (!pts.IsDone()) throw CadError("OpenCASCADE could not sample a trimming curve");
@@ -742,12 +1017,28 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
       if (e.Current().Orientation() == TopAbs_REVERSED) std::reverse(t.begin(), t.end());
       for (std::size_t i = 0; i + 1 < t.size(); ++i) {  // the end is the next edge's start
         const gp_Pnt2d q = c.Value(t[i]);
-        loop.emplace_back(map.au * q.X() + map.bu, map.av * q.Y() + map.bv);
+        // Into the base's domain: a B-spline face whose boundary overshoots its surface's range
+        // was accepted only within the edges' tolerance (clamp_into_range); elsewhere the domain
+        // is the face's box and this changes nothing.
+        loop.emplace_back(std::clamp(map.au * q.X() + map.bu, dom.u.lo, dom.u.hi),
+                          std::clamp(map.av * q.Y() + map.bv, dom.v.lo, dom.v.hi));
       }
     }
-    if (loop.size() >= 3) loops.push_back(std::move(loop));
+    if (loop.size() >= 3)
+      loops.push_back(std::move(loop));
+    else
+      ++short_wires;
   }
+  if (loops.empty())
+    throw CadError("none of its " + std::to_string(wires) +
+                   " boundary wires gives a loop of 3 or more points in its parameters (" +
+                   std::to_string(short_wires) + " too short; " + std::to_string(walked) + " of " +
+                   std::to_string(edges_in_wires) +
+                   " edges reached walking the wires: fewer means a wire that is not connected)");
   std::vector<NurbsCurve> edges;
+  // Length scale of the face's coordinates (its position and its corner-to-corner extent).
+  const Vector3d lo = base.point(dom.u.lo, dom.v.lo), hi = base.point(dom.u.hi, dom.v.hi);
+  const double scale3d = lo.norm() + (hi - lo).norm();
   TopTools_IndexedMapOfShape seen;
   TopExp::MapShapes(f, TopAbs_EDGE, seen);
   for (int i = 1; i <= seen.Extent(); ++i) {
@@ -756,7 +1047,8 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
     double t0 = 0, t1 = 0;
     const Handle(Geom_Curve) c = BRep_Tool::Curve(edge, t0, t1);
     if (c.IsNull()) continue;
-    edges.push_back(nurbs_of(GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c, t0, t1))));
+    edges.push_back(
+        curve_of(GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c, t0, t1)), scale3d));
   }
   const double scale = std::max(std::abs(map.au), std::abs(map.av));
   return {base, std::move(loops), std::move(edges), deflection * scale};
@@ -772,6 +1064,32 @@ TopoDS_Shape placed(const TopoDS_Shape& shape, const CadPlacement& pl) {
 }
 
 }  // namespace
+
+std::pair<GeometryEntity, CadFace> import_face(const TopoDS_Face& face, int index) {
+  CadFace f = describe(face, index);
+  try {
+    const UvBox b = uv_bounds(face);
+    const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
+    f.entity_type = entity_type(c.entity);
+    f.exact = c.exact;
+    f.tolerance = c.tolerance;
+    if (!f.trimmed) return {c.entity, f};
+    if (!c.mapped)
+      throw CadError("trimmed, on a surface OpenCASCADE had to reparametrize (" + f.cad_type +
+                     "): its trimming curves cannot follow; not supported");
+    TrimmedSurface t = trimmed_face(face, *as_surface(c.entity), c.map, b);
+    f.entity_type = "trimmed " + entity_type(c.entity);
+    return {std::move(t), f};
+  } catch (const CadError& e) {
+    throw CadError("face " + std::to_string(index) + " (" + f.cad_type + "): " + e.what());
+  } catch (const std::exception& e) {
+    throw CadError("face " + std::to_string(index) + " (" + f.cad_type +
+                   "): cannot be imported: " + e.what());
+  } catch (const Standard_Failure& e) {
+    throw CadError("face " + std::to_string(index) + " (" + f.cad_type +
+                   "): OpenCASCADE failed: " + e.GetMessageString());
+  }
+}
 
 std::string cad_format(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());

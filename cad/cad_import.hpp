@@ -1,8 +1,10 @@
 // Rigid tools from CAD files (issue 15): the faces of a STEP or IGES file, read with
 // OpenCASCADE (OCCT 7.6), as the project's own surfaces, each as what it is:
 //   - B-spline and Bezier faces: NURBS patches with the same degrees, knots, weights and poles
-//     (periodic ones made non-periodic, a face using part of its surface cut to that part: both
-//     exact knot operations of OCCT);
+//     (periodic ones made non-periodic, a face using part of its surface cut to that part, also
+//     across a periodic seam: exact knot operations of OCCT; a boundary overshooting the
+//     surface's range within the edge's tolerance clamped; a degree above kMaxDegree fitted on
+//     the same parameters within a reported bound);
 //   - planes, cylinders, cones, spheres and tori: the analytic surfaces of
 //     geometry/analytic_surfaces.hpp (closed forms of [KS15] Appendices A and B), with their
 //     placement and parameter ranges; OCCT's parameters map to ours by u' = a_u u + b_u,
@@ -17,8 +19,9 @@
 // Notation (OCCT -> here): gp_Ax3 (O, X, Y, Z) -> Placement (center, ref_dir, axis); a
 // left-handed gp_Ax3 (Y = -(Z x X)) -> axis -Z, and the parameter along Z changes sign.
 // Cone (OCCT): P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z, A the semi-angle;
-// here: apex c, radius s = R0 + v sin A, alpha = pi/2 - |A| (angle to the plane normal to
-// the axis, (B.23)).
+// here: apex c, radius s = |R0 + v sin A| (either nappe: R0 + v sin A < 0 is our cone with the
+// axis reversed, u shifted by pi), alpha = pi/2 - |A| (angle to the plane normal to the axis,
+// (B.23)).
 //
 // Reading is guarded (issue 34): OpenCASCADE reads, transfers and converts in a child process
 // (fork), which sends the result back through a pipe as JSON (the entities with

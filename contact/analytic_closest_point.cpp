@@ -24,6 +24,14 @@
 //   when the active bound is an edge collapsed to a point (the cone's apex v = 0; the tip r = 0
 //   of a surface of revolution with f'(0) != 0). At the apex the normal is the cone's normal on
 //   the meridian through x (chosen angle), at a tip the profile's normal there.
+// - Horn and spindle tori (r >= R, analytic_surfaces.hpp): |x - rho(u, v)|^2 =
+//   s^2 + z^2 + a^2 + b^2 - 2 s a cos(u - phi) - 2 z b with a = R + r cos v (of either sign),
+//   b = r sin v. Where a >= 0 the best u is the domain's angle nearest phi, where a <= 0 the
+//   one nearest phi + pi; for that u the distance grows with the angle along the tube circle
+//   from the foot of x's meridian image (s cos(u - phi), z), so over the v's of one sign of a
+//   (arcs cut by the axis crossings a = 0, v = +-acos(-R/r)) the minimum is that foot or an
+//   end of the arcs (a domain bound or an axis crossing). Every such candidate (u, v) is a
+//   point of the face; the nearest is the closest point (closest_horn_spindle_torus).
 // - The cone is its upper nappe v >= 0 (domain bounds below 0 are treated as 0), a surface of
 //   revolution the radii r >= 0 of its u interval.
 #include "contact/analytic_projection.hpp"
@@ -31,7 +39,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <utility>
+#include <vector>
 
 #include "contact/analytic_detail.hpp"
 #include "contact/closest_point.hpp"
@@ -335,6 +345,49 @@ ProjectionResult closest_hyperboloid(const View& V, const Vector3d& x, const Vec
   return res;
 }
 
+/// Horn and spindle tori (r >= R): the candidates of the file header, the nearest one.
+ProjectionResult closest_horn_spindle_torus(const View& V, const Vector3d& x, const Vector3d& xl,
+                                            double round_off) {
+  const double s = std::hypot(xl.x(), xl.y()), z = xl.z();
+  const double phi = s > round_off ? std::atan2(xl.y(), xl.x()) : undefined_angle(V.dom.u);
+  const AngleFit us[2] = {fit_angle(phi, V.dom.u), fit_angle(phi + std::numbers::pi, V.dom.u)};
+  // The v candidates: the foot for each u (fitted into the domain), the domain's bounds and
+  // the axis crossings inside it.
+  struct Candidate {
+    double v;
+    bool foot;  // the unconstrained foot on the tube circle
+  };
+  std::vector<Candidate> vs = {{V.dom.v.lo, false}, {V.dom.v.hi, false}};
+  for (const AngleFit& u : us) {
+    const double seen = s * std::cos(u.value - phi) - V.R;
+    if (std::hypot(seen, z) <= round_off) continue;  // x on the tube's centre: every v ties
+    const AngleFit f = fit_angle(std::atan2(z, seen), V.dom.v);
+    vs.push_back({f.value, f.inside});
+  }
+  const double vc = std::acos(std::clamp(-V.R / V.r, -1.0, 1.0));
+  for (const double a : {vc, -vc}) {
+    const AngleFit f = fit_angle(a, V.dom.v);
+    if (f.inside) vs.push_back({f.value, false});
+  }
+  double best = std::numeric_limits<double>::infinity();
+  Vector2d uv(0.0, 0.0);
+  bool u_active = false, v_active = false, axis = false;
+  for (const AngleFit& u : us)
+    for (const Candidate& c : vs) {
+      const double d = (x - V.s->derivs(u.value, c.v, 0).S).squaredNorm();
+      if (!(d < best)) continue;
+      best = d;
+      uv = {u.value, c.v};
+      u_active = !u.inside;
+      v_active = !c.foot && (c.v == V.dom.v.lo || c.v == V.dom.v.hi);
+      axis = !c.foot && std::abs(V.R + V.r * std::cos(c.v)) <= 1e-12 * V.r;
+    }
+  // The axis point (R + r cos v = 0) is a vertex: rho_u vanishes there, as at the cone's apex.
+  if (axis) u_active = false;
+  return closest_result(V, x, uv, u_active, v_active, axis,
+                        std::numeric_limits<double>::quiet_NaN());
+}
+
 }  // namespace
 
 ProjectionResult hyperboloid_closest_point_ks(double a, const Vector3d& x_local,
@@ -372,6 +425,7 @@ ProjectionResult closest_point_analytic(const AnalyticSurface& s, const Vector3d
       return closest_result(V, x, Vector2d(m.angle, v), m.at_bound, av, false, p);
     }
     case Kind::torus: {  // (B.16): nearest point of the tube circle in the meridian plane
+      if (V.r >= V.R) return closest_horn_spindle_torus(V, x, xl, round_off);
       const Meridian m = meridian_of(xl.x(), xl.y(), V.dom.u, round_off);
       const double ds = m.s - V.R;
       AngleFit tube{undefined_angle(V.dom.v), true};  // x on the tube's centre circle

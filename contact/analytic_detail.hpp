@@ -129,8 +129,11 @@ inline Vector3d outward_normal(const View& V, double u, double v) {
     case Kind::plane:
       return ez;
     case Kind::sphere:  // (B.4)
-    case Kind::torus:   // (B.16)
       return std::cos(v) * e_r(V, u) + std::sin(v) * ez;
+    case Kind::torus: {  // (B.16); rho_u x rho_v turns over where R + r cos v < 0 (r > R)
+      const Vector3d n = std::cos(v) * e_r(V, u) + std::sin(v) * ez;
+      return V.R + V.r * std::cos(v) < 0.0 ? Vector3d(-n) : n;
+    }
     case Kind::cylinder:  // (B.10)
       return e_r(V, u);
     case Kind::cone:  // (B.23)

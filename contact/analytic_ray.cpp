@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include <Eigen/LU>
@@ -55,6 +56,12 @@ Vector2d params_of(const View& V, const Vector3d& w, double round_off) {
     case Kind::cylinder:
       return Vector2d(phi, w.z());
     case Kind::torus: {
+      // A horn or spindle torus (r >= R): a point nearer the circle of centre -R in its
+      // meridian plane (the tube seen from the half-plane phi + pi) is on the part where
+      // R + r cos v < 0, at u = phi + pi.
+      if (V.r >= V.R &&
+          std::abs(std::hypot(s + V.R, w.z()) - V.r) < std::abs(std::hypot(s - V.R, w.z()) - V.r))
+        return Vector2d(phi + std::numbers::pi, std::atan2(w.z(), -s - V.R));
       const double ds = s - V.R;
       return Vector2d(phi, std::hypot(ds, w.z()) > round_off ? std::atan2(w.z(), ds)
                                                              : undefined_angle(V.dom.v));

@@ -223,9 +223,8 @@ Torus::Torus(const Placement& pl, double major_radius, double minor_radius, cons
     : AnalyticKind(pl, d), R_(major_radius), r_(minor_radius) {
   check_positive("Torus: major radius", major_radius);
   check_positive("Torus: minor radius", minor_radius);
-  if (!(minor_radius < major_radius))
-    fail("Torus: minor radius must be < major radius " + num(major_radius) + ", got " +
-         num(minor_radius));
+  // r >= R (horn r = R, spindle r > R) is accepted: the same (B.16) parametrization, passing
+  // through the axis where R + r cos v = 0 (singular points, as the sphere's poles).
   check_domain("Torus", d);
 }
 

@@ -11,6 +11,10 @@
 //                u = longitude in [0, 2pi], v = latitude in [-pi/2, pi/2]      n outward
 //   Cylinder     rho = c + R (cos u e_x + sin u e_y) + v e_z                   n outward
 //   Torus        rho = c + (R + r cos v)(cos u e_x + sin u e_y) + r sin v e_z n outward
+//                (ring r < R; horn r = R and spindle r > R too: there rho_u x rho_v =
+//                r (R + r cos v)(cos v e_r + sin v e_z) turns over where R + r cos v < 0,
+//                the inner part seen from the meridian half-plane u + pi, and vanishes on
+//                the axis, R + r cos v = 0: singular points)
 //   Cone         rho = c + v (cos u e_x + sin u e_y) + v tan(alpha) e_z, v > 0 = radius s,
 //                alpha = angle of the generator to the plane normal to the axis (B.23),
 //                outward n = (sin alpha e_r - cos alpha e_z)  so that p = s sin a - z cos a
@@ -21,7 +25,7 @@
 // Default domains: angles [0, 2pi] (sphere latitude [-pi/2, pi/2]); plane, hyperboloid and the
 // cylinder's v unbounded; cone v and revolution u (radii) in [0, inf). closed_u/closed_v:
 // the angular interval is 2pi long (to 1e-12 relative). Constructors throw GeometryError for
-// radius <= 0, minor >= major radius, alpha outside (0, pi/2), non-finite parameters and
+// radius <= 0, alpha outside (0, pi/2), non-finite parameters and
 // domains without lo < hi; the message names the value.
 #pragma once
 

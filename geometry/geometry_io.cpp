@@ -284,9 +284,8 @@ GeometryEntity parse_analytic(const JsonCursor& e, const std::string& type) {
         {"type", "center", "axis", "ref_dir", "major_radius", "minor_radius", "domain", "normal"});
     const Placement pl = parse_placement(e, true, true);
     const double R = parse_positive(e["major_radius"]);
-    const JsonCursor rc = e["minor_radius"];
-    const double r = parse_positive(rc);
-    if (!(r < R)) rc.fail("must be < major_radius = " + num(R));
+    // r >= R: a horn or spindle torus (docs/model_format.md)
+    const double r = parse_positive(e["minor_radius"]);
     return analytic<Torus>(e, [&](const Domain2& d) { return Torus(pl, R, r, d); });
   }
   if (type == "cone") {

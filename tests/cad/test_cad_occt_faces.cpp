@@ -1,0 +1,251 @@
+// Issue 34, item 4: real-world faces. Files of OpenCASCADE's public test data
+// (tests/data/cad/occt/README.md) import whole, and the closest points of every face match
+// OpenCASCADE's own projection (tests/support/occt_projection_check.hpp); B-spline faces whose
+// boundary overshoots the surface's range are clamped within the edge's tolerance and refused
+// beyond it, with a message that says so.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <BRepBuilderAPI_MakeFace.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Builder.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_ConicalSurface.hxx>
+#include <IGESControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+
+#include "cad/cad_face.hpp"
+#include "cad/cad_import.hpp"
+#include "tests/support/cad_samples.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/occt_projection_check.hpp"
+
+using namespace iga;
+using Catch::Matchers::Contains;
+
+namespace {
+
+std::string occt_file(const std::string& name) {
+  return std::string(IGA_SOURCE_DIR) + "/tests/data/cad/occt/" + name;
+}
+
+/// The file's faces in OCCT's order (as import_cad numbers them), read in mm.
+std::vector<TopoDS_Face> faces_of_file(const std::string& path) {
+  TopoDS_Shape shape;
+  if (cad_format(path) == "step") {
+    STEPControl_Reader r;
+    REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
+    r.TransferRoots();
+    shape = r.OneShape();
+  } else {
+    IGESControl_Reader r;
+    REQUIRE(r.ReadFile(path.c_str()) == IFSelect_RetDone);
+    r.TransferRoots();
+    shape = r.OneShape();
+  }
+  TopTools_IndexedMapOfShape map;
+  TopExp::MapShapes(shape, TopAbs_FACE, map);
+  std::vector<TopoDS_Face> faces;
+  for (int i = 1; i <= map.Extent(); ++i) faces.push_back(TopoDS::Face(map(i)));
+  return faces;
+}
+
+struct Totals {
+  int points = 0, same = 0;
+};
+
+/// Every face of the file imports; each one's closest points pass the OCCT comparison.
+Totals import_and_compare(const std::string& name) {
+  const std::string path = occt_file(name);
+  const CadImport imp = import_cad(path, "f");
+  const std::vector<TopoDS_Face> faces = faces_of_file(path);
+  REQUIRE(imp.entities.size() == faces.size());
+  Totals t;
+  for (std::size_t k = 0; k < faces.size(); ++k) {
+    const test::OcctComparison c =
+        test::compare_with_occt(faces[k], imp.entities[k].second, imp.faces[k].tolerance);
+    INFO(name << " face " << k << " (" << imp.faces[k].cad_type << " -> "
+              << imp.faces[k].entity_type << "): " << c.failure);
+    CHECK(c.failure.empty());
+    CHECK(c.points == 200);
+    t.points += c.points;
+    t.same += c.same;
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "cad import (OCCT data): every face of screw.step imports, cones on the far nappe and "
+    "spindle tori as analytic surfaces, projecting as OpenCASCADE's",
+    "[cad][occt]") {
+  const CadImport imp = import_cad(occt_file("screw.step"), "screw");
+  REQUIRE(imp.faces.size() > 6);
+  // Face 6: a cone whose face lies where OCCT's radius R0 + v sin A is negative.
+  CHECK(imp.faces[6].cad_type == "cone");
+  CHECK(Contains("cone").match(imp.faces[6].entity_type));
+  // Face 3: a torus of minor radius 54.9 > major radius 8.25 (a spindle torus).
+  CHECK(imp.faces[3].cad_type == "torus");
+  const Surface* s3 = as_surface(imp.entities[3].second);
+  REQUIRE(s3 != nullptr);
+  if (const auto* t = dynamic_cast<const TrimmedSurface*>(s3)) s3 = &t->base();
+  const auto* torus = dynamic_cast<const Torus*>(s3);
+  REQUIRE(torus != nullptr);
+  CHECK(torus->minor_radius() > torus->major_radius());
+  const Totals t = import_and_compare("screw.step");
+  // Most feet are OpenCASCADE's own (the rest nearer than its extremum, e.g. on a bound).
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import (OCCT data): a periodic degree-12 B-spline torus across its seam imports "
+    "and projects as OpenCASCADE's",
+    "[cad][occt]") {
+  const CadImport imp = import_cad(occt_file("OCC26138_Torus.igs"), "torus");
+  REQUIRE_FALSE(imp.faces.empty());
+  CHECK(imp.faces[0].cad_type == "bspline");
+  const Totals t = import_and_compare("OCC26138_Torus.igs");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import (OCCT data): B-spline faces whose boundary overshoots the surface's range "
+    "within the edge tolerance import clamped (trj9_ap209-td.stp, whole)",
+    "[cad][occt]") {
+  const std::string path = occt_file("trj9_ap209-td.stp");
+  // The file exercises the clamping: faces whose UV box leaves a non-periodic B-spline's range.
+  int overshooting = 0;
+  for (const TopoDS_Face& f : faces_of_file(path)) {
+    const Handle(Geom_BSplineSurface) bs =
+        Handle(Geom_BSplineSurface)::DownCast(BRep_Tool::Surface(f));
+    if (bs.IsNull()) continue;
+    double a = 0, b = 0, c = 0, d = 0, u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+    BRepTools::UVBounds(f, a, b, c, d);
+    bs->Bounds(u0, u1, v0, v1);
+    const double du = 1e-12 * (u1 - u0), dv = 1e-12 * (v1 - v0);
+    overshooting += (!bs->IsUPeriodic() && (a < u0 - du || b > u1 + du)) ||
+                    (!bs->IsVPeriodic() && (c < v0 - dv || d > v1 + dv));
+  }
+  CHECK(overshooting >= 1);
+  const Totals t = import_and_compare("trj9_ap209-td.stp");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import (OCCT data): trimmed extrusions of B-spline curves keep OCCT's parameters "
+    "and import trimmed (trj4_k1_top-pe-203.stp, whole)",
+    "[cad][occt]") {
+  const CadImport imp = import_cad(occt_file("trj4_k1_top-pe-203.stp"), "k1");
+  int trimmed_extrusions = 0;
+  for (const CadFace& f : imp.faces)
+    trimmed_extrusions += f.cad_type == "extrusion" && f.entity_type == "trimmed nurbs_surface";
+  CHECK(trimmed_extrusions >= 3);
+  const Totals t = import_and_compare("trj4_k1_top-pe-203.stp");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import: a B-spline face overshooting its surface's range is clamped within the "
+    "edge tolerance, refused beyond it",
+    "[cad]") {
+  // A bicubic patch on [0, 1]^2 and its face; then the face's surface is replaced by the same
+  // patch cut to u <= 0.999 (Segment keeps the parameters): the face's boundary reaches 1e-3
+  // past the new surface's u range, about 1e-3 |S_u| ~ 4e-3 in 3-D.
+  TColgp_Array2OfPnt poles(1, 4, 1, 4);
+  for (int j = 1; j <= 4; ++j)
+    for (int i = 1; i <= 4; ++i)
+      poles(i, j) = gp_Pnt(4.0 * (i - 1) / 3, 3.0 * (j - 1) / 3, 0.1 * i * j);
+  TColStd_Array1OfReal knots(1, 2);
+  knots(1) = 0, knots(2) = 1;
+  TColStd_Array1OfInteger mults(1, 2);
+  mults(1) = 4, mults(2) = 4;
+  const Handle(Geom_BSplineSurface) full =
+      new Geom_BSplineSurface(poles, knots, knots, mults, mults, 3, 3);
+  const Handle(Geom_BSplineSurface) cut = Handle(Geom_BSplineSurface)::DownCast(full->Copy());
+  cut->Segment(0.0, 0.999, 0.0, 1.0);
+  // The face on the full patch, then its surface replaced by the cut one, and its edges'
+  // parameter curves (stored per surface) attached to the new surface, with the edge tolerance.
+  auto face_with = [&](double edge_tol) {
+    TopoDS_Face f = BRepBuilderAPI_MakeFace(full, 0.0, 1.0, 0.0, 1.0, 1e-7).Face();
+    std::vector<std::pair<TopoDS_Edge, Handle(Geom2d_Curve)>> pcurves;
+    for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next()) {
+      const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
+      double t0 = 0, t1 = 0;
+      pcurves.emplace_back(edge, BRep_Tool::CurveOnSurface(edge, f, t0, t1));
+    }
+    BRep_Builder b;
+    b.UpdateFace(f, cut, TopLoc_Location(), BRep_Tool::Tolerance(f));
+    for (const auto& [edge, pc] : pcurves) b.UpdateEdge(edge, pc, f, edge_tol);
+    return f;
+  };
+  SECTION("within the edges' tolerance (1e-2): clamped to the range") {
+    const TopoDS_Face f = face_with(1e-2);
+    const auto [entity, d] = import_face(f, 0);
+    REQUIRE(std::holds_alternative<NurbsSurface>(entity));
+    CHECK_FALSE(d.trimmed);
+    const Domain2 dom = std::get<NurbsSurface>(entity).domain();
+    CHECK(dom.u.hi == Approx(0.999).epsilon(1e-12));
+    CHECK(dom.v.hi == Approx(1.0).epsilon(1e-12));
+    const test::OcctComparison c = test::compare_with_occt(f, entity);
+    INFO(c.failure);
+    CHECK(c.failure.empty());
+  }
+  SECTION("beyond it (1e-4): refused, naming the overshoot and the tolerance") {
+    REQUIRE_THROWS_WITH(import_face(face_with(1e-4), 0),
+                        Contains("past the B-spline surface's u range") &&
+                            Contains("more than the edge's tolerance") &&
+                            !Contains("periodic seam"));
+  }
+}
+
+TEST_CASE(
+    "cad import: cone faces on either nappe are our cones, a face across the apex exact "
+    "NURBS, all projecting as OpenCASCADE's",
+    "[cad]") {
+  // OCCT's cone: P = O + (R0 + v sin A)(cos u X + sin u Y) + v cos A Z, apex at v = -R0 / sin A
+  // = -4 here (R0 = 2, A = pi/6); frames right- and left-handed, both signs of A.
+  const double R0 = 2.0;
+  for (const double A : {std::numbers::pi / 6, -std::numbers::pi / 6})
+    for (const bool direct : {true, false}) {
+      gp_Ax3 ax(gp_Pnt(1, -2, 0.5), gp_Dir(1, 2, 3), gp_Dir(3, 0, -1));
+      if (!direct) ax.YReverse();
+      const Handle(Geom_ConicalSurface) cone = new Geom_ConicalSurface(ax, A, R0);
+      const double apex = -R0 / std::sin(A);
+      struct Case {
+        double v0, v1;
+        const char* entity;
+      };
+      // Beyond the apex (radius < 0), on the near side, and across it.
+      const Case cases[] = {{apex + (A > 0 ? -3.0 : 0.5), apex + (A > 0 ? -0.5 : 3.0), "cone"},
+                            {apex + (A > 0 ? 0.5 : -3.0), apex + (A > 0 ? 3.0 : -0.5), "cone"},
+                            {apex - 1.5, apex + 2.0, "nurbs_surface"}};
+      for (const Case& c : cases) {
+        const TopoDS_Face f = BRepBuilderAPI_MakeFace(cone, 0.3, 4.0, c.v0, c.v1, 1e-7).Face();
+        INFO("A = " << A << (direct ? ", right-handed" : ", left-handed") << ", v in [" << c.v0
+                    << ", " << c.v1 << "]");
+        const auto [entity, d] = import_face(f, 0);
+        CHECK(d.entity_type == c.entity);
+        CHECK(d.exact);
+        const test::OcctComparison cmp = test::compare_with_occt(f, entity);
+        INFO(cmp.failure);
+        CHECK(cmp.failure.empty());
+        CHECK(cmp.same >= cmp.points / 2);
+      }
+    }
+}

@@ -1,0 +1,199 @@
+// Closest points of an imported CAD face against OpenCASCADE's own projection (issue 34,
+// item 4): used by tests/cad/test_cad_occt_faces.cpp and the corpus study
+// (tests/support/cad_corpus_study.cpp).
+//
+// Notation: S(u, v) OCCT's surface of the face (BRep_Tool::Surface), B its UV box
+// (BRepTools::UVBounds, clamped into a bounded B-spline's range), h the face's size (diagonal of
+// its 3-D box); x a random point S(u, v) + h/10 w, (u, v) uniform in B, w uniform in [-1, 1]^3.
+// Ours: the closest point of x on the imported base surface (a trimmed face's base, untrimmed:
+// OCCT's projection knows no trimming), foot y, distance d = |x - y|. OCCT's:
+// GeomAPI_ProjectPointOnSurf restricted to B, nearest extremum y_o, d_o = |x - y_o|.
+// A point passes when (for an untrimmed face whose UV box is larger than the face, a planar
+// rectangle re-framed on its sides, OCCT's foot outside the face is not compared: occt_outside)
+//   - y lies on S within B (OCCT's projection of y, restricted to B, is within 1e-9 h), and
+//   - OCCT finds no extremum, or d <= d_o + 1e-9 h; where |d - d_o| <= 1e-9 h also
+//     |y - y_o| <= 1e-9 h (the same foot). Ours closer (d < d_o - 1e-9 h): OCCT's answer is a
+//     local minimum or an interior extremum where the minimum over B is on its boundary
+//     (Extrema finds interior extrema only); counted separately.
+//   Equal distances with feet apart fail where our foot is interior; where ours is on B's
+//   bound (status edge or vertex) they are counted (bound_apart): OCCT's Extrema finds
+//   interior extrema only and returns, for a minimum on the bound, a point on the bound that
+//   is not converged along it (seen: 1e-5 .. 1e-4 of the distance along the edge, where the
+//   distance changes only to second order); ours is the converged 1-D minimum on that edge.
+// A face OCCT approximated within a bound b (CadFace::tolerance) is compared with 1e-9 h + 2 b
+// in place of 1e-9 h: our surface is within b of OCCT's at equal parameters, so distances
+// differ by up to b; 2 b leaves the same margin for the feet.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <BRepBndLib.hxx>
+#include <BRepClass_FaceClassifier.hxx>
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Bnd_Box.hxx>
+#include <GeomAPI_ProjectPointOnSurf.hxx>
+#include <Geom_BSplineSurface.hxx>
+#include <Geom_Surface.hxx>
+#include <ShapeAnalysis_Surface.hxx>
+#include <Standard_Failure.hxx>
+#include <TopoDS_Face.hxx>
+
+#include "contact/rigid_surface.hpp"
+#include "geometry/geometry_io.hpp"
+#include "geometry/trimmed_surface.hpp"
+
+namespace iga::test {
+
+struct OcctComparison {
+  int points = 0;        ///< points compared
+  int same = 0;          ///< same foot as OCCT's
+  int ours_closer = 0;   ///< ours nearer than OCCT's extremum
+  int occt_none = 0;     ///< OCCT found no extremum in B (ours still checked on S)
+  int occt_outside = 0;  ///< untrimmed: OCCT's foot outside the face (B larger than the face)
+  int bound_apart = 0;   ///< equal distances, our foot on B's bound, OCCT's apart along it
+  double worst = 0.0;    ///< largest |y - y_o| / h over the same feet
+  std::string failure;   ///< empty: every point passed; else the first failure, described
+};
+
+/// OCCT's UV box of the face, clamped into a non-periodic B-spline's range.
+inline void occt_box(const TopoDS_Face& face, const Handle(Geom_Surface) & s, double& u0,
+                     double& u1, double& v0, double& v1) {
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  const Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(s);
+  if (bs.IsNull()) return;
+  double a0 = 0, a1 = 0, b0 = 0, b1 = 0;
+  bs->Bounds(a0, a1, b0, b1);
+  if (!bs->IsUPeriodic()) u0 = std::max(u0, a0), u1 = std::min(u1, a1);
+  if (!bs->IsVPeriodic()) v0 = std::max(v0, b0), v1 = std::min(v1, b1);
+}
+
+/// `approximation`: the face's stated bound (CadFace::tolerance; 0 if exact): the distances
+/// and feet may differ by that much more.
+inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryEntity& e,
+                                        double approximation = 0.0, int n = 200,
+                                        unsigned seed = 11) {
+  OcctComparison out;
+  const Surface* surf = as_surface(e);
+  if (surf == nullptr) {
+    out.failure = "not a surface";
+    return out;
+  }
+  const auto* trim = dynamic_cast<const TrimmedSurface*>(surf);
+  const bool trimmed = trim != nullptr;
+  if (trimmed) surf = &trim->base();
+  RigidSurface rs;
+  if (const auto* nu = dynamic_cast<const NurbsSurface*>(surf))
+    rs.add(*nu);
+  else if (const auto* an = dynamic_cast<const AnalyticSurface*>(surf))
+    rs.add(*an);
+  else {
+    out.failure = "base is neither NURBS nor analytic";
+    return out;
+  }
+  const Handle(Geom_Surface) s = BRep_Tool::Surface(face);
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  occt_box(face, s, u0, u1, v0, v1);
+  Bnd_Box box;
+  BRepBndLib::AddOptimal(face, box, false, false);
+  const double h = box.IsVoid() ? 1.0 : box.CornerMin().Distance(box.CornerMax());
+  const double tol = 1e-9 * h + 2.0 * approximation;
+  std::mt19937 g(seed);
+  std::uniform_real_distribution<double> U(0.0, 1.0), W(-1.0, 1.0);
+  for (int k = 0; k < n; ++k) {
+    const double u = u0 + (u1 - u0) * U(g), v = v0 + (v1 - v0) * U(g);
+    const gp_Pnt P = s->Value(u, v);
+    const Vector3d x = Vector3d(P.X(), P.Y(), P.Z()) + 0.1 * h * Vector3d(W(g), W(g), W(g));
+    const gp_Pnt X(x.x(), x.y(), x.z());
+    std::ostringstream why;
+    why.precision(17);
+    why << "x = (" << x.transpose() << "): ";
+    const ProjectionResult ours = rs.closest_point(x);
+    if (!found(ours.status)) {
+      why << "our projection failed: " << to_string(ours.status);
+      out.failure = why.str();
+      return out;
+    }
+    const double d = (x - ours.point).norm();
+    try {
+      const gp_Pnt Y(ours.point.x(), ours.point.y(), ours.point.z());
+      GeomAPI_ProjectPointOnSurf on(Y, s, u0, u1, v0, v1);
+      // Our foot on OCCT's surface within B: OCCT's projection restricted to B, or (a foot on
+      // B's bound or at a degenerate side, where Extrema finds no interior extremum)
+      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B.
+      double off = on.NbPoints() > 0 ? on.LowerDistance() : 1e300;
+      if (off > tol) {
+        ShapeAnalysis_Surface sas(s);
+        const gp_Pnt2d q = sas.ValueOfUV(Y, 1e-3 * tol);
+        const double pu = 1e-9 * (u1 - u0), pv = 1e-9 * (v1 - v0);
+        double qu = q.X(), qv = q.Y();
+        if (s->IsUPeriodic())
+          qu = u0 + std::remainder(qu - u0 - 0.5 * (u1 - u0), s->UPeriod()) + 0.5 * (u1 - u0);
+        if (s->IsVPeriodic())
+          qv = v0 + std::remainder(qv - v0 - 0.5 * (v1 - v0), s->VPeriod()) + 0.5 * (v1 - v0);
+        if (qu >= u0 - pu && qu <= u1 + pu && qv >= v0 - pv && qv <= v1 + pv)
+          off = std::min(off, sas.Gap());
+      }
+      if (off > tol) {
+        why << "our foot (" << ours.point.transpose() << ") is " << off / h
+            << " h off OCCT's surface within the face's UV box";
+        out.failure = why.str();
+        return out;
+      }
+      GeomAPI_ProjectPointOnSurf proj(X, s, u0, u1, v0, v1);
+      ++out.points;
+      if (proj.NbPoints() == 0) {
+        ++out.occt_none;
+        continue;
+      }
+      const double dO = proj.LowerDistance();
+      const gp_Pnt yO = proj.NearestPoint();
+      if (!trimmed) {
+        // Our untrimmed surface is the face itself (its natural rectangle, or a planar
+        // rectangle re-framed on its sides whose UV box B is larger): OCCT's foot outside the
+        // face is not a point of it.
+        double fu = 0, fv = 0;
+        proj.LowerDistanceParameters(fu, fv);
+        const BRepClass_FaceClassifier in(face, gp_Pnt2d(fu, fv), 1e-9 * h);
+        if (in.State() == TopAbs_OUT) {
+          ++out.occt_outside;
+          continue;
+        }
+      }
+      if (d > dO + tol) {
+        why << "ours " << d << " farther than OCCT's " << dO << " (h = " << h << ")";
+        out.failure = why.str();
+        return out;
+      }
+      if (d < dO - tol) {
+        ++out.ours_closer;
+        continue;
+      }
+      const double dy = Vector3d(yO.X(), yO.Y(), yO.Z()).operator-(ours.point).norm();
+      if (dy > tol && ours.status == ProjectionStatus::interior) {
+        why << "same distance " << d << " but feet " << dy / h << " h apart: ours ("
+            << ours.point.transpose() << "), OCCT's (" << yO.X() << " " << yO.Y() << " " << yO.Z()
+            << ")";
+        out.failure = why.str();
+        return out;
+      }
+      if (dy > tol) {  // on the box's bound: OCCT's extremum there is not converged along it
+        ++out.bound_apart;
+        continue;
+      }
+      out.worst = std::max(out.worst, dy / h);
+      ++out.same;
+    } catch (const Standard_Failure& f) {
+      why << "OpenCASCADE's projection failed: " << f.GetMessageString();
+      out.failure = why.str();
+      return out;
+    }
+  }
+  return out;
+}
+
+}  // namespace iga::test
