@@ -7,7 +7,12 @@
 #             (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4): the libm of an older processor
 #   fast-fma  a build with -ffp-contract=fast -mfma (needs a processor with FMA; skipped without)
 #   off       a build with -ffp-contract=off
-#   scripts/portability.sh [libm|fast-fma|off|all]...     default: all
+#   probe     the release build, run with the round-off probe IGA_ROUNDOFF_PROBE=<seed> (seed
+#             $IGA_PROBE_SEED, default 1; iga/solvers/roundoff_probe.hpp): Newton corrections
+#             perturbed by 1e-10 and converged steps refused now and then, as another
+#             processor's rounding may. Not part of `all` yet: the tests it still fails are
+#             listed in docs/portability.md.
+#   scripts/portability.sh [libm|fast-fma|off|probe|all]...     default: all
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 modes=("$@")
@@ -35,6 +40,11 @@ for mode in "${modes[@]}"; do
       run_suite "$root/build/release" "libm without FMA/AVX2 code paths" \
         GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4
       ;;
+    probe)
+      "$root/scripts/build.sh" release
+      run_suite "$root/build/release" "the round-off probe (seed ${IGA_PROBE_SEED:-1})" \
+        IGA_ROUNDOFF_PROBE="${IGA_PROBE_SEED:-1}"
+      ;;
     fast-fma | off)
       if [[ "$mode" == fast-fma ]] && ! grep -qw fma /proc/cpuinfo; then
         echo "portability: fast-fma skipped: this processor has no FMA instructions"
@@ -46,6 +56,6 @@ for mode in "${modes[@]}"; do
       cmake --build "$dir" --parallel "$jobs"
       run_suite "$dir" "built with IGA_FP_CONTRACT=$mode"
       ;;
-    *) echo "portability.sh: unknown mode '$mode' (libm|fast-fma|off|all)" >&2; exit 2 ;;
+    *) echo "portability.sh: unknown mode '$mode' (libm|fast-fma|off|probe|all)" >&2; exit 2 ;;
   esac
 done

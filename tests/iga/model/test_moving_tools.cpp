@@ -203,6 +203,7 @@ TEST_CASE(
   Json doc = read_json_file(kData + "indented_plate.json");
   doc["solver"]["t_end"] = 0.3;
   doc["solver"]["max_step"] = 0.1;
+  doc["solver"]["hit_times"] = {0.1, 0.2};  // common times of both runs, whatever their steps
   doc["output"]["vtk"] = "none";
   std::vector<std::vector<std::pair<double, double>>> paths;  // (t, P) per strategy
   for (const char* strategy : {"master", "slave"}) {
@@ -211,7 +212,7 @@ TEST_CASE(
     const AnalysisResult r = a.run();
     REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
     const AnalysisStep& first = r.steps.front();
-    REQUIRE(first.t == Approx(0.02));
+    REQUIRE(first.t <= 0.02 + 1e-12);  // 0.02, or less where it was cut back
     const double P = first.tool_loads.at(0).first.z(), w = -first.displacements.at(0).z();
     INFO(strategy << ": P = " << P << ", w = " << w << ", w D / (P a^2) = " << w * D / P);
     CHECK(w < 0.05 * h);                                // linear range
@@ -225,13 +226,20 @@ TEST_CASE(
     CHECK(wl > 0.5 * h);
     CHECK(wl * D / Pl < 0.95 * 0.01160);
   }
-  REQUIRE(paths[0].size() == paths[1].size());
-  for (std::size_t k = 0; k < paths[0].size(); ++k) {
-    INFO("t = " << paths[0][k].first << ": master P " << paths[0][k].second << ", slave "
-                << paths[1][k].second);
-    CHECK(paths[1][k].first == Approx(paths[0][k].first));
-    CHECK(std::abs(paths[1][k].second / paths[0][k].second - 1.0) < 5e-3);
-  }
+  // At the times both runs reached (their adaptive steps may differ: round-off decides a
+  // cutback here and there), the end t = 0.3 among them.
+  int common = 0;
+  bool end = false;
+  for (const auto& [tm, Pm] : paths[0])
+    for (const auto& [ts, Ps] : paths[1]) {
+      if (std::abs(ts - tm) > 1e-12) continue;
+      INFO("t = " << tm << ": master P " << Pm << ", slave " << Ps);
+      CHECK(std::abs(Ps / Pm - 1.0) < 5e-3);
+      ++common;
+      end = end || std::abs(tm - 0.3) <= 1e-12;
+    }
+  CHECK(common >= 3);
+  CHECK(end);
 }
 
 TEST_CASE(
