@@ -595,8 +595,10 @@ NurbsSurface fit_high_degree(const Geom_BSplineSurface& bs, double size, double&
     }
     const int nc = n + p;                     // control points per direction
     std::vector<std::vector<Vector3d>> rows;  // rows[j][k]: control point k of row v_j
+    rows.reserve(static_cast<std::size_t>(m));
     for (int j = 0; j < m; ++j) {
       std::vector<Vector3d> q;
+      q.reserve(static_cast<std::size_t>(m));
       for (int i = 0; i < m; ++i)
         q.push_back(
             vec(bs.Value(tu[static_cast<std::size_t>(i)], tv[static_cast<std::size_t>(j)])));
@@ -605,6 +607,7 @@ NurbsSurface fit_high_degree(const Geom_BSplineSurface& bs, double size, double&
     std::vector<Vector3d> net(static_cast<std::size_t>(nc * nc));
     for (int k = 0; k < nc; ++k) {
       std::vector<Vector3d> q;
+      q.reserve(static_cast<std::size_t>(m));
       for (int j = 0; j < m; ++j)
         q.push_back(rows[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)]);
       const std::vector<Vector3d> col = fit_curve(q, tv, p, kv).curve.control_points();
@@ -627,23 +630,19 @@ NurbsSurface fit_high_degree(const Geom_BSplineSurface& bs, double size, double&
   return best;
 }
 
-Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, const UvBox& b,
-                       double size) {
-  bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
+/// The face's range g on bs, direction by direction: a periodic direction may cross the seam
+/// (its range anywhere, not longer than the period; returns true then); a non-periodic one lies
+/// within the range, or is clamped into it (clamp_into_range).
+bool fit_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, UvBox& g) {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  bs->Bounds(u0, u1, v0, v1);  // a periodic direction: its first period
-  UvBox g = b;
-  // A periodic direction: the face may cross the seam (its range anywhere, not longer than
-  // the period); Segment of the periodic surface cuts it there, exactly (knot insertion), with
-  // the face's own parameters. A non-periodic one: within the range, or clamped into it.
+  bs.Bounds(u0, u1, v0, v1);  // a periodic direction: its first period
   bool across = false;
-  const std::array<bool, 2> periodic = {bs->IsUPeriodic(), bs->IsVPeriodic()};
-  const std::array<double, 2> periods = {u1 - u0, v1 - v0};
+  const std::array<bool, 2> periodic = {bs.IsUPeriodic(), bs.IsVPeriodic()};
   for (int dir = 0; dir < 2; ++dir) {
     const double lo = dir == 0 ? u0 : v0, hi = dir == 0 ? u1 : v1;
     const double a = dir == 0 ? g.u0 : g.v0, z = dir == 0 ? g.u1 : g.v1;
     if (!periodic[static_cast<std::size_t>(dir)]) {
-      clamp_into_range(f, *bs, dir, lo, hi, g);
+      clamp_into_range(f, bs, dir, lo, hi, g);
       continue;
     }
     const double period = hi - lo, round_off = 1e-12 * period;
@@ -660,46 +659,67 @@ Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, con
       across = true;
     }
   }
-  Converted c;
-  c.box = g;
-  if (across) {
-    // Segment puts the piece's parameters into the first period: ours are OCCT's shifted by a
-    // whole number of periods, u' = u + b_u (v alike), found from the new bounds and checked.
-    bs->Segment(g.u0, g.u1, g.v0, g.v1);
-    bs->Bounds(u0, u1, v0, v1);
-    c.map.bu = u0 - g.u0;
-    c.map.bv = v0 - g.v0;
-    for (int dir = 0; dir < 2; ++dir) {
-      const double shift = dir == 0 ? c.map.bu : c.map.bv;
-      const double len = dir == 0 ? g.u1 - g.u0 : g.v1 - g.v0;
-      const double new_len = dir == 0 ? u1 - u0 : v1 - v0;
-      const double P = periods[static_cast<std::size_t>(dir)];
-      const double turns = periodic[static_cast<std::size_t>(dir)] ? std::round(shift / P) : 0.0;
-      const double snap = std::max(1e-12 * P, Precision::PConfusion());
-      if (std::abs(shift - turns * P) > snap || std::abs(new_len - len) > snap)
-        throw CadError("internal error: OpenCASCADE's cut across the periodic seam made the " +
-                       std::string(dir == 0 ? "u" : "v") + " range " + number(len) +
-                       " long, shifted by " + number(shift) + ", into one " + number(new_len) +
-                       " long (expected the same length shifted by whole periods " + number(P) +
-                       ")");
-      (dir == 0 ? c.map.bu : c.map.bv) = turns * P;
-    }
-  } else {
-    if (bs->IsUPeriodic()) bs->SetUNotPeriodic();
-    if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
-    bs->Bounds(u0, u1, v0, v1);
-    const double tu = 1e-12 * (u1 - u0), tv = 1e-12 * (v1 - v0);
-    // A face using part of its surface, or ends not clamped (a periodic surface made
-    // non-periodic keeps its knot pattern): cut to the face's range, exactly (knot insertion).
-    const bool clamped = bs->UMultiplicity(1) == bs->UDegree() + 1 &&
-                         bs->UMultiplicity(bs->NbUKnots()) == bs->UDegree() + 1 &&
-                         bs->VMultiplicity(1) == bs->VDegree() + 1 &&
-                         bs->VMultiplicity(bs->NbVKnots()) == bs->VDegree() + 1;
-    g.u0 = std::max(g.u0, u0), g.u1 = std::min(g.u1, u1);
-    g.v0 = std::max(g.v0, v0), g.v1 = std::min(g.v1, v1);
-    if (!clamped || g.u0 > u0 + tu || g.u1 < u1 - tu || g.v0 > v0 + tv || g.v1 < v1 - tv)
-      bs->Segment(g.u0, g.u1, g.v0, g.v1);
+  return across;
+}
+
+/// Cuts the periodic bs to the range g that crosses its seam. Segment puts the piece's
+/// parameters into the first period: ours are OCCT's shifted by a whole number of periods,
+/// u' = u + b_u (v alike), found from the new bounds, checked, and returned in map.
+void cut_across_seam(Geom_BSplineSurface& bs, const UvBox& g, UvMap& map) {
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs.Bounds(u0, u1, v0, v1);
+  const std::array<bool, 2> periodic = {bs.IsUPeriodic(), bs.IsVPeriodic()};
+  const std::array<double, 2> periods = {u1 - u0, v1 - v0};
+  bs.Segment(g.u0, g.u1, g.v0, g.v1);
+  bs.Bounds(u0, u1, v0, v1);
+  map.bu = u0 - g.u0;
+  map.bv = v0 - g.v0;
+  for (int dir = 0; dir < 2; ++dir) {
+    const double shift = dir == 0 ? map.bu : map.bv;
+    const double len = dir == 0 ? g.u1 - g.u0 : g.v1 - g.v0;
+    const double new_len = dir == 0 ? u1 - u0 : v1 - v0;
+    const double P = periods[static_cast<std::size_t>(dir)];
+    const double turns = periodic[static_cast<std::size_t>(dir)] ? std::round(shift / P) : 0.0;
+    const double snap = std::max(1e-12 * P, Precision::PConfusion());
+    if (std::abs(shift - turns * P) > snap || std::abs(new_len - len) > snap)
+      throw CadError("internal error: OpenCASCADE's cut across the periodic seam made the " +
+                     std::string(dir == 0 ? "u" : "v") + " range " + number(len) +
+                     " long, shifted by " + number(shift) + ", into one " + number(new_len) +
+                     " long (expected the same length shifted by whole periods " + number(P) + ")");
+    (dir == 0 ? map.bu : map.bv) = turns * P;
   }
+}
+
+/// Makes bs non-periodic and cuts it to the range g (clamped to its bounds) where the face
+/// uses part of it or its ends are not clamped (a periodic surface made non-periodic keeps its
+/// knot pattern): exactly, by knot insertion.
+void cut_to_range(Geom_BSplineSurface& bs, UvBox& g) {
+  if (bs.IsUPeriodic()) bs.SetUNotPeriodic();
+  if (bs.IsVPeriodic()) bs.SetVNotPeriodic();
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs.Bounds(u0, u1, v0, v1);
+  const double tu = 1e-12 * (u1 - u0), tv = 1e-12 * (v1 - v0);
+  const bool clamped = bs.UMultiplicity(1) == bs.UDegree() + 1 &&
+                       bs.UMultiplicity(bs.NbUKnots()) == bs.UDegree() + 1 &&
+                       bs.VMultiplicity(1) == bs.VDegree() + 1 &&
+                       bs.VMultiplicity(bs.NbVKnots()) == bs.VDegree() + 1;
+  g.u0 = std::max(g.u0, u0), g.u1 = std::min(g.u1, u1);
+  g.v0 = std::max(g.v0, v0), g.v1 = std::min(g.v1, v1);
+  if (!clamped || g.u0 > u0 + tu || g.u1 < u1 - tu || g.v0 > v0 + tv || g.v1 < v1 - tv)
+    bs.Segment(g.u0, g.u1, g.v0, g.v1);
+}
+
+Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, const UvBox& b,
+                       double size) {
+  bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
+  UvBox g = b;
+  Converted c;
+  const bool across = fit_range(f, *bs, g);
+  c.box = g;  // the face's range on the surface (before cut_to_range's clamp to its bounds)
+  if (across)
+    cut_across_seam(*bs, g, c.map);
+  else
+    cut_to_range(*bs, g);
   if (bs->IsUPeriodic()) bs->SetUNotPeriodic();
   if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
   if (bs->UDegree() <= kMaxDegree && bs->VDegree() <= kMaxDegree) {
@@ -1065,32 +1085,6 @@ TopoDS_Shape placed(const TopoDS_Shape& shape, const CadPlacement& pl) {
 
 }  // namespace
 
-std::pair<GeometryEntity, CadFace> import_face(const TopoDS_Face& face, int index) {
-  CadFace f = describe(face, index);
-  try {
-    const UvBox b = uv_bounds(face);
-    const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
-    f.entity_type = entity_type(c.entity);
-    f.exact = c.exact;
-    f.tolerance = c.tolerance;
-    if (!f.trimmed) return {c.entity, f};
-    if (!c.mapped)
-      throw CadError("trimmed, on a surface OpenCASCADE had to reparametrize (" + f.cad_type +
-                     "): its trimming curves cannot follow; not supported");
-    TrimmedSurface t = trimmed_face(face, *as_surface(c.entity), c.map, b);
-    f.entity_type = "trimmed " + entity_type(c.entity);
-    return {std::move(t), f};
-  } catch (const CadError& e) {
-    throw CadError("face " + std::to_string(index) + " (" + f.cad_type + "): " + e.what());
-  } catch (const std::exception& e) {
-    throw CadError("face " + std::to_string(index) + " (" + f.cad_type +
-                   "): cannot be imported: " + e.what());
-  } catch (const Standard_Failure& e) {
-    throw CadError("face " + std::to_string(index) + " (" + f.cad_type +
-                   "): OpenCASCADE failed: " + e.GetMessageString());
-  }
-}
-
 std::string cad_format(const std::string& path) {
   const std::string ext = lower(std::filesystem::path(path).extension().string());
   if (ext == ".step" || ext == ".stp") return "step";
@@ -1357,6 +1351,14 @@ auto from_answer(const std::string& path, F read) {
 }
 
 }  // namespace
+
+std::pair<GeometryEntity, CadFace> import_face(const TopoDS_Face& face, int index) {
+  CadFace f = describe(face, index);
+  std::string why;
+  std::optional<GeometryEntity> e = try_convert(face, f, why);
+  if (!e) throw CadError("face " + std::to_string(index) + " (" + f.cad_type + "): " + why);
+  return {std::move(*e), f};
+}
 
 std::vector<CadFace> list_cad_faces(const std::string& path, const std::string& unit) {
   return list_cad(path, unit).faces;
