@@ -174,8 +174,10 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
   return ls;
 }
 
-/// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp).
-void probe_refusal(StepAttempt& a) {
+/// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp) of the
+/// given size, never at the minimum size.
+void probe_refusal(StepAttempt& a, double size, double min_size) {
+  if (a.outcome != NewtonOutcome::converged || size <= min_size * (1.0 + 1e-12)) return;
   std::vector<double> state = {a.t_start, a.t, a.arc_length};
   state.insert(state.end(), a.residual_norms.begin(), a.residual_norms.end());
   if (!roundoff_probe_refuses(state)) return;
@@ -539,8 +541,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       throw;
     }
     add_attempt_totals(r, a);
-    if (a.outcome == NewtonOutcome::converged && std::min(dt, a.dt) > s.min_step * (1.0 + 1e-12))
-      probe_refusal(a);
+    probe_refusal(a, std::min(dt, a.dt), s.min_step);
 
     if (a.outcome == NewtonOutcome::converged) {
       if (a.predicted > 0.0) a.jump_ratio = (u - u_last).norm() / a.predicted;
@@ -642,6 +643,9 @@ struct NonlinearSolver::ArcState {
   double dl_max = 0.0;
   bool flat = false;     // the last predictor found dR/dt = 0: a load step instead
   double dt_flat = 0.0;  // the size of such load steps (initial_step, cut back on failure)
+  /// The size of the next step (dl, or dt_flat for a load step) and its minimum.
+  double size() const { return flat ? dt_flat : dl; }
+  double min_size(const NonlinearSolverSettings& s) const { return flat ? s.min_step : dl_min; }
   VectorXd R_h, R_t, du_R, du_t, du;  // workspace
 
   // A resumed run: the state of the checkpoint; the arc length and its bounds as the first
@@ -1014,9 +1018,7 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
     }
     add_attempt_totals(r, a);
     a.dt = a.t - arc.t;
-    if (a.outcome == NewtonOutcome::converged &&
-        (arc.flat ? arc.dt_flat > s.min_step * (1.0 + 1e-12) : arc.dl > arc.dl_min * (1.0 + 1e-12)))
-      probe_refusal(a);
+    probe_refusal(a, arc.size(), arc.min_size(s));
 
     if (a.outcome == NewtonOutcome::converged) {
       arc.du_prev = u - arc.u_last;
