@@ -56,8 +56,11 @@ struct OcctComparison {
   int occt_none = 0;     ///< OCCT found no extremum in B (ours still checked on S)
   int occt_outside = 0;  ///< untrimmed: OCCT's foot outside the face (B larger than the face)
   int bound_apart = 0;   ///< equal distances, our foot on B's bound, OCCT's apart along it
-  double worst = 0.0;    ///< largest |y - y_o| / h over the same feet
-  std::string failure;   ///< empty: every point passed; else the first failure, described
+  /// our projection ended without a foot (a status such as not_converged, never a wrong foot)
+  int ours_failed = 0;
+  std::string ours_failed_first;  ///< the first of those, described
+  double worst = 0.0;             ///< largest |y - y_o| / h over the same feet
+  std::string failure;            ///< empty: every point passed; else the first failure, described
 };
 
 /// OCCT's UV box of the face, clamped into a non-periodic B-spline's range.
@@ -115,8 +118,8 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
     const ProjectionResult ours = rs.closest_point(x);
     if (!found(ours.status)) {
       why << "our projection failed: " << to_string(ours.status);
-      out.failure = why.str();
-      return out;
+      if (out.ours_failed++ == 0) out.ours_failed_first = why.str();
+      continue;
     }
     const double d = (x - ours.point).norm();
     try {
