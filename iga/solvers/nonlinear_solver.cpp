@@ -177,7 +177,9 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
 /// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp) of the
 /// given size, never at the minimum size.
 void probe_refusal(StepAttempt& a, double size, double min_size) {
-  if (a.outcome != NewtonOutcome::converged || size <= min_size * (1.0 + 1e-12)) return;
+  if (!roundoff_probe_enabled() || a.outcome != NewtonOutcome::converged ||
+      size <= min_size * (1.0 + 1e-12))
+    return;
   std::vector<double> state = {a.t_start, a.t, a.arc_length};
   state.insert(state.end(), a.residual_norms.begin(), a.residual_norms.end());
   if (!roundoff_probe_refuses(state)) return;
