@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <functional>
@@ -19,7 +20,9 @@
 #include <type_traits>
 #include <variant>
 
+#include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -88,6 +91,8 @@ namespace iga {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
+/// Seconds the reader process may take before it is stopped (IGA_CAD_TIMEOUT overrides).
+constexpr double kDefaultReaderTimeout = 900.0;
 
 Vector3d vec(const gp_XYZ& p) {
   return {p.X(), p.Y(), p.Z()};
@@ -1238,6 +1243,25 @@ const char* signal_name(int s) {
   }
 }
 
+/// The reader's time limit in seconds: IGA_CAD_TIMEOUT if set (a positive number), else
+/// kDefaultReaderTimeout. A bad value is an error naming the variable and the value.
+double reader_timeout_seconds() {
+  const char* env = std::getenv("IGA_CAD_TIMEOUT");
+  if (env == nullptr || *env == '\0') return kDefaultReaderTimeout;
+  char* end = nullptr;
+  const double t = std::strtod(env, &end);
+  if (end == env || *end != '\0' || !std::isfinite(t) || t <= 0)
+    throw CadError(std::string("IGA_CAD_TIMEOUT = \"") + env +
+                   "\": not a positive number of seconds");
+  return t;
+}
+
+std::string format_seconds(double s) {
+  std::ostringstream os;
+  os << s;
+  return os.str();
+}
+
 void write_all(int fd, const std::string& text) {
   std::size_t done = 0;
   while (done < text.size()) {
@@ -1263,6 +1287,8 @@ Json run_guarded(const std::string& path, const std::function<Json()>& work) {
   int fds[2];
   if (::pipe(fds) != 0)
     throw CadError(path + ": cannot start the reader process: " + std::strerror(errno));
+  const pid_t parent = ::getpid();
+  const double limit = reader_timeout_seconds();
   const pid_t pid = ::fork();
   if (pid < 0) {
     const int err = errno;
@@ -1273,6 +1299,10 @@ Json run_guarded(const std::string& path, const std::function<Json()>& work) {
   if (pid == 0) {  // the child
     ::close(fds[0]);
     in_reader_child = true;
+    // The child ends with its parent (killed, or timed out by a test harness): a reader never
+    // outlives the program that started it.
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(1);
     // A crash ends the child by its signal, which the parent reports: no core file, and no
     // handler of the parent's (a test framework's, a sanitizer's) reporting it as its own.
     const rlimit no_core{0, 0};
@@ -1303,19 +1333,37 @@ Json run_guarded(const std::string& path, const std::function<Json()>& work) {
   ::close(fds[1]);
   std::string text;
   std::array<char, 65536> buf;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
+  bool timed_out = false;
   for (;;) {
+    const double left =
+        std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) {
+      timed_out = true;
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left * 1e3 + 1, 6e4)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
     const ssize_t n = ::read(fds[0], buf.data(), buf.size());
     if (n > 0)
       text.append(buf.data(), static_cast<std::size_t>(n));
-    else if (n < 0 && errno == EINTR)
+    else if (n < 0 && (errno == EINTR || errno == EAGAIN))
       continue;
     else
       break;
   }
   ::close(fds[0]);
+  if (timed_out) ::kill(pid, SIGKILL);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw CadError(path + ": lost the reader process: " + std::strerror(errno));
+  if (timed_out)
+    throw CadError("OpenCASCADE did not finish reading " + path + " within " +
+                   format_seconds(limit) +
+                   " s; its reader process was stopped (IGA_CAD_TIMEOUT sets the limit, in "
+                   "seconds)");
   if (WIFSIGNALED(status)) {
     const int s = WTERMSIG(status);
     throw CadError("OpenCASCADE crashed (signal " + std::to_string(s) + ", " + signal_name(s) +

@@ -26,7 +26,9 @@
 // Reading is guarded (issue 34): OpenCASCADE reads, transfers and converts in a child process
 // (fork), which sends the result back through a pipe as JSON (the entities with
 // geometry_io's writer, read back with its reader and its bounds); a failure inside
-// OpenCASCADE, a crash included, becomes a CadError naming the file. The *_in_process entry
+// OpenCASCADE, a crash included, becomes a CadError naming the file, and so does a reader that
+// takes longer than 900 s (the environment variable IGA_CAD_TIMEOUT sets another limit, in
+// seconds); the reader ends with the program that started it. The *_in_process entry
 // points do the same work in this process (fuzzing, or where a crash is wanted).
 //
 // Units: "file unit" is the length unit the file declares (STEP: the length unit of its

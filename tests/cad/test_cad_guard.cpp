@@ -350,3 +350,33 @@ TEST_CASE("cad guard: the in-process path gives what the guarded path gives", "[
   }
   CHECK(list_cad_in_process(kScrew).faces.size() == list_cad(kScrew).faces.size());
 }
+
+TEST_CASE("cad guard: a reader that takes longer than IGA_CAD_TIMEOUT is stopped, with the file",
+          "[cad]") {
+  // Restores the variable whatever the test's outcome.
+  struct EnvGuard {
+    ~EnvGuard() { ::unsetenv("IGA_CAD_TIMEOUT"); }
+  } guard;
+  // 0.1 ms: less than starting the reader process takes, let alone reading the 10 faces.
+  ::setenv("IGA_CAD_TIMEOUT", "1e-4", 1);
+  for (const bool listing : {false, true}) {
+    try {
+      if (listing)
+        (void)list_cad(kScrew);
+      else
+        (void)import_cad(kScrew, "s");
+      FAIL("no error");
+    } catch (const CadError& e) {
+      CHECK_THAT(e.what(), Contains("did not finish reading " + kScrew + " within 0.0001 s") &&
+                               Contains("IGA_CAD_TIMEOUT"));
+    }
+  }
+  for (const char* bad : {"abc", "-5", "0", "nan"}) {
+    ::setenv("IGA_CAD_TIMEOUT", bad, 1);
+    CHECK_THROWS_WITH(import_cad(kCylinder, "c"),
+                      Contains("IGA_CAD_TIMEOUT = \"" + std::string(bad) + "\""));
+  }
+  // A limit that leaves time: the same file imports.
+  ::setenv("IGA_CAD_TIMEOUT", "600", 1);
+  CHECK(import_cad(kScrew, "s").entities.size() == 10);
+}
