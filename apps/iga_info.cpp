@@ -77,6 +77,10 @@ int cad_info(const std::string& file, const std::string& unit) {
                 << (f.exact ? " (exact)"
                             : " (approximated within " + std::to_string(f.tolerance) + ")");
     }
+    if (!f.described) {
+      std::cout << "\n";
+      continue;
+    }
     std::cout << ", area " << f.area << ", box " << size.x() << " x " << size.y() << " x "
               << size.z() << " from (" << f.box_lo.x() << ", " << f.box_lo.y() << ", "
               << f.box_lo.z() << "), " << (f.trimmed ? "trimmed" : "untrimmed") << ", " << f.wires

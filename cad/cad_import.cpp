@@ -6,6 +6,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -1180,7 +1181,8 @@ Json face_json(const CadFace& f) {
               {"area", f.area},
               {"box_lo", vec_json(f.box_lo)},
               {"box_hi", vec_json(f.box_hi)},
-              {"message", f.message}};
+              {"message", f.message},
+              {"described", f.described}};
 }
 CadFace face_from(const Json& j) {
   CadFace f;
@@ -1195,6 +1197,7 @@ CadFace face_from(const Json& j) {
   f.box_lo = vec_from(j.at("box_lo"));
   f.box_hi = vec_from(j.at("box_hi"));
   f.message = j.at("message").get<std::string>();
+  f.described = j.at("described").get<bool>();
   return f;
 }
 
@@ -1275,12 +1278,119 @@ void write_all(int fd, const std::string& text) {
   }
 }
 
+/// Sends one part of a reader's answer to the parent as it is made (one line of JSON).
+using Emit = std::function<void(const Json&)>;
+
+/// One line of a reader's answer. Messages may quote the file's bytes: not necessarily UTF-8.
+std::string answer_line(const Json& j) {
+  return j.dump(-1, ' ', false, Json::error_handler_t::replace) + "\n";
+}
+
+/// The reader child of run_guarded: runs `work`, writes its parts and its answer to `fd` and
+/// ends with _exit (no destructors, no atexit handlers: nothing of the parent's state is run
+/// twice, and a sanitizer's leak check is the parent's alone).
+[[noreturn]] void reader_child(int fd, pid_t parent, const std::string& path,
+                               const std::function<Json(const Emit&)>& work) {
+  in_reader_child = true;
+  // The child ends with its parent (killed, or timed out by a test harness): a reader never
+  // outlives the program that started it.
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(1);
+  // A crash ends the child by its signal, which the parent reports: no core file, and no
+  // handler of the parent's (a test framework's, a sanitizer's) reporting it as its own.
+  const rlimit no_core{0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);
+  for (const int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(s, SIG_DFL);
+  std::string text;
+  try {
+    Json answer;
+    try {
+      answer = Json{{"result", work([&](const Json& part) {
+                       write_all(fd, answer_line(Json{{"part", part}}));
+                     })}};
+    } catch (const CadError& e) {
+      answer = Json{{"error", e.what()}, {"face_option", e.face_option}};
+    } catch (const std::exception& e) {
+      answer = Json{{"error", path + ": " + e.what()}};
+    } catch (const Standard_Failure& e) {
+      answer = Json{{"error", path + ": OpenCASCADE failed: " + e.GetMessageString()}};
+    }
+    text = answer_line(answer);
+  } catch (...) {
+    text = answer_line(Json{{"error", path + ": the reader process failed"}});
+  }
+  write_all(fd, text);
+  ::close(fd);
+  ::_exit(0);
+}
+
+/// What the parent reads of a reader: its parts (each kept as it arrives) and its answer.
+struct ReaderAnswer {
+  explicit ReaderAnswer(std::vector<Json>* p) : parts(p) {}
+  std::vector<Json>* parts;
+  Json answer;
+  bool malformed = false;
+  std::string pending;  ///< the start of a line not yet complete
+
+  void take(const char* data, std::size_t n) {
+    pending.append(data, n);
+    std::size_t start = 0;
+    for (std::size_t end; (end = pending.find('\n', start)) != std::string::npos; start = end + 1) {
+      Json j = Json::parse(pending.begin() + static_cast<std::ptrdiff_t>(start),
+                           pending.begin() + static_cast<std::ptrdiff_t>(end), nullptr, false);
+      if (j.is_object() && j.contains("part")) {
+        if (parts != nullptr) parts->push_back(std::move(j["part"]));
+      } else if (j.is_object() && (j.contains("result") || j.contains("error"))) {
+        answer = std::move(j);
+      } else {
+        malformed = true;
+      }
+    }
+    pending.erase(0, start);
+  }
+};
+
+/// Reads `fd` into `to` until the writer closes it (true) or `limit` seconds have passed
+/// (false).
+bool read_until_closed(int fd, double limit, ReaderAnswer& to) {
+  std::array<char, 65536> buf;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
+  for (;;) {
+    const double left =
+        std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
+    if (left <= 0) return false;
+    pollfd p{fd, POLLIN, 0};
+    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left * 1e3 + 1, 6e4)));
+    if (ready < 0 && errno != EINTR) return true;
+    if (ready <= 0) continue;
+    const ssize_t n = ::read(fd, buf.data(), buf.size());
+    if (n > 0)
+      to.take(buf.data(), static_cast<std::size_t>(n));
+    else if (!(n < 0 && (errno == EINTR || errno == EAGAIN)))
+      return true;
+  }
+}
+
+/// How a reader process that gave no answer ended: "signal 11, SIGSEGV" or "status 1"; empty
+/// if it ended normally.
+std::string reader_end(int status) {
+  if (WIFSIGNALED(status)) {
+    const int s = WTERMSIG(status);
+    return "signal " + std::to_string(s) + ", " + signal_name(s);
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    return "status " + std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+  return "";
+}
+
 /// Runs `work` (reading, transfer and conversion) in a child process and returns its result; a
-/// CadError of the child is thrown here, a crash of the child is a CadError naming the file.
-/// The child writes {"result": ...} or {"error": ..., "face_option": ...} to a pipe and ends
-/// with _exit (no destructors, no atexit handlers: nothing of the parent's state is run twice,
-/// and a sanitizer's leak check is the parent's alone).
-Json run_guarded(const std::string& path, const std::function<Json()>& work) {
+/// CadError of the child is thrown here, a crash of the child is a CadError naming the file
+/// unless `crash` is given (then it is set to how the child ended, "signal 11, SIGSEGV" or
+/// "status 1", and null is returned). The child sends its parts (`emit`, collected in `parts`
+/// as they arrive, so that a crash keeps what came before it) and then {"result": ...} or
+/// {"error": ..., "face_option": ...}, one line of JSON each, through a pipe.
+Json run_guarded(const std::string& path, const std::function<Json(const Emit&)>& work,
+                 std::vector<Json>* parts = nullptr, std::string* crash = nullptr) {
   std::cout.flush();
   std::cerr.flush();
   std::fflush(nullptr);  // what is buffered is written once, by the parent
@@ -1296,92 +1406,39 @@ Json run_guarded(const std::string& path, const std::function<Json()>& work) {
     ::close(fds[1]);
     throw CadError(path + ": cannot start the reader process: " + std::strerror(err));
   }
-  if (pid == 0) {  // the child
+  if (pid == 0) {
     ::close(fds[0]);
-    in_reader_child = true;
-    // The child ends with its parent (killed, or timed out by a test harness): a reader never
-    // outlives the program that started it.
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(1);
-    // A crash ends the child by its signal, which the parent reports: no core file, and no
-    // handler of the parent's (a test framework's, a sanitizer's) reporting it as its own.
-    const rlimit no_core{0, 0};
-    ::setrlimit(RLIMIT_CORE, &no_core);
-    for (const int s : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT}) ::signal(s, SIG_DFL);
-    std::string text;
-    try {
-      Json answer;
-      try {
-        answer = Json{{"result", work()}};
-      } catch (const CadError& e) {
-        answer = Json{{"error", e.what()}, {"face_option", e.face_option}};
-      } catch (const std::exception& e) {
-        answer = Json{{"error", path + ": " + e.what()}};
-      } catch (const Standard_Failure& e) {
-        answer = Json{{"error", path + ": OpenCASCADE failed: " + e.GetMessageString()}};
-      }
-      // Messages may quote the file's bytes: not necessarily UTF-8.
-      text = answer.dump(-1, ' ', false, Json::error_handler_t::replace);
-    } catch (...) {
-      text = Json{{"error", path + ": the reader process failed"}}.dump(
-          -1, ' ', false, Json::error_handler_t::replace);
-    }
-    write_all(fds[1], text);
-    ::close(fds[1]);
-    ::_exit(0);
+    reader_child(fds[1], parent, path, work);
   }
   ::close(fds[1]);
-  std::string text;
-  std::array<char, 65536> buf;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
-  bool timed_out = false;
-  for (;;) {
-    const double left =
-        std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
-    if (left <= 0) {
-      timed_out = true;
-      break;
-    }
-    pollfd p{fds[0], POLLIN, 0};
-    const int ready = ::poll(&p, 1, static_cast<int>(std::min(left * 1e3 + 1, 6e4)));
-    if (ready < 0 && errno != EINTR) break;
-    if (ready <= 0) continue;
-    const ssize_t n = ::read(fds[0], buf.data(), buf.size());
-    if (n > 0)
-      text.append(buf.data(), static_cast<std::size_t>(n));
-    else if (n < 0 && (errno == EINTR || errno == EAGAIN))
-      continue;
-    else
-      break;
-  }
+  ReaderAnswer got(parts);
+  const bool finished = read_until_closed(fds[0], limit, got);
   ::close(fds[0]);
-  if (timed_out) ::kill(pid, SIGKILL);
+  if (!finished) ::kill(pid, SIGKILL);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0)
     if (errno != EINTR) throw CadError(path + ": lost the reader process: " + std::strerror(errno));
-  if (timed_out)
+  if (!finished)
     throw CadError("OpenCASCADE did not finish reading " + path + " within " +
                    format_seconds(limit) +
                    " s; its reader process was stopped (IGA_CAD_TIMEOUT sets the limit, in "
                    "seconds)");
-  if (WIFSIGNALED(status)) {
-    const int s = WTERMSIG(status);
-    throw CadError("OpenCASCADE crashed (signal " + std::to_string(s) + ", " + signal_name(s) +
-                   ") while reading " + path);
+  if (const std::string how = reader_end(status); !how.empty()) {
+    if (crash != nullptr) {
+      *crash = how;
+      return Json();
+    }
+    throw CadError(WIFSIGNALED(status) ? "OpenCASCADE crashed (" + how + ") while reading " + path
+                                       : "OpenCASCADE failed (its reader process ended with " +
+                                             how + ") while reading " + path);
   }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw CadError("OpenCASCADE failed (its reader process ended with status " +
-                   std::to_string(WIFEXITED(status) ? WEXITSTATUS(status) : -1) +
-                   ") while reading " + path);
-  const Json answer = Json::parse(text, nullptr, false);
-  if (answer.is_discarded() || !answer.is_object() ||
-      !(answer.contains("result") || answer.contains("error")))
+  if (got.malformed || !got.pending.empty() || got.answer.is_null())
     throw CadError(path + ": internal error: the reader process's answer is malformed");
-  if (answer.contains("error"))
-    throw CadError(answer["error"].is_string() ? answer["error"].get<std::string>()
-                                               : path + ": the reader process failed",
-                   answer.value("face_option", -1));
-  return answer["result"];
+  if (got.answer.contains("error"))
+    throw CadError(got.answer["error"].is_string() ? got.answer["error"].get<std::string>()
+                                                   : path + ": the reader process failed",
+                   got.answer.value("face_option", -1));
+  return got.answer["result"];
 }
 
 /// Reads the parent's copy of what the child sent; the entities through geometry_io's reader
@@ -1395,6 +1452,40 @@ auto from_answer(const std::string& path, F read) {
   } catch (const Json::exception& e) {
     throw CadError(path + ": internal error: the reader process's answer is malformed (" +
                    std::string(e.what()) + ")");
+  }
+}
+
+/// Test hook: the face number IGA_CAD_TEST_CRASH_FACE crashes its reader process (SIGSEGV)
+/// while it is listed, as a face that crashes OpenCASCADE does. Only in a reader child.
+int test_crash_face() {
+  const char* env = std::getenv("IGA_CAD_TEST_CRASH_FACE");
+  return in_reader_child && env != nullptr ? std::atoi(env) : -1;
+}
+
+/// Describes and tries to convert faces[from], faces[from + 1], ...: `starting(k, type)` before
+/// face k, `done(face)` after it (CadFace::message says why a face does not convert).
+void list_faces(const std::vector<TopoDS_Face>& faces, int from,
+                const std::function<void(int, const std::string&)>& starting,
+                const std::function<void(const CadFace&)>& done) {
+  const int crash_at = test_crash_face();
+  for (int k = std::max(from, 0); k < static_cast<int>(faces.size()); ++k) {
+    const TopoDS_Face& face = faces[static_cast<std::size_t>(k)];
+    CadFace f;
+    f.index = k;
+    f.cad_type = type_name(GeomAdaptor_Surface(BRep_Tool::Surface(face)).GetType());
+    starting(k, f.cad_type);
+    if (k == crash_at) std::raise(SIGSEGV);
+    try {
+      f = describe_checked(face, k);
+    } catch (const CadError& e) {
+      f.message = e.what();
+      f.described = false;
+    } catch (const Standard_Failure& e) {
+      f.message = std::string("OpenCASCADE failed describing it: ") + e.GetMessageString();
+      f.described = false;
+    }
+    if (f.message.empty() && !try_convert(face, f, f.message)) f.entity_type.clear();
+    done(f);
   }
 }
 
@@ -1420,22 +1511,9 @@ CadListing list_cad_in_process(const std::string& path, const std::string& unit)
   out.units = r.units;
   out.warnings = r.warnings;
   try {
-    const std::vector<TopoDS_Face> faces = faces_of(r.shape);
-    for (std::size_t k = 0; k < faces.size(); ++k) {
-      CadFace f;
-      f.index = static_cast<int>(k);
-      try {
-        f = describe_checked(faces[k], f.index);
-      } catch (const CadError& e) {
-        f.message = e.what();
-      } catch (const Standard_Failure& e) {
-        f.message = std::string("OpenCASCADE failed describing it: ") + e.GetMessageString();
-      }
-      if (f.cad_type.empty())
-        f.cad_type = type_name(GeomAdaptor_Surface(BRep_Tool::Surface(faces[k])).GetType());
-      if (f.message.empty() && !try_convert(faces[k], f, f.message)) f.entity_type.clear();
-      out.faces.push_back(f);
-    }
+    list_faces(
+        faces_of(r.shape), 0, [](int, const std::string&) {},
+        [&](const CadFace& f) { out.faces.push_back(f); });
   } catch (const Standard_Failure& e) {
     throw CadError(path + ": OpenCASCADE failed: " + e.GetMessageString());
   }
@@ -1447,21 +1525,65 @@ CadListing list_cad(const std::string& path, const std::string& unit) {
   const auto t0 = std::chrono::steady_clock::now();
   (void)occt_unit(unit);
   check_file(path);
-  const Json j = run_guarded(path, [&] {
-    const CadListing l = list_cad_in_process(path, unit);
-    return Json{{"format", l.format},
-                {"units", units_json(l.units)},
-                {"faces", faces_json(l.faces)},
-                {"warnings", l.warnings}};
-  });
-  CadListing out = from_answer(path, [&] {
-    CadListing l;
-    l.format = j.at("format").get<std::string>();
-    l.units = units_from(j.at("units"));
-    l.faces = faces_from(j.at("faces"));
-    l.warnings = j.at("warnings").get<std::vector<std::string>>();
-    return l;
-  });
+  CadListing out;
+  out.format = cad_format(path);
+  // A reader lists the faces from `from` on, each sent as it is done. A face that crashes its
+  // reader is listed with the crash, and a new reader goes on after it.
+  int from = 0;
+  int count = -1;  // faces of the file (known once the first reader has read it)
+  for (;;) {
+    std::vector<Json> parts;
+    std::string crash;
+    const int first = from;
+    (void)run_guarded(
+        path,
+        [&](const Emit& emit) {
+          ReadResult r = read_shape(path, unit);
+          try {
+            const std::vector<TopoDS_Face> faces = faces_of(r.shape);
+            emit(Json{
+                {"units", units_json(r.units)}, {"warnings", r.warnings}, {"count", faces.size()}});
+            list_faces(
+                faces, first,
+                [&](int k, const std::string& type) {
+                  emit(Json{{"start", k}, {"cad_type", type}});
+                },
+                [&](const CadFace& f) {
+                  emit(Json{{"face", face_json(f)}});
+                });
+          } catch (const Standard_Failure& e) {
+            throw CadError(path + ": OpenCASCADE failed: " + e.GetMessageString());
+          }
+          return Json::object();
+        },
+        &parts, &crash);
+    std::string started_type;
+    from_answer(path, [&] {
+      for (const Json& part : parts) {
+        if (part.contains("count")) {
+          out.units = units_from(part.at("units"));
+          out.warnings = part.at("warnings").get<std::vector<std::string>>();
+          count = part.at("count").get<int>();
+        } else if (part.contains("start")) {
+          started_type = part.at("cad_type").get<std::string>();
+        } else {
+          out.faces.push_back(face_from(part.at("face")));
+          from = out.faces.back().index + 1;
+          started_type.clear();
+        }
+      }
+    });
+    if (crash.empty() || (count >= 0 && from >= count)) break;
+    if (count < 0)  // the reading itself crashed: no face to blame
+      throw CadError("OpenCASCADE crashed (" + crash + ") while reading " + path);
+    CadFace f;
+    f.index = from;
+    f.cad_type = started_type.empty() ? "unknown" : started_type;
+    f.message = "OpenCASCADE crashed (" + crash + ") describing or converting this face";
+    f.described = false;
+    out.faces.push_back(f);
+    if (++from >= count) break;
+  }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
@@ -1515,7 +1637,7 @@ CadImport import_cad(const std::string& path, const std::string& prefix,
   const auto t0 = std::chrono::steady_clock::now();
   (void)occt_unit(options.unit);
   check_file(path);
-  const Json j = run_guarded(path, [&] {
+  const Json j = run_guarded(path, [&](const Emit&) {
     const CadImport imp = import_cad_in_process(path, prefix, options);
     Json entities = Json::array();
     for (const auto& [name, e] : imp.entities)

@@ -96,6 +96,9 @@ struct CadFace {
   Eigen::Vector3d box_lo = Eigen::Vector3d::Zero(), box_hi = Eigen::Vector3d::Zero();
   /// Listing only: why the face cannot be imported (entity_type then empty); empty if it can.
   std::string message;
+  /// Listing only: false if not even the face's area, box and loops could be had (OpenCASCADE
+  /// failed or crashed describing it); they are then 0.
+  bool described = true;
 };
 
 /// The length unit the file declares, and the factor applied to its lengths.

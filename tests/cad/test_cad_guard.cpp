@@ -380,3 +380,37 @@ TEST_CASE("cad guard: a reader that takes longer than IGA_CAD_TIMEOUT is stopped
   ::setenv("IGA_CAD_TIMEOUT", "600", 1);
   CHECK(import_cad(kScrew, "s").entities.size() == 10);
 }
+
+TEST_CASE(
+    "cad guard: a face that crashes the reader is listed with the crash, the others as "
+    "without it",
+    "[cad]") {
+  struct EnvGuard {
+    ~EnvGuard() { ::unsetenv("IGA_CAD_TEST_CRASH_FACE"); }
+  } guard;
+  const CadListing plain = list_cad(kScrew);
+  REQUIRE(plain.faces.size() == 10);
+  for (const int crash : {0, 3, 9}) {
+    INFO("face " << crash << " crashes");
+    ::setenv("IGA_CAD_TEST_CRASH_FACE", std::to_string(crash).c_str(), 1);
+    const CadListing l = list_cad(kScrew);
+    REQUIRE(l.faces.size() == 10);
+    CHECK(l.units.factor == plain.units.factor);
+    for (std::size_t k = 0; k < 10; ++k) {
+      CHECK(l.faces[k].index == static_cast<int>(k));
+      CHECK(l.faces[k].cad_type == plain.faces[k].cad_type);
+      if (static_cast<int>(k) == crash) {
+        CHECK(l.faces[k].entity_type.empty());
+        CHECK_FALSE(l.faces[k].described);
+        CHECK_THAT(l.faces[k].message, Contains("OpenCASCADE crashed (") &&
+                                           Contains("describing or converting this face"));
+      } else {
+        CHECK(l.faces[k].entity_type == plain.faces[k].entity_type);
+        CHECK(l.faces[k].message == plain.faces[k].message);
+        CHECK(l.faces[k].area == Approx(plain.faces[k].area).epsilon(1e-12));
+      }
+    }
+  }
+  // The hook is the reader child's only: in this process nothing crashes.
+  CHECK(list_cad_in_process(kScrew).faces.size() == 10);
+}
