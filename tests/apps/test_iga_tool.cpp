@@ -3,7 +3,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -773,7 +772,6 @@ TEST_CASE(
       {"eval /dev/zero --center", "/dev/zero: is not a regular file"},
   };
   for (const Case& c : cases) {
-    const auto t0 = std::chrono::steady_clock::now();
     const Run r = run_iga(c.command);
     INFO(c.command.substr(0, 200) << "\n" << r.err);
     CHECK(r.status == 1);
@@ -781,7 +779,6 @@ TEST_CASE(
     if (c.message.find("/0/0") != std::string::npos)
       CHECK(r.err.find("nested deeper than 256 levels") != std::string::npos);
     CHECK(r.err.size() < 1000);
-    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 10.0);
   }
   // A FIFO blocked forever when opened: it is refused before (timeout: a regression fails, not
   // hangs).

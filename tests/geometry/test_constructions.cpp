@@ -5,7 +5,6 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -642,21 +641,19 @@ TEST_CASE("fit_curve: the banded solve gives the dense normal-equation fit to ro
   }
 }
 
-TEST_CASE("make_wrap_path: 50000 arc elements build in seconds (banded fit, no dense matrix)",
+TEST_CASE("make_wrap_path: 50000 arc elements build (banded fit, no dense matrix)",
           "[geometry][constructions]") {
   // The dense collocation matrix of 800,000 samples x 50,000 control points would need 320 GB.
+  // The time, about 1 s on one core, is measured by bench/bench_model_setup.cpp.
   WrapPathSpec w;
   w.radius = 1.02;
   w.angle = kPi;
   w.span_length = 1.0;
   w.arc_elements = 50000;
   w.span_elements = 3;
-  const auto t0 = std::chrono::steady_clock::now();
   const WrapPath r = make_wrap_path(w);
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(r.curve.num_control_points() == 50000 + 2 * 3 + 3 + 2);
   CHECK(r.max_deviation < 1e-12);
-  CHECK(secs < 30.0);  // about 1 s on one core; a generous bound for loaded machines
 }
 
 TEST_CASE("make_helix_cubic: 20000 points solve as a banded system", "[geometry][constructions]") {

@@ -2,7 +2,6 @@
 // defaults, and errors that name the file, the JSON path and the bad value.
 #include <catch2/catch.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -436,10 +435,6 @@ std::string nested_arrays(std::size_t levels, bool closed = true) {
   return std::string(levels, '[') + "0" + (closed ? std::string(levels, ']') : "");
 }
 
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 /// A fresh scratch folder for this test process.
 std::filesystem::path scratch_dir(const std::string& name) {
   const std::filesystem::path d = std::filesystem::temp_directory_path() /
@@ -461,14 +456,12 @@ TEST_CASE("json_reader: nesting is limited to 256 levels with a located error",
   // The documents of the report: 40,000 and 300,000 levels under "app", 60,000 at the root.
   for (const std::size_t levels : {std::size_t{40000}, std::size_t{300000}}) {
     INFO(levels);
-    const auto t0 = std::chrono::steady_clock::now();
     const ModelError a =
         parse_error_of("{\"geometry\": {},\n \"app\": " + nested_arrays(levels) + "}");
     CHECK(a.pointer().rfind("/app/0/0/0", 0) == 0);
     // The root object is level 1: the 256th '[' of "app" (column 9 + 255) is level 257.
     CHECK(a.message() == "arrays and objects nested deeper than 256 levels (line 2, column 264)");
     CHECK(std::string(a.what()).size() < 400);  // the 256-level pointer is abbreviated
-    CHECK(seconds_since(t0) < 5.0);
   }
   const ModelError root = parse_error_of(nested_arrays(60000));
   CHECK(root.message().find("nested deeper than 256 levels") != std::string::npos);
@@ -480,14 +473,11 @@ TEST_CASE("json_reader: nesting is limited to 256 levels with a located error",
   CHECK(parse_error_of(objects).pointer().rfind("/k/k/k", 0) == 0);
 }
 
-TEST_CASE(
-    "json_reader: an unclosed 1 MB run of opening brackets is rejected quickly with a located "
-    "error",
-    "[geometry][io][errors][limits]") {
-  // Rejected in 52 s before: the error path built a million-level pointer, quadratically.
-  const auto t0 = std::chrono::steady_clock::now();
+TEST_CASE("json_reader: an unclosed 1 MB run of opening brackets is rejected with a located error",
+          "[geometry][io][errors][limits]") {
+  // Rejected in 52 s before: the error path built a million-level pointer, quadratically. The
+  // time (linear in the brackets) is measured by bench/bench_model_setup.cpp, not here.
   const ModelError e = parse_error_of(nested_arrays(std::size_t{1} << 20, false));
-  CHECK(seconds_since(t0) < 2.0);
   CHECK(e.message() == "arrays and objects nested deeper than 256 levels (line 1, column 257)");
   // Unclosed but shallow: the end of the text.
   CHECK(parse_error_of("[[[[").message().find("malformed JSON at line 1, column 5") == 0);
@@ -514,9 +504,7 @@ TEST_CASE("json_reader: an object with many keys is read in linear time, in file
   for (int i = 0; i < n; ++i)
     text += (i ? ",\"k" : "\"k") + std::to_string(n - i) + "\": " + std::to_string(i);
   text += "}";
-  const auto t0 = std::chrono::steady_clock::now();
-  const Json j = parse_json_text(text, "keys.json");
-  CHECK(seconds_since(t0) < 10.0);  // well under a second; the quadratic insertion took minutes
+  const Json j = parse_json_text(text, "keys.json");  // (its time: bench/bench_model_setup.cpp)
   REQUIRE(j.size() == static_cast<std::size_t>(n));
   CHECK(j.begin().key() == "k300000");  // file order, not sorted
   CHECK(j.at("k1") == n - 1);
@@ -530,7 +518,6 @@ TEST_CASE("json_reader: messages serialize only what they show of a value",
   // A large array as the root: the type error shows about 60 characters of it.
   Json big = Json::array();
   for (int i = 0; i < 1000000; ++i) big.push_back(i);
-  const auto t0 = std::chrono::steady_clock::now();
   try {
     JsonCursor(big, "big.json").expect_object({"geometry"});
     FAIL("accepted an array as an object");
@@ -538,7 +525,6 @@ TEST_CASE("json_reader: messages serialize only what they show of a value",
     CHECK(std::string(e.what()).size() < 120);
     CHECK_THAT(e.what(), Catch::StartsWith("big.json: expected an object, got array [0,1,2,3,"));
   }
-  CHECK(seconds_since(t0) < 0.1);
   // A huge string and a value nested deeper than any parsed document (built in memory).
   const Json s(std::string(50'000'000, 'x'));
   CHECK(short_dump(s) == std::string("\"").append(56, 'x').append("..."));
@@ -595,15 +581,13 @@ TEST_CASE("json_reader: model files must be regular files within 64 MiB",
   CHECK(error_of(d.string()) == d.string() + ": is a directory, not a model file");
   // A FIFO would block forever once opened, /dev/zero never ends: refused before reading.
   const fs::path fifo = d / "fifo.json";
-  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
-  const auto t0 = std::chrono::steady_clock::now();
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);  // (opened, it would hang: the test's timeout)
   CHECK(
       error_of(fifo.string()) ==
       fifo.string() +
           ": is not a regular file (a FIFO, socket or device); model files must be regular files");
   if (fs::exists("/dev/zero"))
     CHECK_THAT(error_of("/dev/zero"), Catch::StartsWith("/dev/zero: is not a regular file"));
-  CHECK(seconds_since(t0) < 1.0);
   // Over the limit: refused from its size, before reading (a sparse file costs no disk).
   const fs::path huge = d / "huge.json";
   std::ofstream(huge) << "{}";
