@@ -39,8 +39,15 @@
 #include <GeomConvert_ApproxSurface.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Geom_BezierCurve.hxx>
 #include <Geom_BezierSurface.hxx>
+#include <Geom_Circle.hxx>
+#include <Geom_Conic.hxx>
+#include <Geom_Ellipse.hxx>
+#include <Geom_Line.hxx>
 #include <Geom_RectangularTrimmedSurface.hxx>
+#include <Geom_SurfaceOfLinearExtrusion.hxx>
+#include <Geom_SurfaceOfRevolution.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <IGESControl_Reader.hxx>
 #include <IGESData_GlobalSection.hxx>
@@ -471,12 +478,40 @@ Placement placement_of(const gp_Ax3& ax, bool& flip) {
   return p;
 }
 
-/// Our parameters from OCCT's: u' = au u + bu, v' = av v + bv.
+/// The parameter of a conic arc's exact NURBS (rational quadratic, [PT97] Sect. 7.5) as a
+/// function of the conic's angle t (OCCT's parameter of a circle or ellipse: P = O + cos t A +
+/// sin t B). The arc [t0, t0 + n theta] is cut into n segments of equal sweep theta <= pi/2; the
+/// knots are t0 + i theta, so the NURBS parameter s equals t at the knots and at the segments'
+/// mid points. Within a segment, with phi = t - (its mid angle) and r = 2 (s - s_i) / theta - 1
+/// in [-1, 1], the segment is P = O + cos(phi) A' + sin(phi) B' with tan(phi / 2) = r tan(theta /
+/// 4) (the half-angle substitution of the rational quadratic with middle weight cos(theta / 2)).
+struct ArcMap {
+  double t0 = 0, theta = 1;
+  int n = 1;
+  double operator()(double t) const {
+    const int i = std::clamp(static_cast<int>(std::floor((t - t0) / theta)), 0, n - 1);
+    const double phi = t - (t0 + (i + 0.5) * theta);
+    const double r = std::tan(0.5 * phi) / std::tan(0.25 * theta);
+    return t0 + theta * (i + 0.5 * (1.0 + r));
+  }
+  /// max |ds/dt| (at the segments' ends): theta / (2 sin(theta / 2)).
+  double slope() const { return theta / (2.0 * std::sin(0.5 * theta)); }
+};
+
+/// Our parameters from OCCT's: u' = au u + bu, v' = av v + bv; or, in a direction holding a conic
+/// arc of an exact conversion (revolutions, extrusions), its ArcMap.
 struct UvMap {
   double au = 1, bu = 0, av = 1, bv = 0;
+  std::optional<ArcMap> arc_u, arc_v;
+  double u(double x) const { return arc_u ? (*arc_u)(x) : au * x + bu; }
+  double v(double y) const { return arc_v ? (*arc_v)(y) : av * y + bv; }
+  /// max |du'/du|, |dv'/dv|
+  double slope() const {
+    return std::max(arc_u ? arc_u->slope() : std::abs(au), arc_v ? arc_v->slope() : std::abs(av));
+  }
   Domain2 domain(const UvBox& b) const {
-    const double ua = au * b.u0 + bu, ub = au * b.u1 + bu;
-    const double va = av * b.v0 + bv, vb = av * b.v1 + bv;
+    const double ua = u(b.u0), ub = u(b.u1);
+    const double va = v(b.v0), vb = v(b.v1);
     return {{std::min(ua, ub), std::max(ua, ub)}, {std::min(va, vb), std::max(va, vb)}};
   }
 };
@@ -804,6 +839,159 @@ Converted from_analytic(const GeomAdaptor_Surface& ad, const UvBox& b) {
   return c;
 }
 
+/// A curve as an exact NURBS in its own parameter t over [t0, t1] (`arc`: for a circle or an
+/// ellipse, the NURBS parameter is arc(t); otherwise it is t).
+struct CurveNurbs {
+  int degree = 1;
+  std::vector<double> knots;  // the full sequence
+  std::vector<gp_Pnt> poles;
+  std::vector<double> weights;
+  std::optional<ArcMap> arc;
+};
+
+/// The conic arc P(t) = O + cos t A + sin t B, t in [t0, t1] (t1 - t0 <= 2 pi), as the
+/// rational quadratic of ArcMap: n segments of sweep theta <= pi/2, each with its end points
+/// and the intersection of the end tangents, O + (cos t_m A + sin t_m B) / cos(theta / 2), of
+/// weight cos(theta / 2) ([PT97] Sect. 7.5, A7.1). Returned as the coefficients (a, b, w) of
+/// each pole O + a A + b B.
+struct ArcPoles {
+  std::vector<std::array<double, 3>> abw;
+  std::vector<double> knots;
+  ArcMap map;
+};
+ArcPoles arc_poles(double t0, double t1) {
+  ArcPoles r;
+  const int n = std::max(1, static_cast<int>(std::ceil((t1 - t0) / (0.5 * kPi) * (1 - 1e-12))));
+  const double theta = (t1 - t0) / n, w = std::cos(0.5 * theta);
+  r.map = {t0, theta, n};
+  r.knots = {t0, t0, t0};
+  for (int i = 0; i < n; ++i) {
+    const double a = t0 + i * theta, m = a + 0.5 * theta;
+    r.abw.push_back({std::cos(a), std::sin(a), 1.0});
+    r.abw.push_back({std::cos(m) / w, std::sin(m) / w, w});
+    const double e = i + 1 == n ? t1 : a + theta;
+    r.knots.insert(r.knots.end(), i + 1 == n ? 3 : 2, e);
+  }
+  r.abw.push_back({std::cos(t1), std::sin(t1), 1.0});
+  return r;
+}
+
+/// The longest arc swept: a full turn, and the few 1e-9 a closed face's boundary curves may
+/// reach past it (UKI60998.igs face 1: 2 pi + 3e-9); the arc overlaps itself by that much.
+constexpr double kMaxSweep = 2 * kPi * (1 + 1e-6);
+
+/// The basis curve of a revolution or an extrusion over [t0, t1] as an exact NURBS in its own
+/// parameter: lines, circles, ellipses, B-spline and Bezier curves (through trimmed curves,
+/// which keep their basis' parameter); nullopt for other curves or a range beyond a bounded
+/// curve's (left to OCCT's conversion).
+std::optional<CurveNurbs> curve_in_own_parameter(Handle(Geom_Curve) c, double t0, double t1) {
+  while (const auto tc = Handle(Geom_TrimmedCurve)::DownCast(c)) c = tc->BasisCurve();
+  CurveNurbs r;
+  if (!(t0 < t1)) return std::nullopt;
+  if (const auto line = Handle(Geom_Line)::DownCast(c)) {
+    r.knots = {t0, t0, t1, t1};
+    r.poles = {line->Value(t0), line->Value(t1)};
+    r.weights = {1.0, 1.0};
+    return r;
+  }
+  if (const auto conic = Handle(Geom_Conic)::DownCast(c)) {
+    double ra = 0, rb = 0;
+    if (const auto circle = Handle(Geom_Circle)::DownCast(c))
+      ra = rb = circle->Radius();
+    else if (const auto ellipse = Handle(Geom_Ellipse)::DownCast(c))
+      ra = ellipse->MajorRadius(), rb = ellipse->MinorRadius();
+    else
+      return std::nullopt;  // parabola, hyperbola
+    if (t1 - t0 > kMaxSweep) return std::nullopt;
+    const gp_Ax2 ax = conic->Position();
+    const gp_XYZ O = ax.Location().XYZ(), A = ra * ax.XDirection().XYZ(),
+                 B = rb * ax.YDirection().XYZ();
+    const ArcPoles a = arc_poles(t0, t1);
+    r.degree = 2;
+    r.knots = a.knots;
+    for (const auto& [x, y, w] : a.abw) {
+      r.poles.emplace_back(O + x * A + y * B);
+      r.weights.push_back(w);
+    }
+    r.arc = a.map;
+    return r;
+  }
+  if (c->IsKind(STANDARD_TYPE(Geom_BSplineCurve)) || c->IsKind(STANDARD_TYPE(Geom_BezierCurve))) {
+    Handle(Geom_BSplineCurve) bs = GeomConvert::CurveToBSplineCurve(c);
+    bs = Handle(Geom_BSplineCurve)::DownCast(bs->Copy());
+    if (bs->IsPeriodic()) bs->SetNotPeriodic();  // its first period
+    const double f = bs->FirstParameter(), l = bs->LastParameter(), eps = 1e-12 * (l - f);
+    if (t0 < f - eps || t1 > l + eps) return std::nullopt;
+    t0 = std::max(t0, f);
+    t1 = std::min(t1, l);
+    if (t0 > f + eps || t1 < l - eps) bs->Segment(t0, t1);  // keeps the parameter
+    if (bs->Degree() > kMaxDegree) return std::nullopt;
+    r.degree = bs->Degree();
+    TColStd_Array1OfReal k(1, bs->NbPoles() + bs->Degree() + 1);
+    bs->KnotSequence(k);
+    r.knots.assign(k.begin(), k.end());
+    for (int i = 1; i <= bs->NbPoles(); ++i) {
+      r.poles.push_back(bs->Pole(i));
+      r.weights.push_back(bs->Weight(i));
+    }
+    return r;
+  }
+  return std::nullopt;
+}
+
+/// A surface of revolution or of linear extrusion over the face's box b as an exact NURBS in
+/// the face's own parameters (OCCT's GeomConvert reparametrizes conic arcs, so a trimmed face's
+/// loops would not follow): the basis curve's exact NURBS (curve_in_own_parameter) swept
+///   - revolution: S(u, v) = L + R(D, u)(C(v) - L), each pole Q of C(v) turned on its circle
+///     about the axis (center O_Q on the axis, A = Q - O_Q, B = D x A) by the arc of u, the
+///     weights multiplied ([PT97] A8.1); u maps by the arc's ArcMap;
+///   - extrusion: S(u, v) = C(u) + v D, linear in v (degree 1, the same v).
+/// A Geom_RectangularTrimmedSurface around it is unwrapped (OCCT evaluates it by its basis, at
+/// the same parameters, also beyond its trim). nullopt where the basis curve is not one of
+/// curve_in_own_parameter's (OCCT's conversion then).
+std::optional<Converted> from_swept(Handle(Geom_Surface) s, const UvBox& b) {
+  while (const auto t = Handle(Geom_RectangularTrimmedSurface)::DownCast(s)) s = t->BasisSurface();
+  std::vector<double> ku, kv, weights;
+  std::vector<Vector3d> points;  // u fastest
+  int p = 0, q = 0;
+  Converted c;
+  if (const auto rev = Handle(Geom_SurfaceOfRevolution)::DownCast(s)) {
+    if (b.u1 - b.u0 > kMaxSweep) return std::nullopt;
+    const std::optional<CurveNurbs> m = curve_in_own_parameter(rev->BasisCurve(), b.v0, b.v1);
+    if (!m) return std::nullopt;
+    const gp_XYZ L = rev->Axis().Location().XYZ(), D = rev->Axis().Direction().XYZ();
+    const ArcPoles a = arc_poles(b.u0, b.u1);
+    p = 2, q = m->degree, ku = a.knots, kv = m->knots;
+    for (std::size_t j = 0; j < m->poles.size(); ++j) {
+      const gp_XYZ Q = m->poles[j].XYZ();
+      const gp_XYZ O = L + ((Q - L) * D) * D, A = Q - O, B = D ^ A;
+      for (const auto& [x, y, w] : a.abw) {
+        points.push_back(vec(O + x * A + y * B));
+        weights.push_back(w * m->weights[j]);
+      }
+    }
+    c.map.arc_u = a.map;
+    c.map.arc_v = m->arc;
+  } else if (const auto ext = Handle(Geom_SurfaceOfLinearExtrusion)::DownCast(s)) {
+    const std::optional<CurveNurbs> m = curve_in_own_parameter(ext->BasisCurve(), b.u0, b.u1);
+    if (!m) return std::nullopt;
+    const gp_XYZ D = ext->Direction().XYZ();
+    p = m->degree, q = 1, ku = m->knots, kv = {b.v0, b.v0, b.v1, b.v1};
+    for (const double v : {b.v0, b.v1})
+      for (std::size_t i = 0; i < m->poles.size(); ++i) {
+        points.push_back(vec(m->poles[i].XYZ() + v * D));
+        weights.push_back(m->weights[i]);
+      }
+    c.map.arc_u = m->arc;
+  } else {
+    return std::nullopt;
+  }
+  if (std::all_of(weights.begin(), weights.end(), [](double w) { return w == 1.0; }))
+    weights.clear();
+  c.entity = NurbsSurface(p, std::move(ku), q, std::move(kv), points, weights);
+  return c;
+}
+
 Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size) {
   Converted c;
   c.mapped = false;
@@ -919,7 +1107,10 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
         c = from_bspline(f, GeomConvert::SurfaceToBSplineSurface(ad.Bezier()), b, size);
         break;
       default:
-        c = from_other(s, b, size);
+        if (std::optional<Converted> swept = from_swept(s, b))
+          c = std::move(*swept);
+        else
+          c = from_other(s, b, size);
     }
   Surface& ours = std::visit(
       [](auto& e) -> Surface& {
@@ -938,7 +1129,7 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
     for (int i = 0; i <= 4; ++i) {
       const double u = g.u0 + (g.u1 - g.u0) * i / 4, v = g.v0 + (g.v1 - g.v0) * j / 4;
       const Vector3d theirs = vec(s->Value(u, v));
-      const Vector3d mine = ours.point(c.map.au * u + c.map.bu, c.map.av * v + c.map.bv);
+      const Vector3d mine = ours.point(c.map.u(u), c.map.v(v));
       worst = std::max(worst, (mine - theirs).norm());
     }
   if (worst > tol) {
@@ -956,7 +1147,7 @@ Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
   s->D1(um, vm, P, Su, Sv);
   Vector3d theirs = vec(Su.Crossed(Sv).XYZ());
   if (f.Orientation() == TopAbs_REVERSED) theirs = -theirs;
-  Vector2d uv(c.map.au * um + c.map.bu, c.map.av * vm + c.map.bv);
+  Vector2d uv(c.map.u(um), c.map.v(vm));
   if (!c.mapped) {
     const Domain2 d = ours.domain();
     uv = {d.u.lo + fu * (d.u.hi - d.u.lo), d.v.lo + fv * (d.v.hi - d.v.lo)};
@@ -1040,8 +1231,8 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
         // Into the base's domain: a B-spline face whose boundary overshoots its surface's range
         // was accepted only within the edges' tolerance (clamp_into_range); elsewhere the domain
         // is the face's box and this changes nothing.
-        loop.emplace_back(std::clamp(map.au * q.X() + map.bu, dom.u.lo, dom.u.hi),
-                          std::clamp(map.av * q.Y() + map.bv, dom.v.lo, dom.v.hi));
+        loop.emplace_back(std::clamp(map.u(q.X()), dom.u.lo, dom.u.hi),
+                          std::clamp(map.v(q.Y()), dom.v.lo, dom.v.hi));
       }
     }
     if (loop.size() >= 3)
@@ -1070,7 +1261,7 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
     edges.push_back(
         curve_of(GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(c, t0, t1)), scale3d));
   }
-  const double scale = std::max(std::abs(map.au), std::abs(map.av));
+  const double scale = map.slope();
   return {base, std::move(loops), std::move(edges), deflection * scale};
 }
 

@@ -168,6 +168,36 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "cad import (OCCT data): trimmed revolutions and extrusions of lines, conic arcs and "
+    "B-spline curves import in the face's own parameters, their loops following",
+    "[cad][occt]") {
+  // PRO19800.igs: one trimmed revolution of a line (its u, the angle, is a conic arc).
+  // trj5_k1-ug-214.stp: a trimmed extrusion of an ellipse whose face crosses the ellipse's
+  // origin (u in [-1.37, 4.51]). bug22566_test_Bad.igs: revolutions of circle arcs (conic arcs
+  // in both directions) on OCCT trimmed surfaces whose v range the face's box leaves by 1e-8.
+  // UKI60998.igs: an extrusion of a circle arc sweeping 2 pi + 3e-9.
+  struct Case {
+    const char* file;
+    int face;
+    const char* cad_type;
+    const char* entity_type;
+  };
+  for (const Case& c : {Case{"PRO19800.igs", 0, "revolution", "trimmed nurbs_surface"},
+                        Case{"trj5_k1-ug-214.stp", 4, "extrusion", "trimmed nurbs_surface"},
+                        Case{"bug22566_test_Bad.igs", 0, "revolution", "nurbs_surface"},
+                        Case{"UKI60998.igs", 1, "extrusion", "nurbs_surface"}}) {
+    INFO(c.file << " face " << c.face);
+    const CadImport imp = import_cad(occt_file(c.file), "f");
+    REQUIRE(static_cast<int>(imp.faces.size()) > c.face);
+    CHECK(imp.faces[static_cast<std::size_t>(c.face)].cad_type == c.cad_type);
+    CHECK(imp.faces[static_cast<std::size_t>(c.face)].entity_type == c.entity_type);
+    CHECK(imp.faces[static_cast<std::size_t>(c.face)].exact);
+    const Totals t = import_and_compare(c.file);
+    CHECK(t.same >= t.points / 2);
+  }
+}
+
+TEST_CASE(
     "cad import: a B-spline face overshooting its surface's range is clamped within the "
     "edge tolerance, refused beyond it",
     "[cad]") {
