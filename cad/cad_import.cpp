@@ -24,16 +24,21 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <Adaptor3d_CurveOnSurface.hxx>
+#include <BRepAdaptor_Curve.hxx>
 #include <BRepAdaptor_Curve2d.hxx>
+#include <BRepAdaptor_Surface.hxx>
 #include <BRepBndLib.hxx>
 #include <BRepBuilderAPI_Transform.hxx>
 #include <BRepGProp.hxx>
+#include <BRepLib_ValidateEdge.hxx>
 #include <BRepTools.hxx>
 #include <BRepTools_WireExplorer.hxx>
 #include <BRep_Tool.hxx>
 #include <Bnd_Box.hxx>
 #include <GCPnts_QuasiUniformDeflection.hxx>
 #include <GProp_GProps.hxx>
+#include <Geom2dAdaptor_Curve.hxx>
 #include <GeomAdaptor_Surface.hxx>
 #include <GeomConvert.hxx>
 #include <GeomConvert_ApproxSurface.hxx>
@@ -65,8 +70,11 @@
 #include <Standard_Failure.hxx>
 #include <StepGeom_GeomRepContextAndGlobUnitAssCtxAndGlobUncertaintyAssCtx.hxx>
 #include <StepRepr_GlobalUnitAssignedContext.hxx>
+#include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
+#include <TColStd_Array2OfReal.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
+#include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <TopExp.hxx>
 #include <TopExp_Explorer.hxx>
@@ -74,6 +82,7 @@
 #include <TopoDS.hxx>
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
+#include <TopoDS_Vertex.hxx>
 #include <TopoDS_Wire.hxx>
 #include <Transfer_TransientProcess.hxx>
 #include <XSControl_TransferReader.hxx>
@@ -552,32 +561,76 @@ std::string number(double x) {
   return os.str();
 }
 
+/// OpenCASCADE's own check that the edge lies on the face (BRepCheck_Edge's, by
+/// BRepLib_ValidateEdge): its 3-D curve against the face's surface at its parameter curve,
+/// S(p(t)) (beyond a B-spline's range: its polynomial continuation), at 23 parameters, within
+/// the edge's tolerance plus the curve's and the surface's resolution. `dist`: the distance
+/// found; -1 where the edge has no 3-D curve or the check fails.
+bool edge_on_face(const TopoDS_Edge& edge, const TopoDS_Face& f, double& dist) {
+  dist = -1.0;
+  if (!BRep_Tool::IsGeometric(edge)) return false;
+  double p0 = 0, p1 = 0;
+  const Handle(Geom2d_Curve) pc = BRep_Tool::CurveOnSurface(edge, f, p0, p1);
+  if (pc.IsNull()) return false;
+  const Handle(Adaptor3d_Curve) c3 = new BRepAdaptor_Curve(edge);
+  const Handle(Adaptor3d_CurveOnSurface) on = new Adaptor3d_CurveOnSurface(
+      new Geom2dAdaptor_Curve(pc, p0, p1), new BRepAdaptor_Surface(f, false));
+  BRepLib_ValidateEdge check(c3, on, BRep_Tool::SameParameter(edge));
+  check.Process();
+  if (!check.IsDone()) return false;
+  dist = check.GetMaxDistance();
+  return check.CheckTolerance(BRep_Tool::Tolerance(edge));
+}
+
 /// The face's box `b` on a non-periodic direction [lo, hi] of the B-spline `bs` (u: dir 0,
-/// v: dir 1), clamped into it. An edge whose parameter curve p(t) leaves the range is accepted
-/// when clamping moves its points by at most the edge's tolerance (BRep_Tool::Tolerance: the
-/// distance OCCT itself allows between the edge and the face): at 65 points of the edge,
-/// where p(t) is outside, the 3-D distance from S(p(t)) (OCCT's polynomial continuation of
-/// the end span) to S(clamp(p(t))). Otherwise the face does not lie on its surface and is
-/// refused, the message giving the overshoot in parameter and in 3-D.
-void clamp_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir, double lo,
-                      double hi, UvBox& b) {
+/// v: dir 1): within it, clamped into it, or (returns true) kept beyond it, the surface to be
+/// extended (extend_bspline). Where an edge's parameter curve p(t) leaves the range, at 65 points
+/// of the edge where p(t) is outside:
+///   - reach: the 3-D distance from S(p(t)) (OCCT's polynomial continuation of the end span:
+///     OCCT's own surface of the face there) to S(clamp(p(t))). Within the edge's tolerance
+///     (BRep_Tool::Tolerance: the distance OCCT itself allows between the edge and the face)
+///     for every edge: the box is clamped (the face is its surface's within tolerance).
+///     Within a vertex's tolerance sphere the vertex's tolerance applies.
+///   - otherwise, where the edge passes OpenCASCADE's own check against S(p(t)) (edge_on_face):
+///     the edge lies on the continuation, the face really reaches past the range (a surface
+///     made too short by its writer, OCCT's face is the continuation there), and the box is
+///     kept: the surface is extended by its own end polynomials.
+/// Beyond both, the face is refused, the message giving the overshoot in parameter, the
+/// distance of its edge to the continuation and to the surface's side, and the tolerance.
+bool fit_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir, double lo,
+                    double hi, UvBox& b) {
   double& a = dir == 0 ? b.u0 : b.v0;
   double& z = dir == 0 ? b.u1 : b.v1;
   const double round_off = 1e-12 * (hi - lo);
   if (a >= lo - round_off && z <= hi + round_off) {
     a = std::max(a, lo);
     z = std::min(z, hi);
-    return;
+    return false;
   }
   double su0 = 0, su1 = 0, sv0 = 0, sv1 = 0;
   bs.Bounds(su0, su1, sv0, sv1);
   const char* name = dir == 0 ? "u" : "v";
+  bool extend = false;
   int k = 0;
   for (TopExp_Explorer e(f, TopAbs_EDGE); e.More(); e.Next(), ++k) {
     const TopoDS_Edge& edge = TopoDS::Edge(e.Current());
     const BRepAdaptor_Curve2d pc(edge, f);
     const double t0 = pc.FirstParameter(), t1 = pc.LastParameter();
-    double delta = 0.0, reach = 0.0;
+    const double tol = BRep_Tool::Tolerance(edge);
+    // Within a vertex's tolerance sphere (which holds the ends of its edges) the vertex's
+    // tolerance applies.
+    TopoDS_Vertex va, vb;
+    TopExp::Vertices(edge, va, vb);
+    auto allowed = [&](const gp_Pnt& x) {
+      double t = tol;
+      for (const TopoDS_Vertex& v : {va, vb})
+        if (!v.IsNull() && x.Distance(BRep_Tool::Pnt(v)) <= BRep_Tool::Tolerance(v))
+          t = std::max(t, BRep_Tool::Tolerance(v));
+      return t;
+    };
+    double delta = 0.0, reach = 0.0, excess = 0.0, off = 0.0;
+    double c0 = 0, c1 = 0;
+    const Handle(Geom_Curve) c3 = BRep_Tool::Curve(edge, c0, c1);
     for (int i = 0; i <= 64; ++i) {
       const double t = t0 + (t1 - t0) * i / 64;
       const gp_Pnt2d q = pc.Value(t);
@@ -585,19 +638,112 @@ void clamp_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int d
       const double past = std::max(lo - w, w - hi);
       if (past <= round_off) continue;
       delta = std::max(delta, past);
-      const gp_Pnt on = bs.Value(std::clamp(q.X(), su0, su1), std::clamp(q.Y(), sv0, sv1));
-      reach = std::max(reach, on.Distance(bs.Value(q.X(), q.Y())));
+      const gp_Pnt side = bs.Value(std::clamp(q.X(), su0, su1), std::clamp(q.Y(), sv0, sv1));
+      const gp_Pnt continued = bs.Value(q.X(), q.Y());
+      reach = std::max(reach, side.Distance(continued));
+      excess = std::max(excess, side.Distance(continued) - allowed(continued));
+      if (!c3.IsNull() && BRep_Tool::SameParameter(edge))
+        off = std::max(off, c3->Value(t).Distance(side));
     }
-    const double tol = BRep_Tool::Tolerance(edge);
-    if (!(reach <= tol))
-      throw CadError("its boundary (edge " + std::to_string(k) + ") reaches " + number(delta) +
-                     " past the B-spline surface's " + name + " range [" + number(lo) + ", " +
-                     number(hi) + "], " + number(reach) +
-                     " in 3-D, more than the edge's tolerance " + number(tol) +
-                     ": the face does not lie on its surface");
+    if (excess <= 0.0) continue;
+    double on = -1.0;
+    if (edge_on_face(edge, f, on)) {
+      extend = true;
+      continue;
+    }
+    const std::string past = "its boundary (edge " + std::to_string(k) + ") reaches " +
+                             number(delta) + " past the B-spline surface's " + name + " range [" +
+                             number(lo) + ", " + number(hi) + "], " + number(reach) + " in 3-D";
+    if (!(on >= 0.0))
+      throw CadError(past + ", more than the edge's tolerance " + number(tol) +
+                     " (or its vertex's, near a vertex), and OpenCASCADE cannot check the edge "
+                     "against the surface's continuation (no 3-D curve, or its check failed): the "
+                     "face does not lie on its surface");
+    throw CadError(past + "; the edge is " + number(on) +
+                   " from the surface's continuation (OpenCASCADE's edge check) and " +
+                   number(off) + " from its side, more than the edge's tolerance " + number(tol) +
+                   ": the edge does not lie on its face");
   }
-  a = std::max(a, lo);
-  z = std::min(z, hi);
+  if (!extend) {
+    a = std::max(a, lo);
+    z = std::min(z, hi);
+  }
+  return extend;
+}
+
+/// The Bezier poles h (on [0, 1]) of the same polynomial on [0, s]: de Casteljau at s, the
+/// first point of each level ([PT97] A5.6; s > 1 continues the polynomial past its end).
+std::vector<Eigen::Vector4d> bezier_continued(std::vector<Eigen::Vector4d> h, double s) {
+  std::vector<Eigen::Vector4d> left;
+  for (std::size_t r = 0; r < h.size(); ++r) {
+    left.push_back(h[0]);
+    for (std::size_t i = 0; i + r + 1 < h.size(); ++i) h[i] = (1 - s) * h[i] + s * h[i + 1];
+  }
+  return left;
+}
+
+/// bs (not periodic in dir) extended in direction dir (u: 0, v: 1) to [to_lo, to_hi], a range
+/// containing its own, by its own end polynomials: the end span's knot [a, e] raised to
+/// multiplicity p (InsertUKnot: exact), its last p + 1 poles are the Bezier form of the end
+/// span; de Casteljau at s = (to - a) / (e - a) > 1 in homogeneous coordinates ([PT97] A5.6
+/// run beyond [0, 1]) gives the Bezier form of the same rational polynomial on [a, to]. The
+/// other direction is made non-periodic (its parameters kept). Throws where a weight of the
+/// extension is not positive.
+void extend_bspline(Handle(Geom_BSplineSurface) & bs, int dir, double to_lo, double to_hi) {
+  bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
+  if (dir == 1) bs->ExchangeUV();
+  if (bs->IsVPeriodic()) bs->SetVNotPeriodic();
+  const int p = bs->UDegree();
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  bs->Bounds(u0, u1, v0, v1);
+  if (bs->UMultiplicity(1) != p + 1 || bs->UMultiplicity(bs->NbUKnots()) != p + 1)
+    throw CadError(
+        "internal error: a non-periodic B-spline without end knots of multiplicity "
+        "degree + 1");
+  const bool low = to_lo < u0;
+  const bool high = to_hi > u1;
+  if (high && bs->NbUKnots() > 2) bs->InsertUKnot(bs->UKnot(bs->NbUKnots() - 1), p, 0.0, false);
+  if (low && bs->NbUKnots() > 2) bs->InsertUKnot(bs->UKnot(2), p, 0.0, false);
+  const int n = bs->NbUPoles(), m = bs->NbVPoles(), nk = bs->NbUKnots();
+  TColgp_Array2OfPnt poles(1, n, 1, m);
+  TColStd_Array2OfReal weights(1, n, 1, m);
+  TColStd_Array1OfReal uk(1, nk), vk(1, bs->NbVKnots());
+  TColStd_Array1OfInteger um(1, nk), vm(1, bs->NbVKnots());
+  bs->Poles(poles);
+  weights.Init(1.0);
+  if (bs->IsURational() || bs->IsVRational()) bs->Weights(weights);
+  bs->UKnots(uk);
+  bs->VKnots(vk);
+  bs->UMultiplicities(um);
+  bs->VMultiplicities(vm);
+  auto continue_end = [&](bool at_high, double to) {
+    const double a = at_high ? uk(nk - 1) : uk(2), e = at_high ? uk(nk) : uk(1);
+    const double s = (to - a) / (e - a);
+    for (int j = 1; j <= m; ++j) {
+      // the end span's Bezier poles from a (index 0) to e (index p), homogeneous
+      std::vector<Eigen::Vector4d> h;
+      for (int r = 0; r <= p; ++r) {
+        const int i = at_high ? n - p + r : p + 1 - r;
+        const double w = weights(i, j);
+        h.emplace_back(w * poles(i, j).X(), w * poles(i, j).Y(), w * poles(i, j).Z(), w);
+      }
+      const std::vector<Eigen::Vector4d> q = bezier_continued(h, s);
+      for (int r = 0; r <= p; ++r) {
+        const Eigen::Vector4d& x = q[static_cast<std::size_t>(r)];
+        if (!(x[3] > 0.0))
+          throw CadError("its surface's polynomial continuation past its range has a weight " +
+                         number(x[3]) + " <= 0");
+        const int i = at_high ? n - p + r : p + 1 - r;
+        poles(i, j).SetCoord(x[0] / x[3], x[1] / x[3], x[2] / x[3]);
+        weights(i, j) = x[3];
+      }
+    }
+    (at_high ? uk(nk) : uk(1)) = to;
+  };
+  if (high) continue_end(true, to_hi);
+  if (low) continue_end(false, to_lo);
+  bs = new Geom_BSplineSurface(poles, weights, uk, vk, um, vm, p, bs->VDegree());
+  if (dir == 1) bs->ExchangeUV();
 }
 
 /// A B-spline of degree above kMaxDegree as a polynomial B-spline of degree 7 on the same
@@ -667,8 +813,9 @@ NurbsSurface fit_high_degree(const Geom_BSplineSurface& bs, double size, double&
 
 /// The face's range g on bs, direction by direction: a periodic direction may cross the seam
 /// (its range anywhere, not longer than the period; returns true then); a non-periodic one lies
-/// within the range, or is clamped into it (clamp_into_range).
-bool fit_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, UvBox& g) {
+/// within the range, or is clamped into it, or reaches past it (fit_into_range; `extend[dir]`).
+bool fit_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, UvBox& g,
+               std::array<bool, 2>& extend) {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   bs.Bounds(u0, u1, v0, v1);  // a periodic direction: its first period
   bool across = false;
@@ -677,7 +824,7 @@ bool fit_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, UvBox& g) {
     const double lo = dir == 0 ? u0 : v0, hi = dir == 0 ? u1 : v1;
     const double a = dir == 0 ? g.u0 : g.v0, z = dir == 0 ? g.u1 : g.v1;
     if (!periodic[static_cast<std::size_t>(dir)]) {
-      clamp_into_range(f, bs, dir, lo, hi, g);
+      extend[static_cast<std::size_t>(dir)] = fit_into_range(f, bs, dir, lo, hi, g);
       continue;
     }
     const double period = hi - lo, round_off = 1e-12 * period;
@@ -749,8 +896,17 @@ Converted from_bspline(const TopoDS_Face& f, Handle(Geom_BSplineSurface) bs, con
   bs = Handle(Geom_BSplineSurface)::DownCast(bs->Copy());
   UvBox g = b;
   Converted c;
-  const bool across = fit_range(f, *bs, g);
+  std::array<bool, 2> extend = {false, false};
+  const bool across = fit_range(f, *bs, g, extend);
   c.box = g;  // the face's range on the surface (before cut_to_range's clamp to its bounds)
+  for (int dir = 0; dir < 2; ++dir) {
+    if (!extend[static_cast<std::size_t>(dir)]) continue;
+    if (across)
+      throw CadError("its boundary reaches past the B-spline surface's " +
+                     std::string(dir == 0 ? "u" : "v") +
+                     " range and crosses its periodic seam in the other direction: not supported");
+    extend_bspline(bs, dir, dir == 0 ? g.u0 : g.v0, dir == 0 ? g.u1 : g.v1);
+  }
   if (across)
     cut_across_seam(*bs, g, c.map);
   else
@@ -1229,8 +1385,9 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
       for (std::size_t i = 0; i + 1 < t.size(); ++i) {  // the end is the next edge's start
         const gp_Pnt2d q = c.Value(t[i]);
         // Into the base's domain: a B-spline face whose boundary overshoots its surface's range
-        // was accepted only within the edges' tolerance (clamp_into_range); elsewhere the domain
-        // is the face's box and this changes nothing.
+        // within the edges' tolerance was clamped (fit_into_range); elsewhere (the surface
+        // extended where the face reaches past it) the domain holds the face's box and this
+        // changes nothing.
         loop.emplace_back(std::clamp(map.u(q.X()), dom.u.lo, dom.u.hi),
                           std::clamp(map.v(q.Y()), dom.v.lo, dom.v.hi));
       }
