@@ -239,6 +239,52 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "cad import (OCCT data): a B-spline face starting 1e-10 before a knot is cut there, not at "
+    "the knot (trj2_io1-ca-214.stp, whole)",
+    "[cad][occt]") {
+  // Faces 0, 2, 15, 22: their v range [0.2499999999, 0.7500000001] starts and ends 1e-10 off
+  // the knots 0.25 and 0.75; OCCT's Segment by default snaps to a knot within 1e-9, which
+  // would leave out 1e-10 of the face (2.5e-9 in 3-D, more than the 1e-10 of the size the
+  // conversion is checked to).
+  const std::string path = occt_file("trj2_io1-ca-214.stp");
+  const std::vector<TopoDS_Face> faces = faces_of_file(path);
+  CadOptions options;
+  options.faces = {0};
+  const CadImport imp = import_cad(path, "io", options);
+  const Surface* s = as_surface(imp.entities[0].second);
+  REQUIRE(s != nullptr);
+  if (const auto* t = dynamic_cast<const TrimmedSurface*>(s)) s = &t->base();
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  BRepTools::UVBounds(faces[0], u0, u1, v0, v1);
+  CHECK(v0 < 0.25 - 5e-11);
+  CHECK(s->domain().v.lo == Approx(v0).epsilon(1e-14));
+  CHECK(s->domain().v.hi == Approx(v1).epsilon(1e-14));
+  const Totals t = import_and_compare("trj2_io1-ca-214.stp");
+  CHECK(t.same >= t.points / 2);
+}
+
+TEST_CASE(
+    "cad import (OCCT data): faces covering no area of their surface are refused, the message "
+    "naming why (bug25415_part_of_hdrv8w64p254_4x2_1016x502h838p.stp)",
+    "[cad][occt]") {
+  const std::string path = occt_file("bug25415_part_of_hdrv8w64p254_4x2_1016x502h838p.stp");
+  CadOptions options;
+  // Face 6: two straight edges whose parameter curves do not join (a gap of 0.171; the 3-D
+  // edges are 0.44 off the plane, joined only within vertex tolerances of 0.755).
+  options.faces = {6};
+  REQUIRE_THROWS_WITH(import_cad(path, "f", options),
+                      Contains("face 6 (plane)") &&
+                          Contains("its parameter curves leave gaps up to 0.171") &&
+                          Contains("vertices' tolerance 0.755") &&
+                          Contains("the face covers no area of its surface"));
+  // Face 13: both edges along the line v = 8.08.
+  options.faces = {13};
+  REQUIRE_THROWS_WITH(import_cad(path, "f", options), Contains("face 13 (plane)") &&
+                                                          Contains("spans no area") &&
+                                                          Contains("v [8.08, 8.08]"));
+}
+
+TEST_CASE(
     "cad import: a B-spline face overshooting its surface's range is clamped within the "
     "edge tolerance, extended by the surface's own polynomials where its edges lie on them, "
     "refused otherwise",
