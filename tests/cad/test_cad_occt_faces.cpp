@@ -18,6 +18,7 @@
 #include <Geom2d_Curve.hxx>
 #include <Geom_BSplineSurface.hxx>
 #include <Geom_ConicalSurface.hxx>
+#include <Geom_SphericalSurface.hxx>
 #include <IGESControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <TColStd_Array1OfInteger.hxx>
@@ -409,4 +410,26 @@ TEST_CASE(
         CHECK(cmp.same >= cmp.points / 2);
       }
     }
+}
+
+TEST_CASE(
+    "cad import: spherical faces reaching a pole project as OpenCASCADE's (the comparison "
+    "accepts a foot at the pole, whose longitude is any)",
+    "[cad]") {
+  // As bug33398.step face 294 and bug25013_25013face.stp face 0: u in [0.12, pi/2] or
+  // [0.5, 2.64], v up to the pole pi/2. OCCT finds no interior extremum for a foot at the pole,
+  // and ShapeAnalysis_Surface gives it a longitude outside the face's box.
+  const Handle(Geom_SphericalSurface) sphere =
+      new Geom_SphericalSurface(gp_Ax3(gp_Pnt(1, 2, -3), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), 15.0);
+  for (const auto& [u0, u1] :
+       {std::pair{0.1206, std::numbers::pi / 2}, std::pair{0.5043, 2.6372}}) {
+    const TopoDS_Face f =
+        BRepBuilderAPI_MakeFace(sphere, u0, u1, 0.0, std::numbers::pi / 2, 1e-7).Face();
+    const auto [entity, d] = import_face(f, 0);
+    CHECK(d.entity_type == "sphere");
+    const test::OcctComparison c = test::compare_with_occt(f, entity, 0.0, 400);
+    INFO(c.failure);
+    CHECK(c.failure.empty());
+    CHECK(c.same >= c.points / 2);
+  }
 }

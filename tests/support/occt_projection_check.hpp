@@ -135,7 +135,9 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
       GeomAPI_ProjectPointOnSurf on(Y, s, u0, u1, v0, v1);
       // Our foot on OCCT's surface within B: OCCT's projection restricted to B, or (a foot on
       // B's bound or at a degenerate side, where Extrema finds no interior extremum)
-      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B.
+      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B, or
+      // within 1e-9 of B's size outside it; else (e.g. at a pole, where the parameter of the
+      // foot is any) the distance of our foot from S at that parameter clamped into B.
       double off = on.NbPoints() > 0 ? on.LowerDistance() : 1e300;
       if (off > tol) {
         ShapeAnalysis_Surface sas(s);
@@ -148,6 +150,8 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
           qv = v0 + std::remainder(qv - v0 - 0.5 * (v1 - v0), s->VPeriod()) + 0.5 * (v1 - v0);
         if (qu >= u0 - pu && qu <= u1 + pu && qv >= v0 - pv && qv <= v1 + pv)
           off = std::min(off, sas.Gap());
+        else
+          off = std::min(off, Y.Distance(s->Value(std::clamp(qu, u0, u1), std::clamp(qv, v0, v1))));
       }
       if (off > tol) {
         why << "our foot (" << ours.point.transpose() << ") is " << off / h
