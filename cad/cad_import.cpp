@@ -590,7 +590,6 @@ bool edge_on_face(const TopoDS_Edge& edge, const TopoDS_Face& f, double& dist) {
 ///     OCCT's own surface of the face there) to S(clamp(p(t))). Within the edge's tolerance
 ///     (BRep_Tool::Tolerance: the distance OCCT itself allows between the edge and the face)
 ///     for every edge: the box is clamped (the face is its surface's within tolerance).
-///     Within a vertex's tolerance sphere the vertex's tolerance applies.
 ///   - otherwise, where the edge passes OpenCASCADE's own check against S(p(t)) (edge_on_face):
 ///     the edge lies on the continuation, the face really reaches past the range (a surface
 ///     made too short by its writer, OCCT's face is the continuation there), and the box is
@@ -617,18 +616,7 @@ bool fit_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir
     const BRepAdaptor_Curve2d pc(edge, f);
     const double t0 = pc.FirstParameter(), t1 = pc.LastParameter();
     const double tol = BRep_Tool::Tolerance(edge);
-    // Within a vertex's tolerance sphere (which holds the ends of its edges) the vertex's
-    // tolerance applies.
-    TopoDS_Vertex va, vb;
-    TopExp::Vertices(edge, va, vb);
-    auto allowed = [&](const gp_Pnt& x) {
-      double t = tol;
-      for (const TopoDS_Vertex& v : {va, vb})
-        if (!v.IsNull() && x.Distance(BRep_Tool::Pnt(v)) <= BRep_Tool::Tolerance(v))
-          t = std::max(t, BRep_Tool::Tolerance(v));
-      return t;
-    };
-    double delta = 0.0, reach = 0.0, excess = 0.0, off = 0.0;
+    double delta = 0.0, reach = 0.0, off = 0.0;
     double c0 = 0, c1 = 0;
     const Handle(Geom_Curve) c3 = BRep_Tool::Curve(edge, c0, c1);
     for (int i = 0; i <= 64; ++i) {
@@ -641,11 +629,10 @@ bool fit_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir
       const gp_Pnt side = bs.Value(std::clamp(q.X(), su0, su1), std::clamp(q.Y(), sv0, sv1));
       const gp_Pnt continued = bs.Value(q.X(), q.Y());
       reach = std::max(reach, side.Distance(continued));
-      excess = std::max(excess, side.Distance(continued) - allowed(continued));
       if (!c3.IsNull() && BRep_Tool::SameParameter(edge))
         off = std::max(off, c3->Value(t).Distance(side));
     }
-    if (excess <= 0.0) continue;
+    if (reach <= tol) continue;
     double on = -1.0;
     if (edge_on_face(edge, f, on)) {
       extend = true;
@@ -656,7 +643,7 @@ bool fit_into_range(const TopoDS_Face& f, const Geom_BSplineSurface& bs, int dir
                              number(lo) + ", " + number(hi) + "], " + number(reach) + " in 3-D";
     if (!(on >= 0.0))
       throw CadError(past + ", more than the edge's tolerance " + number(tol) +
-                     " (or its vertex's, near a vertex), and OpenCASCADE cannot check the edge "
+                     ", and OpenCASCADE cannot check the edge "
                      "against the surface's continuation (no 3-D curve, or its check failed): the "
                      "face does not lie on its surface");
     throw CadError(past + "; the edge is " + number(on) +
