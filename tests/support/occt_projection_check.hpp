@@ -3,10 +3,10 @@
 // (tests/support/cad_corpus_study.cpp).
 //
 // Notation: S(u, v) OCCT's surface of the face (BRep_Tool::Surface), B its UV box
-// (BRepTools::UVBounds, clamped into a bounded B-spline's range), h the face's size (diagonal of
-// its 3-D box); x a random point S(u, v) + h/10 w, (u, v) uniform in B, w uniform in [-1, 1]^3.
-// Ours: the closest point of x on the imported base surface (a trimmed face's base, untrimmed:
-// OCCT's projection knows no trimming), foot y, distance d = |x - y|. OCCT's:
+// (BRepTools::UVBounds, clamped into a bounded B-spline's range where the import clamped it), h the
+// face's size (diagonal of its 3-D box); x a random point S(u, v) + h/10 w, (u, v) uniform in B, w
+// uniform in [-1, 1]^3. Ours: the closest point of x on the imported base surface (a trimmed face's
+// base, untrimmed: OCCT's projection knows no trimming), foot y, distance d = |x - y|. OCCT's:
 // GeomAPI_ProjectPointOnSurf restricted to B, nearest extremum y_o, d_o = |x - y_o|.
 // A point passes when (for an untrimmed face whose UV box is larger than the face, a planar
 // rectangle re-framed on its sides, OCCT's foot outside the face is not compared: occt_outside)
@@ -63,16 +63,24 @@ struct OcctComparison {
   std::string failure;            ///< empty: every point passed; else the first failure, described
 };
 
-/// OCCT's UV box of the face, clamped into a non-periodic B-spline's range.
-inline void occt_box(const TopoDS_Face& face, const Handle(Geom_Surface) & s, double& u0,
-                     double& u1, double& v0, double& v1) {
+/// OCCT's UV box of the face, clamped into a non-periodic B-spline's range where the import
+/// clamped it (`ours`: the imported base surface, whose parameters are OCCT's in a non-periodic
+/// direction of a B-spline); where the import extended the surface by its end polynomials (its
+/// domain reaches past the range), the face's box (OCCT evaluates its B-spline there by the same
+/// polynomials).
+inline void occt_box(const TopoDS_Face& face, const Handle(Geom_Surface) & s, const Surface& ours,
+                     double& u0, double& u1, double& v0, double& v1) {
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   const Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(s);
   if (bs.IsNull()) return;
   double a0 = 0, a1 = 0, b0 = 0, b1 = 0;
   bs->Bounds(a0, a1, b0, b1);
-  if (!bs->IsUPeriodic()) u0 = std::max(u0, a0), u1 = std::min(u1, a1);
-  if (!bs->IsVPeriodic()) v0 = std::max(v0, b0), v1 = std::min(v1, b1);
+  const Domain2 d = ours.domain();
+  const double eu = 1e-12 * (a1 - a0), ev = 1e-12 * (b1 - b0);
+  const bool extended_u = d.u.lo < a0 - eu || d.u.hi > a1 + eu;
+  const bool extended_v = d.v.lo < b0 - ev || d.v.hi > b1 + ev;
+  if (!bs->IsUPeriodic() && !extended_u) u0 = std::max(u0, a0), u1 = std::min(u1, a1);
+  if (!bs->IsVPeriodic() && !extended_v) v0 = std::max(v0, b0), v1 = std::min(v1, b1);
 }
 
 /// `approximation`: the face's stated bound (CadFace::tolerance; 0 if exact): the distances
@@ -100,7 +108,7 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
   }
   const Handle(Geom_Surface) s = BRep_Tool::Surface(face);
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  occt_box(face, s, u0, u1, v0, v1);
+  occt_box(face, s, *surf, u0, u1, v0, v1);
   Bnd_Box box;
   BRepBndLib::AddOptimal(face, box, false, false);
   const double h = box.IsVoid() ? 1.0 : box.CornerMin().Distance(box.CornerMax());
@@ -127,7 +135,9 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
       GeomAPI_ProjectPointOnSurf on(Y, s, u0, u1, v0, v1);
       // Our foot on OCCT's surface within B: OCCT's projection restricted to B, or (a foot on
       // B's bound or at a degenerate side, where Extrema finds no interior extremum)
-      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B.
+      // ShapeAnalysis_Surface's projection (with its boundary search) landing inside B, or
+      // within 1e-9 of B's size outside it; else (e.g. at a pole, where the parameter of the
+      // foot is any) the distance of our foot from S at that parameter clamped into B.
       double off = on.NbPoints() > 0 ? on.LowerDistance() : 1e300;
       if (off > tol) {
         ShapeAnalysis_Surface sas(s);
@@ -140,6 +150,8 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
           qv = v0 + std::remainder(qv - v0 - 0.5 * (v1 - v0), s->VPeriod()) + 0.5 * (v1 - v0);
         if (qu >= u0 - pu && qu <= u1 + pu && qv >= v0 - pv && qv <= v1 + pv)
           off = std::min(off, sas.Gap());
+        else
+          off = std::min(off, Y.Distance(s->Value(std::clamp(qu, u0, u1), std::clamp(qv, v0, v1))));
       }
       if (off > tol) {
         why << "our foot (" << ours.point.transpose() << ") is " << off / h
