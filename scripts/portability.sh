@@ -4,15 +4,17 @@
 # processor, and (2) a compiler may fuse a*b+c into one rounding (-ffp-contract). This script
 # runs the whole suite under each variation this machine can produce:
 #   libm      the release build, run with glibc's FMA and AVX2 code paths masked
-#             (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4): the libm of an older processor
+#             (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4): the libm of an older processor,
+#             and with the round-off probe (below) in the same run, so that CI's time does not
+#             grow
 #   fast-fma  a build with -ffp-contract=fast -mfma (needs a processor with FMA; skipped without)
 #   off       a build with -ffp-contract=off (not in `all`: on x86-64 without -mfma there is no
 #             FMA instruction to contract into, and the release build is the same machine code)
 #   probe     the release build, run with the round-off probe IGA_ROUNDOFF_PROBE=<seed> (seed
 #             $IGA_PROBE_SEED, default 1; iga/solvers/roundoff_probe.hpp): Newton corrections
 #             perturbed by 1e-10 and converged steps refused now and then, as another
-#             processor's rounding may. Not part of `all` yet: the tests it still fails are
-#             listed in docs/portability.md.
+#             processor's rounding may (alone; `libm` runs it too). Tests of the step control
+#             itself turn it off for their scope (docs/portability.md).
 #   scripts/portability.sh [libm|fast-fma|off|probe|all]...     default: all
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -38,8 +40,9 @@ for mode in "${modes[@]}"; do
   case "$mode" in
     libm)
       "$root/scripts/build.sh" release
-      run_suite "$root/build/release" "libm without FMA/AVX2 code paths" \
-        GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4
+      run_suite "$root/build/release" \
+        "libm without FMA/AVX2 code paths, with the round-off probe (seed ${IGA_PROBE_SEED:-1})" \
+        GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4 IGA_ROUNDOFF_PROBE="${IGA_PROBE_SEED:-1}"
       ;;
     probe)
       "$root/scripts/build.sh" release

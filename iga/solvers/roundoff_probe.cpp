@@ -1,6 +1,7 @@
 // The round-off probe (see roundoff_probe.hpp).
 #include "iga/solvers/roundoff_probe.hpp"
 
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -45,14 +46,25 @@ std::uint64_t hash_doubles(std::uint64_t h, const double* x, std::size_t n) {
 
 constexpr std::uint64_t kOffset = 0xcbf29ce484222325ULL;
 
+/// The number of live RoundoffProbeOff guards (any thread): the probe is off while it is > 0.
+std::atomic<int> guards_off{0};
+
 }  // namespace
 
 bool roundoff_probe_enabled() {
-  return seed().has_value();
+  return seed().has_value() && guards_off.load(std::memory_order_acquire) == 0;
+}
+
+RoundoffProbeOff::RoundoffProbeOff() {
+  guards_off.fetch_add(1, std::memory_order_acq_rel);
+}
+
+RoundoffProbeOff::~RoundoffProbeOff() {
+  guards_off.fetch_sub(1, std::memory_order_acq_rel);
 }
 
 void roundoff_probe_perturb(Eigen::VectorXd& du) {
-  if (!seed()) return;
+  if (!roundoff_probe_enabled()) return;
   std::mt19937_64 gen(
       hash_doubles(kOffset ^ *seed(), du.data(), static_cast<std::size_t>(du.size())));
   std::uniform_real_distribution<double> xi(-1.0, 1.0);
@@ -60,7 +72,7 @@ void roundoff_probe_perturb(Eigen::VectorXd& du) {
 }
 
 bool roundoff_probe_refuses(const std::vector<double>& state) {
-  if (!seed()) return false;
+  if (!roundoff_probe_enabled()) return false;
   std::mt19937_64 gen(
       hash_doubles(kOffset ^ (*seed() + 0x9e3779b97f4a7c15ULL), state.data(), state.size()));
   return std::uniform_real_distribution<double>(0.0, 1.0)(gen) < kRoundoffProbeRefusal;

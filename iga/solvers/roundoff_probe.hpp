@@ -20,6 +20,9 @@
 // is cut back as any failed step. A test that requires two runs to take the same steps then
 // fails nearly always. Unset (the default), nothing changes.
 // scripts/portability.sh runs the whole suite with it (mode `probe`; CI's libm run).
+// Tests of the step control itself (exact step counts, observed Newton orders, step growth,
+// checkpoints, a restart's replay) count what the probe changes on purpose: they turn it off for
+// their scope with a RoundoffProbeOff guard (docs/portability.md lists them).
 //
 // Notation: du the correction (or tangent solution), xi_i the i-th draw, kRoundoffProbeSize the
 // relative size 1e-10, kRoundoffProbeRefusal the probability of a refusal.
@@ -36,9 +39,22 @@ inline constexpr double kRoundoffProbeSize = 1e-10;
 /// The probability that the probe refuses a converged step.
 inline constexpr double kRoundoffProbeRefusal = 0.125;
 
-/// True when IGA_ROUNDOFF_PROBE is set (read once per process). Throws std::invalid_argument
-/// naming the variable and its value when it is set but not a non-negative integer.
+/// True when IGA_ROUNDOFF_PROBE is set (read once per process) and no RoundoffProbeOff guard
+/// lives. Throws std::invalid_argument naming the variable and its value when it is set but not a
+/// non-negative integer.
 bool roundoff_probe_enabled();
+
+/// Tests only: the probe is off while an object of this type lives, in every thread of the
+/// process (a process-wide count of live guards; guards nest). For tests that count what the probe
+/// changes on purpose: a step control's exact steps, cutbacks, Newton orders, a restart's replay.
+/// Usage: `const iga::RoundoffProbeOff probe_off;  // why: ...` at the top of the test.
+class RoundoffProbeOff {
+ public:
+  RoundoffProbeOff();
+  ~RoundoffProbeOff();
+  RoundoffProbeOff(const RoundoffProbeOff&) = delete;
+  RoundoffProbeOff& operator=(const RoundoffProbeOff&) = delete;
+};
 
 /// du_i <- du_i (1 + 1e-10 xi_i) when the probe is on (xi from the seed and du's bits); nothing
 /// otherwise.

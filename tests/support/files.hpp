@@ -2,7 +2,9 @@
 // CSV text.
 #pragma once
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -40,6 +42,57 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
     rows.push_back(cells);
   }
   return rows;
+}
+
+/// Two steps.csv tables (csv_rows; header first) of runs of one model compared at the times both
+/// reached (equal cells of the column "t"), whatever steps each took between them. Columns that
+/// count (step, iterations, augmentations, active, stick, slip points) are not compared: another
+/// step path may change them. `worst` is the largest difference of a compared column relative to
+/// its scale (its largest |value| in table a), `where` names it.
+struct CommonTimes {
+  int common = 0;       ///< rows at common times
+  double last_t = 0.0;  ///< the latest common time
+  double worst = 0.0;
+  std::string where;
+};
+
+inline CommonTimes compare_at_common_times(const std::vector<std::vector<std::string>>& a,
+                                           const std::vector<std::vector<std::string>>& b) {
+  CommonTimes c;
+  if (a.empty() || b.empty() || a.front() != b.front()) return c;
+  const std::vector<std::string>& head = a.front();
+  const auto t_col =
+      static_cast<std::size_t>(std::find(head.begin(), head.end(), "t") - head.begin());
+  if (t_col == head.size()) return c;
+  auto counts = [](const std::string& name) {
+    auto ends = [&](const std::string& e) {
+      return name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
+    };
+    return name == "step" || ends("iterations") || ends("augmentations") || ends("active") ||
+           ends("stick") || ends("slip");
+  };
+  std::vector<double> scale(head.size(), 0.0);
+  for (std::size_t i = 1; i < a.size(); ++i)
+    for (std::size_t j = 0; j < head.size() && j < a[i].size(); ++j)
+      if (!a[i][j].empty()) scale[j] = std::max(scale[j], std::abs(std::stod(a[i][j])));
+  for (std::size_t i = 1; i < a.size(); ++i)
+    for (std::size_t k = 1; k < b.size(); ++k) {
+      if (a[i].size() != head.size() || b[k].size() != head.size() || a[i][t_col] != b[k][t_col])
+        continue;
+      ++c.common;
+      c.last_t = std::max(c.last_t, std::stod(a[i][t_col]));
+      for (std::size_t j = 0; j < head.size(); ++j) {
+        if (counts(head[j]) || a[i][j].empty() || b[k][j].empty()) continue;
+        const double d = std::abs(std::stod(a[i][j]) - std::stod(b[k][j]));
+        const double rel = scale[j] > 0.0 ? d / scale[j] : d;
+        if (rel > c.worst) {
+          c.worst = rel;
+          c.where =
+              "t = " + a[i][t_col] + ", column " + head[j] + ": " + a[i][j] + " vs " + b[k][j];
+        }
+      }
+    }
+  return c;
 }
 
 /// The numbers of a legacy-VTK file from the line after `at` up to the next keyword line.

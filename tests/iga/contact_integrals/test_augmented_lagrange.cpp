@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "iga/model/analysis.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/capstan.hpp"
 
@@ -100,10 +101,22 @@ Json plate_on_plane(const std::string& strategy, const std::string& enforcement)
   return d;
 }
 
+/// Newton iterations per converged step (the re-solves after each augmentation included): the
+/// cost of a run compared with another's. Two runs take the same steps unless round-off cuts one
+/// back somewhere (on another processor; the round-off probe's refusals), which changes their
+/// number, not the work a step takes; attempts that failed are not counted.
+double per_step(const NonlinearSolverResult& s) {
+  double sum = 0.0;
+  for (int it : s.step_iterations) sum += it;
+  return sum / static_cast<double>(s.step_iterations.size());
+}
+
 }  // namespace
 
 TEST_CASE("NonlinearSolver: augment re-solves the step, counts its iterations, restores on a cut",
           "[iga][solver][augmented]") {
+  // Probe off: the steps, augmentations, commits and restores of the step control are counted.
+  const RoundoffProbeOff probe_off;
   NonlinearSolverSettings s;
   s.initial_step = 0.5;
   s.max_step = 0.5;
@@ -185,8 +198,13 @@ TEST_CASE(
   // the first step of full slip (docs/contact.md, "Enforcement").
   CapstanParameters p;
   p.mu = 1.0;
+  // Steps land on t = 0.1, 0.2, ..., 1.9 whatever cutbacks happen between (round-off on another
+  // processor; the round-off probe): T/T0 is read at the first step of full slip, which lies
+  // at most a grid step beyond the onset, as without cutbacks.
+  NonlinearSolverSettings s = capstan_solver_settings();
+  for (int k = 1; k < 20; ++k) s.hit_times.push_back(k / 10.0);
   CapstanModel pen = make_capstan(p);
-  const CapstanResult rp = run_capstan(pen);
+  const CapstanResult rp = run_capstan(pen, s);
   REQUIRE(rp.full_slip);
   CHECK(rp.rel_error() > 3e-3);  // the penalty error the option removes
   CapstanModel al = make_capstan(p);
@@ -194,7 +212,7 @@ TEST_CASE(
   e.augmented = true;
   e.penetration_tol = 1e-4;
   al.problem.contact().set_enforcement(e);
-  const CapstanResult ra = run_capstan(al);
+  const CapstanResult ra = run_capstan(al, s);
   INFO("penalty " << rp.rel_error() << " (" << rp.solver.total_iterations
                   << " iterations), augmented " << ra.rel_error() << " ("
                   << ra.solver.total_iterations << " iterations, " << ra.solver.augmentations
@@ -202,7 +220,10 @@ TEST_CASE(
   REQUIRE(ra.full_slip);
   CHECK(std::abs(ra.rel_error()) < 1e-3);
   CHECK(ra.solver.augmentations > 0);
-  CHECK(ra.solver.total_iterations <= 2 * rp.solver.total_iterations);
+  // Per converged step (see per_step): round-off may cut a step back in one run only.
+  INFO("Newton iterations per converged step: penalty " << per_step(rp.solver) << ", augmented "
+                                                        << per_step(ra.solver));
+  CHECK(per_step(ra.solver) <= 2.0 * per_step(rp.solver));
   double deepest = 0.0;
   for (const CurveContactPoint& cp : al.problem.contact().points())
     if (cp.law.active) deepest = std::max(deepest, -cp.law.gap);
@@ -280,7 +301,11 @@ TEST_CASE(
   for (const SurfaceContactPoint& cp : al.shell_contact()->contact().points())
     if (cp.active) worst = std::max(worst, std::abs(cp.gap));
   CHECK(worst <= 3e-5);
-  CHECK(ra.solver.total_iterations <= 2 * rp.solver.total_iterations);
+  // Per converged step (see per_step): round-off may cut a step back in one run only.
+  INFO("Newton iterations per converged step: penalty "
+       << per_step(rp.solver) << " (" << rp.solver.steps << " steps), augmented "
+       << per_step(ra.solver) << " (" << ra.solver.steps << " steps)");
+  CHECK(per_step(ra.solver) <= 2.0 * per_step(rp.solver));
   // the centre deflection moves by about the penalty's penetration there (2e-4 of 2.65)
   CHECK(ra.steps.back().displacements.at(0).z() ==
         Approx(rp.steps.back().displacements.at(0).z()).epsilon(1e-3));

@@ -3,6 +3,7 @@
 // model (a rod without contact) closes its circle; bad sections are reported at their path.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -52,21 +53,55 @@ TEST_CASE("analysis: data/capstan.json reproduces the C++ capstan model (make_ca
 
 TEST_CASE("analysis: data/helix.json reproduces the C++ model with a pitch and (83)",
           "[iga][analysis]") {
-  const double json = rope_ratio("helix.json", 0.1, 2.0);
+  // Both runs pulled to the end (t = 2) with their steps landing on t = 0.1, ..., 1.9, and
+  // compared at these times once both slide: the runs differ (see below), so round-off may cut a
+  // step back in one and not in the other, and each finds full slip at its own step.
+  Json doc = read_json_file(kData + "helix.json");
+  doc["contact"][0]["mu"] = 0.1;
+  doc["geometry"]["rope"]["pitch"] = 2.0;
+  doc["solver"].erase("stop_at_full_slip_after");
+  Json grid = Json::array();
+  for (int k = 1; k < 20; ++k) grid.push_back(k / 10.0);
+  doc["solver"]["hit_times"] = grid;
+  Analysis a = Analysis::from_json(doc, "helix.json");
+  const AnalysisResult r = a.run();
+  REQUIRE(r.solver.converged());
   CapstanParameters p;
   p.mu = 0.1;
   p.pitch = 2.0;
   p.radius = 0.98;
   p.arc_elements = 32;
-  p.plateau_steps = 3;  // as solver/full_slip_steps in the file
   CapstanModel m = make_capstan(p);
-  const CapstanResult c = run_capstan(m);
+  NonlinearSolverSettings s = capstan_solver_settings();
+  for (int k = 1; k < 20; ++k) s.hit_times.push_back(k / 10.0);
+  const CapstanResult c = run_capstan(m, s, nullptr, CapstanStop::kEnd);
+  REQUIRE(c.solver.converged());
+  REQUIRE(c.full_slip);
+  int common = 0;
+  double worst = 0.0, json_13 = 0.0;  // T/T0 of the JSON run at t = 1.3
+  for (const AnalysisStep& sj : r.steps) {
+    const double ratio = sj.reactions.at(0).norm() / 10.0;
+    if (std::abs(sj.t - 1.3) <= 1e-12) json_13 = ratio;
+    const bool sliding = sj.contact.stick == 0 && sj.contact.slip == sj.contact.active;
+    for (const CapstanStep& sc : c.steps)
+      if (sliding && sc.t >= c.full_slip_t && std::abs(sj.t - sc.t) <= 1e-12) {
+        ++common;
+        worst = std::max(worst, std::abs(ratio / sc.T_ratio - 1.0));
+      }
+  }
+  INFO(common << " common times of sliding, largest relative difference of T/T0 " << worst
+              << "; C++ model's full slip from t = " << c.full_slip_t);
+  CHECK(common >= 7);  // 1.3, 1.4, ..., 2 at least
   // Not bit-equal: the JSON cylinder is longer than make_capstan's (height 6 against 4), so the
   // NURBS parametrization and the Newton iterates differ; the converged states agree to the
-  // residual tolerance.
-  CHECK(json == Approx(c.T_ratio).epsilon(1e-6));
+  // residual tolerance (measured: 3.2e-8 without the round-off probe, up to 2.5e-8 with its
+  // seeds 1, 2, 3, the steps cut back differently in the two runs).
+  CHECK(worst <= 1e-6);
   CHECK(p.exact_ratio() == Approx(1.34899).epsilon(1e-5));  // BENCHMARKS.md, R = 1, H = 2
-  CHECK(std::abs(json / p.exact_ratio() - 1.0) < 0.001);
+  // (83) at t = 1.3 (a pull of 0.015, where the plateau of 3 steps from the onset at t = 1.1
+  // used to end), within 0.1 %.
+  REQUIRE(json_13 > 0.0);
+  CHECK(std::abs(json_13 / p.exact_ratio() - 1.0) < 0.001);
 }
 
 TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the circle",

@@ -245,7 +245,13 @@ TEST_CASE(
   const AnalysisResult r = a.run();
   INFO(r.solver.message);
   REQUIRE(r.full_slip);
-  CHECK(r.solver.cutbacks == 0);
+  // No step failed (the first one used to diverge). A converged step refused by the round-off
+  // probe (IGA_ROUNDOFF_PROBE, tests only) is cut back too; it is no failure and not counted.
+  int failed = 0;
+  for (const StepAttempt& at : r.solver.attempts)
+    if (at.outcome != NewtonOutcome::converged && at.outcome != NewtonOutcome::probe_refused)
+      ++failed;
+  CHECK(failed == 0);
   const double ratio = r.steps.back().reactions[0].norm() / 10.0;
   CHECK(std::abs(ratio / std::exp(0.3 * std::numbers::pi) - 1.0) < 0.005);
 }

@@ -46,6 +46,15 @@ std::shared_ptr<RigidSurface> rope_cone(const CapstanParameters& p, double alpha
   return cone;
 }
 
+/// The capstan's solver settings with steps landing on t = 0.1, 0.2, ..., 1.9 whatever happens
+/// between them: round-off on another processor (or the round-off probe, IGA_ROUNDOFF_PROBE) may
+/// cut a step back in one run and not in another, and the runs are compared at these times.
+NonlinearSolverSettings grid_settings() {
+  NonlinearSolverSettings s = capstan_solver_settings();
+  for (int k = 1; k < 20; ++k) s.hit_times.push_back(k / 10.0);
+  return s;
+}
+
 /// Plain Newton at a fixed t from u, without commit: the equilibrium of the step from the last
 /// committed state to t. Returns the residual norms; u is the last iterate.
 std::vector<double> newton(RodContactProblem& prob, VectorXd& u, double t,
@@ -113,7 +122,7 @@ TEST_CASE("capstan: T/T0 at full slip = exp(mu phi) for phi = pi, mu = 0, 0.1, 0
   // bound below is 1e-3 to catch regressions.
   for (const double mu : {0.0, 0.1, 0.3, 0.5}) {
     CapstanModel m = make_capstan(capstan(mu));
-    const CapstanResult r = run_capstan(m);
+    const CapstanResult r = run_capstan(m, grid_settings());  // a step lands on t = 1
     INFO("mu = " << mu << ": T/T0 = " << r.T_ratio << ", exact " << r.exact
                  << ", full slip at t = " << r.full_slip_t << ", " << r.solver.message);
     CHECK(m.fit_deviation < 1e-4);  // the C1 cubic reproduces line + arc + line
@@ -147,14 +156,35 @@ TEST_CASE("capstan: the analytic cylinder gives the sliding limit of the exact N
   CapstanModel nurbs = make_capstan(p);
   p.nurbs_cylinder = false;
   CapstanModel analytic = make_capstan(p);
-  const CapstanResult rn = run_capstan(nurbs), ra = run_capstan(analytic);
-  REQUIRE(rn.full_slip);
+  // Both pulled to the end (t = 2), their steps landing on t = 0.1, ..., 1.9: the onset of full
+  // slip is each run's own (round-off may cut a step back in one run and not in the other), so
+  // T/T0 is compared at the times both reached once both slide.
+  const CapstanResult rn = run_capstan(nurbs, grid_settings(), nullptr, CapstanStop::kEnd);
+  const CapstanResult ra = run_capstan(analytic, grid_settings(), nullptr, CapstanStop::kEnd);
+  REQUIRE(rn.solver.converged());
+  REQUIRE(ra.solver.converged());
+  REQUIRE(rn.full_slip);  // still sliding at the end
   REQUIRE(ra.full_slip);
+  const double slide_from = std::max(rn.full_slip_t, ra.full_slip_t);
+  int common = 0;
+  double worst = 0.0;
+  for (const CapstanStep& sn : rn.steps)
+    for (const CapstanStep& sa : ra.steps)
+      if (sn.t >= slide_from && std::abs(sn.t - sa.t) <= 1e-12) {
+        ++common;
+        worst = std::max(worst, std::abs(sa.T_ratio / sn.T_ratio - 1.0));
+      }
+  INFO("full slip from t = " << rn.full_slip_t << " (NURBS), " << ra.full_slip_t << " (analytic); "
+                             << common << " common times, largest relative "
+                             << "difference of T/T0 " << worst);
+  CHECK(common >= 7);  // 1.3, 1.4, ..., 2 at least
   // The NURBS cylinder is exact to round-off; the closest points differ at the level of the
-  // projection tolerance only. (Not compared: the time at which each run found full slip, a
-  // step count that round-off on another processor may change by a cutback.)
-  CHECK(ra.T_ratio == Approx(rn.T_ratio).epsilon(1e-7));
-  CHECK(std::abs(ra.rel_error()) <= 1e-3);
+  // projection tolerance only (measured: 2e-9 without the round-off probe, up to 3e-8 with its
+  // seeds 1, 2, 3, the steps cut back differently in the two runs).
+  CHECK(worst <= 1e-7);
+  // Each run's own onset of full slip against (82).
+  CHECK(std::abs(ra.plateau.onset / ra.exact - 1.0) <= 1e-3);
+  CHECK(std::abs(rn.plateau.onset / rn.exact - 1.0) <= 1e-3);
 }
 
 TEST_CASE("capstan: frictionless, T = T0 at any pull, and the moments about the axis balance",
@@ -445,7 +475,7 @@ TEST_CASE(
   p.planar = false;
   p.rigid = rope_cone(p, alpha);
   CapstanModel m = make_capstan(p);
-  const CapstanResult r = run_capstan(m, capstan_solver_settings(), nullptr, CapstanStop::kEnd);
+  const CapstanResult r = run_capstan(m, grid_settings(), nullptr, CapstanStop::kEnd);  // t = 1 hit
   INFO("status " << r.solver.message);
   REQUIRE(r.solver.converged());
   // Sliding, but not steadily along itself (steady_sliding): the friction across the rope,

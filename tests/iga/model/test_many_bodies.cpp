@@ -163,7 +163,15 @@ TEST_CASE(
   // The capstan's rope (penalty) against the NURBS cylinder and, as a second tool, the analytic
   // cylinder in the same place, each pair with half of eps_N and eps_T: the penalty forces add
   // up to those of one pair (the friction limit mu N too), so T/T0 is that of the one pair.
-  const Json one = test::cubic_penalty_capstan(read_json_file(kData + "capstan.json"));
+  // Both pulled on to t = 1.3 with steps landing on t = 0.1, ..., 1.2, and compared at the times
+  // both reached once both slide: round-off may cut a step back in one run and not in the other
+  // (each would stop at its own onset of full slip).
+  Json one = test::cubic_penalty_capstan(read_json_file(kData + "capstan.json"));
+  one["solver"].erase("stop_at_full_slip_after");
+  one["solver"]["t_end"] = 1.3;
+  Json grid = Json::array();
+  for (int k = 1; k < 13; ++k) grid.push_back(k / 10.0);
+  one["solver"]["hit_times"] = grid;
   Json two = one;
   two["contact"][0]["eps_N"] = 0.5 * one["contact"][0]["eps_N"].get<double>();
   two["contact"][0]["eps_T"] = 0.5 * one["contact"][0]["eps_T"].get<double>();
@@ -176,11 +184,27 @@ TEST_CASE(
   REQUIRE(b.pair_body(0) == b.pair_body(1));
   const std::string dir = out_dir("two_tools");
   const AnalysisResult ra = a.run(), rb = b.run(nullptr, dir);
-  REQUIRE(ra.full_slip);
-  REQUIRE(rb.full_slip);
-  const double ta = ratio(ra, 0, 10.0), tb = ratio(rb, 0, 10.0);
-  INFO("T/T0 one pair " << ta << ", two half pairs " << tb);
-  CHECK(std::abs(tb / ta - 1.0) < 1e-6);
+  REQUIRE(ra.solver.converged());
+  REQUIRE(rb.solver.converged());
+  auto sliding = [](const AnalysisStep& s) {
+    return s.t > 1.0 && s.contact.stick == 0 && s.contact.slip == s.contact.active;
+  };
+  int common = 0;
+  double worst = 0.0;
+  for (const AnalysisStep& sa : ra.steps)
+    for (const AnalysisStep& sb : rb.steps)
+      if (sliding(sa) && sliding(sb) && std::abs(sa.t - sb.t) <= 1e-12) {
+        ++common;
+        const double ta = sa.reactions.at(0).norm() / 10.0, tb = sb.reactions.at(0).norm() / 10.0;
+        UNSCOPED_INFO("t = " << sa.t << ": T/T0 one pair " << ta << ", two half pairs " << tb);
+        worst = std::max(worst, std::abs(tb / ta - 1.0));
+      }
+  INFO(common << " common times of sliding, largest relative difference " << worst);
+  CHECK(common >= 2);  // 1.2 and 1.3 at least (sliding from t ~ 1.1)
+  // The same forces in exact arithmetic (measured: 9e-9 without the round-off probe, up to
+  // 1.1e-8 with its seeds 1, 2, 3, the steps cut back differently in the two runs).
+  CHECK(worst < 1e-6);
+  CHECK(ratio(ra, 0, 10.0) == Approx(std::exp(0.3 * std::numbers::pi)).epsilon(5e-3));  // (82)
   // Both pairs carry half of the contact: equal forces on the two tools.
   const Vector3d F0 = rb.steps.back().tool_loads.at(0).first;
   const Vector3d F1 = rb.steps.back().tool_loads.at(1).first;

@@ -158,11 +158,15 @@ TEST_CASE(
   // (-2, 4, 0) (in the rope's plane: its z components stay fixed). Both runs go to t = 1.3 (the
   // arc slides from t ~ 1.05) with the secant predictor, which lets the moving one start each
   // step where the motion takes the rope; their step sizes differ (the moving one's are ~10
-  // times smaller), so they agree to the solver's and the augmentation's tolerances.
+  // times smaller), so they agree to the solver's and the augmentation's tolerances. Steps land
+  // on t = 0.1, ..., 1.2 in both: they are compared at those and the end, once both slide.
   Json still = read_json_file(kData + "capstan.json");
   still["solver"].erase("stop_at_full_slip_after");
   still["solver"]["t_end"] = 1.3;
   still["solver"]["predictor"] = "secant";
+  Json grid = Json::array();
+  for (int k = 1; k < 13; ++k) grid.push_back(k / 10.0);
+  still["solver"]["hit_times"] = grid;
   Json moved = still;
   moved["load_curves"]["carry"] =
       Json::parse(R"({"type": "piecewise_linear", "points": [[0.5, 0], [2, 1]]})");
@@ -183,13 +187,31 @@ TEST_CASE(
                                  << rb.steps.size() << " steps)");
   CHECK(ra.steps.back().contact.slip == ra.steps.back().contact.active);  // sliding
   CHECK(rb.steps.back().contact.slip == rb.steps.back().contact.active);
-  CHECK(std::abs(tb / ta - 1.0) < 2e-5);
+  int common = 0;
+  double worst = 0.0;
+  for (const AnalysisStep& sa : ra.steps)
+    for (const AnalysisStep& sb : rb.steps)
+      if (sa.t > 1.15 && std::abs(sa.t - sb.t) <= 1e-12) {  // 1.2 and 1.3: both slide
+        ++common;
+        const double a = sa.reactions.at(0).norm(), b = sb.reactions.at(0).norm();
+        UNSCOPED_INFO("t = " << sa.t << ": T/T0 still " << a / kT0 << ", moved " << b / kT0);
+        worst = std::max(worst, std::abs(b / a - 1.0));
+      }
+  CHECK(common == 2);
+  // Within 2e-5 when only the motion changes the steps. With steps cut back elsewhere on the
+  // path by round-off (the round-off probe, seeds 1, 2, 3: 1.3e-4, 1.6e-4, 0.9e-4) the runs
+  // reach the sliding state by other paths through stick and slip, and with exact enforcement
+  // each step's augmentations stop wherever the gap is within penetration_tol = 1e-4, so the
+  // state depends on the path at that level (the penalty capstan of test_many_bodies.cpp agrees
+  // to 1e-6 at common times whatever the paths). Hence 3e-4 here, and for the force on the drum.
+  CHECK(worst < 3e-4);
   // The drum has moved: the force on it is the still one turned by the quarter turn so far.
   const Vector3d Fa = ra.steps.back().tool_loads.at(0).first;
   const Vector3d Fb = rb.steps.back().tool_loads.at(0).first;
   const double angle = 1.5707963267948966 * (1.3 - 0.5) / 1.5;
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(angle, Vector3d::UnitZ()).matrix();
-  CHECK((Fb - Q * Fa).norm() < 1e-4 * Fa.norm());
+  INFO("|Fb - Q Fa| / |Fa| = " << (Fb - Q * Fa).norm() / Fa.norm());
+  CHECK((Fb - Q * Fa).norm() < 3e-4 * Fa.norm());  // 1e-4 without path differences (above)
 }
 
 TEST_CASE(

@@ -1,12 +1,15 @@
 // Restart (issue 17, item 3): a run interrupted after k steps and continued from its restart
 // file gives the results of the uninterrupted run, step for step: every cell of steps.csv and
 // the final state, to round-off (on one machine they are the same bit for bit; the test allows
-// 1e-12 of each column's scale). The models cover what a restart must carry: friction history
-// and multipliers of exact enforcement (capstan), several bodies and pairs (two ropes), a rod's
-// committed triads and twists (helix with end couples), the arc-length state through a limit
-// point (shallow arch), a frictional shell on a rigid tool (block on a saddle), a tool that
-// moves (ring crushed between plates). A restart file of another model is refused, naming the
-// file and what differs.
+// 1e-12 of each column's scale). Should round-off cut a step back in one run and not in the
+// other (another processor; the round-off probe IGA_ROUNDOFF_PROBE), the step paths differ and
+// the runs are compared at the times both reached instead, within a tolerance per model (the
+// friction history and the multipliers depend a little on the path). The models cover what a
+// restart must carry: friction history and multipliers of exact enforcement (capstan), several
+// bodies and pairs (two ropes), a rod's committed triads and twists (helix with end couples), the
+// arc-length state through a limit point (shallow arch), a frictional shell on a rigid tool (block
+// on a saddle), a tool that moves (ring crushed between plates). A restart file of another model is
+// refused, naming the file and what differs.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -32,6 +35,11 @@ struct Case {
   std::string model;
   int stop_after = 0;  ///< attempted steps of the interrupted run (solver.max_steps)
   std::function<void(Json&)> edit = [](Json&) {};
+  /// The largest difference of a steps.csv column relative to its scale when the restarted run
+  /// took other steps than the whole one (compared at common times; see check_restart). The
+  /// models with friction use exact enforcement (penetration_tol 1e-4): its multipliers stop at
+  /// another point on another path, 1e-4 of T/T0 measured in test_moving_tools.cpp.
+  double path_tol = 3e-4;
 };
 
 /// Runs the model whole, then interrupted after `stop_after` attempts and continued from its
@@ -64,12 +72,37 @@ void check_restart(const Case& c) {
   const AnalysisResult rest = resumed.run(nullptr, parts, {}, stopped.restart_file);
   REQUIRE(rest.solver.status == full.solver.status);
   REQUIRE(rest.full_slip == full.full_slip);
-  REQUIRE(rest.steps.size() == full.steps.size() - done);
 
   const auto rows_whole = test::csv_rows(test::slurp(fs::path(whole) / "steps.csv"));
   const auto rows_parts = test::csv_rows(test::slurp(fs::path(parts) / "steps.csv"));
-  REQUIRE(rows_parts.size() == rows_whole.size());
   REQUIRE(rows_parts.front() == rows_whole.front());
+  // The same step path (the same times row by row): the same computation, so every cell agrees
+  // to round-off. Another path: round-off decided a cutback differently in one of the runs (on
+  // another processor, or with the round-off probe IGA_ROUNDOFF_PROBE); then the runs are
+  // compared at the times both reached.
+  bool same_path = rows_parts.size() == rows_whole.size();
+  for (std::size_t i = 1; same_path && i < rows_whole.size(); ++i)
+    same_path = rows_whole[i].at(1) == rows_parts[i].at(1);  // column t
+  if (!same_path) {
+    const test::CommonTimes common = test::compare_at_common_times(rows_whole, rows_parts);
+    INFO(c.model << ": another step path after the restart; " << common.common
+                 << " common times up to t = " << common.last_t << ", worst " << common.worst
+                 << " of a column's scale at " << common.where);
+    // Both runs' steps land on the model's hit times (or its steps of 0.1 without cutback): at
+    // least those up to t = 1 are common.
+    CHECK(common.common >= 10);
+    CHECK(common.last_t >= 1.0);
+    // A different path through stick and slip leaves a different friction history and, with
+    // exact enforcement, multipliers converged to another point within the penetration
+    // tolerance: c.path_tol of a column's scale. (With the hit times the restarted two-rope run
+    // took the whole run's steps for the probe's seeds 1, 2, 3: steps.csv identical.)
+    CHECK(common.worst <= c.path_tol);
+    WARN(c.model << ": restarted after step " << done << " of " << full.steps.size()
+                 << ": another step path, compared at " << common.common << " common times, worst "
+                 << common.worst << " of a column's scale");
+    return;
+  }
+  REQUIRE(rest.steps.size() == full.steps.size() - done);
   bool bitwise = true;
   double worst = 0.0;  // largest difference relative to its column's scale
   for (std::size_t j = 0; j < rows_whole.front().size(); ++j) {
@@ -103,7 +136,13 @@ TEST_CASE("Restart: friction history and exact enforcement (capstan)", "[iga][mo
 }
 
 TEST_CASE("Restart: two bodies with their pairs (two ropes)", "[iga][model][restart]") {
-  check_restart({"two_ropes.json", 6});
+  // Steps land on t = 0.1, 0.2, ..., 1.9 whatever cutbacks happen between: the common times of
+  // the whole and the restarted run should their steps differ.
+  check_restart({"two_ropes.json", 6, [](Json& d) {
+                   Json grid = Json::array();
+                   for (int k = 1; k < 20; ++k) grid.push_back(k / 10.0);
+                   d["solver"]["hit_times"] = grid;
+                 }});
 }
 
 TEST_CASE("Restart: a rod with torsion keeps its triads (helix with end couples)",

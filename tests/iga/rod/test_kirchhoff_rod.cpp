@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <numbers>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -21,6 +22,7 @@
 #include "geometry/refinement.hpp"
 #include "iga/rod/kirchhoff_rod.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
 #include "tests/support/random_nurbs.hpp"
 
 using namespace iga;
@@ -119,9 +121,11 @@ FdErrors element_fd_errors(const KirchhoffRod& rod, std::vector<Vector3d> x, dou
 /// consistent tangent, CHOLMOD/UMFPACK); on_step(u, t) after each converged step.
 template <class OnStep>
 NonlinearSolverResult solve_steps(NonlinearProblem& P, Eigen::VectorXd& u, int steps,
-                                  OnStep on_step, double tol_residual_abs = 1e-12) {
+                                  OnStep on_step, double tol_residual_abs = 1e-12,
+                                  std::vector<double> hit_times = {}) {
   NonlinearSolverSettings settings;
   settings.tol_residual_abs = tol_residual_abs;
+  settings.hit_times = std::move(hit_times);
   settings.initial_step = settings.max_step = 1.0 / steps;
   settings.min_step = 1e-3 / steps;
   settings.max_iterations = 30;
@@ -504,8 +508,10 @@ TEST_CASE(
       double err = 0.0;
       int checkpoint = 0;
       const auto t0 = std::chrono::steady_clock::now();
-      const NonlinearSolverResult res =
-          solve_steps(P, u, steps, [&](const Eigen::VectorXd& v, double t) {
+      // The table's loads are hit times: steps land on them whatever cutbacks happen before.
+      const NonlinearSolverResult res = solve_steps(
+          P, u, steps,
+          [&](const Eigen::VectorXd& v, double t) {
             const double R = EI / (t * Mmax), phi = t * Mmax * L / EI;
             const Vector3d tip = P.current_points(v, t).back();
             const Vector3d exact(R * std::sin(phi), R * (1 - std::cos(phi)), 0.0);
@@ -518,7 +524,8 @@ TEST_CASE(
               }
               ++checkpoint;
             }
-          });
+          },
+          1e-12, {0.25, 0.5, 0.75});
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       REQUIRE(res.converged());
@@ -555,6 +562,11 @@ TEST_CASE(
     CHECK(inext[i].w == Approx(table[i][1]).margin(1e-5));
     CHECK(inext[i].theta == Approx(table[i][2]).margin(1e-5));
   }
+  // Probe off: its perturbation of 1e-10 of each correction, fed through the axial stiffness
+  // (EA L^2 / EI = 1e5), holds the residual of the p = 2 rods near 1e-9, above the tolerance
+  // 1e-12 this study needs (measured: no convergence at 32 elements); round-off is 1e6 times
+  // smaller.
+  const RoundoffProbeOff probe_off;
   const int steps = 20;  // dt = 0.05; P(t) = 10 t: k = 1, 2, 5, 10 at steps 2, 4, 10, 20
   const Study studies[] = {
       {3, 0, {4, 8, 16, 32}, 1e-5}, {2, 2, {4, 8, 16, 32}, 1e-3}, {2, 0, {8, 16, 32, 64}, 1e-3}};
@@ -571,25 +583,29 @@ TEST_CASE(
       int checkpoint = 0;
       const bool finest = st.p == 3 && n_el == st.meshes.back();
       const auto t0 = std::chrono::steady_clock::now();
+      // The table's loads are hit times: steps land on them whatever cutbacks happen before.
       const NonlinearSolverResult res =
-          solve_steps(P, u, steps, [&](const Eigen::VectorXd& v, double t) {
-            if (checkpoint >= 4 || std::abs(10.0 * t - ks[checkpoint]) > 1e-9) return;
-            const NurbsCurve c = P.current_curve(v, t);
-            const CurveDerivs d = c.derivs(1.0, 1);
-            const double u_tip = (L - d.d[0].x()) / L, w_tip = d.d[0].y() / L;
-            const double theta = std::atan2(d.d[1].y(), d.d[1].x());
-            const TipState& r = ref[checkpoint];
-            err = std::max(
-                {err, std::abs(u_tip - r.u), std::abs(w_tip - r.w), std::abs(theta - r.theta)});
-            if (finest) {
-              CHECK(u_tip == Approx(table[checkpoint][0]).margin(2e-4));
-              CHECK(w_tip == Approx(table[checkpoint][1]).margin(2e-4));
-              CHECK(theta == Approx(table[checkpoint][2]).margin(2e-4));
-            }
-            ++checkpoint;
-          });
+          solve_steps(P, u, steps,
+                      [&](const Eigen::VectorXd& v, double t) {
+                        if (checkpoint >= 4 || std::abs(10.0 * t - ks[checkpoint]) > 1e-9) return;
+                        const NurbsCurve c = P.current_curve(v, t);
+                        const CurveDerivs d = c.derivs(1.0, 1);
+                        const double u_tip = (L - d.d[0].x()) / L, w_tip = d.d[0].y() / L;
+                        const double theta = std::atan2(d.d[1].y(), d.d[1].x());
+                        const TipState& r = ref[checkpoint];
+                        err = std::max({err, std::abs(u_tip - r.u), std::abs(w_tip - r.w),
+                                        std::abs(theta - r.theta)});
+                        if (finest) {
+                          CHECK(u_tip == Approx(table[checkpoint][0]).margin(2e-4));
+                          CHECK(w_tip == Approx(table[checkpoint][1]).margin(2e-4));
+                          CHECK(theta == Approx(table[checkpoint][2]).margin(2e-4));
+                        }
+                        ++checkpoint;
+                      },
+                      1e-12, {0.1, 0.2, 0.5});
       const double ms =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      INFO(res.message);
       REQUIRE(res.converged());
       CHECK(checkpoint == 4);
       std::printf(

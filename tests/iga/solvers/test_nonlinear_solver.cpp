@@ -16,6 +16,7 @@
 #include <Eigen/LU>
 
 #include "iga/solvers/nonlinear_solver.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
 #include "von_mises_truss.hpp"
 
 using namespace iga;
@@ -143,6 +144,8 @@ std::vector<double> observed_orders(const NonlinearSolverResult& r, double floor
 
 TEST_CASE("NonlinearSolver: von Mises truss follows the closed-form load-deflection curve",
           "[iga][solver]") {
+  // Probe off: this counts the step control's own steps, cutbacks and assemblies.
+  const RoundoffProbeOff probe_off;
   const double P = 0.95 * VonMisesTruss(1.0, 0.5, 1.0, 0.0).P_max();
   VonMisesTruss truss(1.0, 0.5, 1.0, P);
 
@@ -181,6 +184,9 @@ TEST_CASE("NonlinearSolver: von Mises truss follows the closed-form load-deflect
 
 TEST_CASE("NonlinearSolver: Newton converges quadratically (observed order >= 1.8)",
           "[iga][solver]") {
+  // Probe off: its 1e-10 perturbation of every correction is a floor for the residual history
+  // (the order is measured down to 1e-13), and its refusals change the steps counted.
+  const RoundoffProbeOff probe_off;
   // Big steps close to the limit point make Newton take several iterations.
   NonlinearSolverSettings s;
   s.initial_step = 0.5;
@@ -265,6 +271,8 @@ TEST_CASE(
     "NonlinearSolver: the secant predictor starts each step on the extrapolated path, same "
     "answers in fewer Newton iterations",
     "[iga][solver]") {
+  // Probe off: two step controls compared step by step (20 equal steps, iterations counted).
+  const RoundoffProbeOff probe_off;
   // Hardening springs loaded in 20 equal steps (no growth): from the second step on, the
   // secant extrapolation u_n + (u_n - u_{n-1}) lies within O(dt^2) of the next state.
   SpringChain plain(SpringChain::Law::hardening_sinh, {1.0, 2.0, 0.5, 3.0, 1.5}, 4.0);
@@ -347,6 +355,8 @@ TEST_CASE("NonlinearSolver: a non-symmetric tangent is solved by UMFPACK", "[iga
 }
 
 TEST_CASE("NonlinearSolver: progress lines, summary, callback stop, step growth", "[iga][solver]") {
+  // Probe off: the step sizes, their growth and the lines per step are what is checked.
+  const RoundoffProbeOff probe_off;
   SpringChain chain(SpringChain::Law::hardening_sinh, {1.0, 1.0}, 1.0);
   NonlinearSolverSettings s;
   s.initial_step = 0.1;
@@ -424,6 +434,9 @@ class SpringOnWall : public NonlinearProblem {
 
 TEST_CASE("NonlinearSolver: a contact that closes in a cut-back step is not taken for divergence",
           "[iga][solver]") {
+  // Probe off: the cutbacks down to a few 1e-6 are the step control under test; the probe's
+  // 1e-10 relative perturbation of u ~ 1 is k_p 1e-10 = 1e-2 in R, above tol_residual_abs.
+  const RoundoffProbeOff probe_off;
   // Judged against the step's own |R_0| (~ dt), the jump k_p (t - 1) at the wall is always
   // > 1e4 |R_0| near the wall and the run ended at min_step; against the run's largest |R_0|
   // (0.1 here) the step passes once it is cut back to a few 1e-6.
