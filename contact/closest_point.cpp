@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <tuple>
@@ -356,6 +357,18 @@ void set_near_lists(const std::vector<N>& tree, std::vector<C>& cert, std::size_
 
 }  // namespace
 
+namespace {
+std::atomic<std::size_t> tree_budget_nodes{PatchProjector::kTreeNodes};
+}  // namespace
+
+void PatchProjector::set_tree_budget(std::size_t nodes) {
+  tree_budget_nodes.store(nodes, std::memory_order_relaxed);
+}
+
+std::size_t PatchProjector::tree_budget() {
+  return tree_budget_nodes.load(std::memory_order_relaxed);
+}
+
 void PatchProjector::build_tree() {
   const int nu = static_cast<int>(bez_.breaks_u().size()) - 1,
             nv = static_cast<int>(bez_.breaks_v().size()) - 1;
@@ -364,10 +377,11 @@ void PatchProjector::build_tree() {
   for (const BezierPatch& b : bez_.elements())
     if (b.degree_u > detail::kMaxNetDegree || b.degree_v > detail::kMaxNetDegree) return;
   // Depth: as deep as the budget allows, at most 4 (256 leaves per element). A node takes
-  // about 3.5 kB (the net and points held for degree 5), so a patch up to 21 MB.
+  // about 3.5 kB (the net and points held for degree 5), so a patch up to 21 MB with the
+  // default budget (kTreeNodes).
+  const std::size_t budget = tree_budget();
   int depth = 0;
-  while (depth < 4 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= kTreeNodes)
-    ++depth;
+  while (depth < 4 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= budget) ++depth;
   // Nodes level by level; grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l.
   std::vector<std::vector<int>> grid(static_cast<std::size_t>(depth + 1));
   std::vector<std::array<int, 2>> cell;  // (I, J) of each node at its level

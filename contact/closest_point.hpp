@@ -49,6 +49,15 @@ class PatchProjector {
   const std::vector<Box3>& element_boxes() const { return boxes_; }
   /// Nodes of the precomputed subdivision of the certified search (0: none, degrees above 5).
   std::size_t tree_nodes() const { return tree_.size(); }
+  /// The node budget of that subdivision, read when a projector is built: the tree goes as
+  /// deep below the elements as n_elements x nodes per element <= budget allows (at most 4
+  /// levels; the elements themselves always). Process-wide; default kTreeNodes. A smaller
+  /// budget makes a projector cheaper to build, its cold searches and certificates then
+  /// subdivide at query time: the same feet, more time per query. Building the default tree
+  /// costs seconds under the sanitizers, so the fuzz targets (fuzz/) set a small one.
+  static constexpr std::size_t kTreeNodes = 6144;
+  static void set_tree_budget(std::size_t nodes);
+  static std::size_t tree_budget();
   /// Memory held by the projector's precomputed data, in bytes (approximate: vectors' sizes).
   std::size_t memory_bytes() const;
 
@@ -127,7 +136,6 @@ class PatchProjector {
     };
     std::array<Near, kNear> near{};
   };
-  static constexpr std::size_t kTreeNodes = 6144;
   std::vector<Node> tree_;
   std::vector<Cert> cert_;
   void build_tree();

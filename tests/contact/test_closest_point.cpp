@@ -472,6 +472,35 @@ TEST_CASE("PatchProjector: the tree and its memory", "[contact][closest][certifi
   CHECK(torus.memory_bytes() < std::size_t{64} << 20);
 }
 
+TEST_CASE("PatchProjector: a smaller tree budget gives shallower trees and the same feet",
+          "[contact][closest][certified]") {
+  // The budget the fuzz targets set (fuzz/fuzz_caps.hpp): the torus's 16 elements get a tree
+  // one level deep with 80 nodes, none below the elements with 16; the default comes back.
+  const NurbsSurface s = test::data_surface("torus_patch.json");
+  const PatchProjector full(s);
+  REQUIRE(PatchProjector::tree_budget() == PatchProjector::kTreeNodes);
+  PatchProjector::set_tree_budget(80);
+  const PatchProjector shallow(s);
+  PatchProjector::set_tree_budget(0);
+  const PatchProjector flat(s);
+  PatchProjector::set_tree_budget(PatchProjector::kTreeNodes);
+  CHECK(shallow.tree_nodes() == 16 * 5);
+  CHECK(flat.tree_nodes() == 16);
+  CHECK(PatchProjector(s).tree_nodes() == full.tree_nodes());
+  const Box3 box = full.box();
+  const double diag = (box.hi - box.lo).norm();
+  std::mt19937 g(34);
+  int n = 0;
+  for (const PatchProjector* P : {&shallow, &flat})
+    for (int i = 0; i < 100; ++i, ++n) {
+      const Vector3d x = random_in_box(g, box, 0.3);
+      const ProjectionResult a = full.project(x), b = P->project(x);
+      INFO("point " << n);
+      CHECK(b.certified);
+      CHECK(std::abs((b.point - x).norm() - (a.point - x).norm()) <= 1e-10 * diag);
+    }
+}
+
 TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (sampled check)",
           "[contact][closest][certified]") {
   // The interval bounds of S and its first and second derivatives over a Bezier element must
