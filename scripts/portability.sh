@@ -7,7 +7,8 @@
 #             (GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-FMA4): the libm of an older processor,
 #             and with the round-off probe (below) in the same run, so that CI's time does not
 #             grow
-#   fast-fma  a build with -ffp-contract=fast -mfma (needs a processor with FMA; skipped without)
+#   fast-fma  a build with -ffp-contract=fast -mfma (needs a processor with FMA; skipped without).
+#             CI does not run it: its sanitizer build is built this way (scripts/build.sh asan)
 #   off       a build with -ffp-contract=off (not in `all`: on x86-64 without -mfma there is no
 #             FMA instruction to contract into, and the release build is the same machine code)
 #   probe     the release build, run with the round-off probe IGA_ROUNDOFF_PROBE=<seed> (seed

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Quick start 2: install what is missing, build, and run the whole test suite through CTest.
 #   scripts/test.sh            Release build in build/release
-#   scripts/test.sh --sanitize ASan + UBSan build in build/asan
+#   scripts/test.sh --sanitize ASan + UBSan build in build/asan, with -ffp-contract=fast -mfma
+#                              where the processor has FMA (scripts/build.sh)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 flavour=release

@@ -16,6 +16,9 @@
 #include <unistd.h>
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_iga_tool {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -1037,3 +1040,5 @@ TEST_CASE("iga import and a model's cad entity: skipped entities warn, --strict 
   CHECK_THAT(run.err, Catch::Contains("/geometry/die/file") && Catch::Contains("strict"));
   fs::remove_all(dir);
 }
+
+}  // namespace test_iga_tool

@@ -16,6 +16,9 @@
 #include "geometry/json_reader.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_run_apps {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -213,3 +216,5 @@ TEST_CASE("capstan: T0 = 0 is refused at read time naming the value's path",
   CHECK_FALSE(fs::exists(out / "capstan.csv"));
 }
 #endif
+
+}  // namespace test_run_apps

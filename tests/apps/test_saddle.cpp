@@ -18,6 +18,9 @@
 #include <nlohmann/json.hpp>
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_saddle {
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -248,3 +251,5 @@ TEST_CASE(
   CHECK(radius[1] > radius[0]);
   fs::remove_all(out);
 }
+
+}  // namespace test_saddle

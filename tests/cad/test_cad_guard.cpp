@@ -24,6 +24,9 @@
 #include "tests/support/cad_samples.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_cad_guard {
+
 using namespace iga;
 using Catch::Matchers::Contains;
 
@@ -417,3 +420,5 @@ TEST_CASE(
   // The hook is the reader child's only: in this process nothing crashes.
   CHECK(list_cad_in_process(kScrew).faces.size() == 10);
 }
+
+}  // namespace test_cad_guard

@@ -36,6 +36,9 @@
 #include "tests/support/cad_samples.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_cad_import {
+
 using namespace iga;
 using Catch::Matchers::Contains;
 
@@ -415,3 +418,5 @@ TEST_CASE("cad import: extrusions convert exactly, offset surfaces within the st
       }
   }
 }
+
+}  // namespace test_cad_import

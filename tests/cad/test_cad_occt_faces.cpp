@@ -37,6 +37,9 @@
 #include "tests/support/files.hpp"
 #include "tests/support/occt_projection_check.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_cad_occt_faces {
+
 using namespace iga;
 using Catch::Matchers::Contains;
 
@@ -434,3 +437,5 @@ TEST_CASE(
     CHECK(c.same >= c.points / 2);
   }
 }
+
+}  // namespace test_cad_occt_faces

@@ -21,6 +21,9 @@
 #include "tests/support/cad_samples.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_vbelt {
+
 using namespace iga;
 
 namespace {
@@ -127,3 +130,5 @@ TEST_CASE("V-belt: in a flat-bottomed groove wider than the rope the plain exp(m
   CHECK(pairs == 8);
   CHECK(std::abs(ratio / law - 1.0) < 0.005);
 }
+
+}  // namespace test_vbelt

@@ -22,6 +22,9 @@
 #include "geometry/differential_geometry.hpp"
 #include "tests/support/geometry_checks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_analytic_projection {
+
 using namespace iga;
 using namespace iga::test;
 
@@ -773,3 +776,5 @@ TEST_CASE("analytic projections: far points keep finite distances, a zero ray di
   CHECK(h.status == ProjectionStatus::interior);
   CHECK(h.distance == Approx(0.5).epsilon(1e-12));
 }
+
+}  // namespace test_analytic_projection

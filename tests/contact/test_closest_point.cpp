@@ -17,6 +17,9 @@
 #include "geometry/differential_geometry.hpp"
 #include "tests/support/projection_reference.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_closest_point {
+
 using namespace iga;
 
 namespace {
@@ -554,3 +557,5 @@ TEST_CASE("patch_bounds: the boxes hold the patch's points and derivatives (samp
     }
   }
 }
+
+}  // namespace test_closest_point

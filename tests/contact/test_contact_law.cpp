@@ -13,6 +13,9 @@
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/constructions.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_contact_law {
+
 using namespace iga;
 
 namespace {
@@ -382,3 +385,5 @@ TEST_CASE(
     CHECK(slip == (l.y() > 2.0));
   }
 }
+
+}  // namespace test_contact_law

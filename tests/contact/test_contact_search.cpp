@@ -29,6 +29,9 @@ static std::ostream& operator<<(std::ostream& os, const SearchPair& s) {
 }
 }  // namespace iga
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_contact_search {
+
 using namespace iga;
 
 namespace {
@@ -426,3 +429,5 @@ TEST_CASE("broad_phase: torus elements, points on and near the surface, nothing 
     CHECK(static_cast<double>(pairs.size()) / static_cast<double>(points.size()) < 12.0);
   }
 }
+
+}  // namespace test_contact_search

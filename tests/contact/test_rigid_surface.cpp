@@ -12,6 +12,9 @@
 #include "geometry/refinement.hpp"
 #include "geometry/trimmed_surface.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_rigid_surface {
+
 using namespace iga;
 
 namespace {
@@ -224,3 +227,5 @@ TEST_CASE("RigidSurface::closest_points: trimmed faces are in the broad phase by
     }
   }
 }
+
+}  // namespace test_rigid_surface

@@ -13,6 +13,9 @@
 #include "contact/analytic_projection.hpp"
 #include "geometry/analytic_surfaces.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_spindle_torus {
+
 using namespace iga;
 
 namespace {
@@ -134,3 +137,5 @@ TEST_CASE("spindle tori: rays hit the surface, the inner part too, at the neares
   }
   CHECK(inner >= 10);
 }
+
+}  // namespace test_spindle_torus

@@ -19,6 +19,9 @@
 #include "geometry/knot_vector.hpp"
 #include "tests/support/geometry_checks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_analytic_surfaces {
+
 using namespace iga;
 using namespace iga::test;
 
@@ -416,3 +419,5 @@ TEST_CASE("analytic surfaces: clone() keeps the type and the shape, visit_analyt
     CHECK(seen == s->type_name());
   }
 }
+
+}  // namespace test_analytic_surfaces

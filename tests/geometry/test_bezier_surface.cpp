@@ -9,6 +9,9 @@
 #include "geometry/bezier_surface.hpp"
 #include "tests/support/random_nurbs.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_bezier_surface {
+
 using namespace iga;
 
 namespace {
@@ -96,3 +99,5 @@ TEST_CASE("BezierSurface: element_of follows the knot spans (border to the eleme
   CHECK(b.element_of(1.0, 1.0) == 5);
   CHECK(b.element_of(0.75, 0.49) == 2);
 }
+
+}  // namespace test_bezier_surface

@@ -8,6 +8,9 @@
 #include "geometry/knot_vector.hpp"
 #include "tests/support/random_nurbs.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_bspline_basis {
+
 using namespace iga;
 
 TEST_CASE("basis_funs: The NURBS Book Example 2.3 values at u = 5/2", "[geometry][basis]") {
@@ -177,3 +180,5 @@ TEST_CASE("ders_basis_funs: the order <= 2 fast path equals the general A2.3 loo
     }
   }
 }
+
+}  // namespace test_bspline_basis

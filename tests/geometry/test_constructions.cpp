@@ -25,6 +25,9 @@
 #include "tests/support/geometry_checks.hpp"
 #include "tests/support/geometry_error.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_constructions {
+
 using namespace iga;
 using namespace iga::test;
 
@@ -827,3 +830,5 @@ TEST_CASE("construction sphere zone: exact, its corners at the given latitudes a
       "axis": [0, 0, 1], "ref_dir": [0, 0, 2]}})");
   CHECK(e.pointer() == "/geometry/s/ref_dir");
 }
+
+}  // namespace test_constructions

@@ -18,6 +18,9 @@
 #include "geometry/knot_vector.hpp"
 #include "tests/support/geometry_checks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_differential_geometry {
+
 using namespace iga;
 using namespace iga::test;
 
@@ -414,3 +417,5 @@ TEST_CASE(
     }
   }
 }
+
+}  // namespace test_differential_geometry

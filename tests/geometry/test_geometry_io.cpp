@@ -18,6 +18,9 @@
 #include "geometry/json_reader.hpp"
 #include "tests/support/geometry_error.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_geometry_io {
+
 using namespace iga;
 
 namespace {
@@ -685,3 +688,5 @@ TEST_CASE("make_storable: every homogeneous coordinate reads back from its writt
   m.entities.emplace_back("c", NurbsCurve(KnotVector(1, U), pw));
   CHECK(text_round_trip(m) == m);
 }
+
+}  // namespace test_geometry_io

@@ -9,6 +9,9 @@
 #include "geometry/nurbs_surface.hpp"
 #include "tests/support/random_nurbs.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_nurbs_eval {
+
 using namespace iga;
 
 namespace {
@@ -132,3 +135,5 @@ TEST_CASE("NurbsSurface: constructor rejects inconsistent nets and weights",
   CHECK_THROWS_WITH(NurbsSurface(1, U, 1, U, P, {1, 1, -1, 1}), Contains("weight 2"));
   CHECK_THROWS_AS(NurbsCurve(1, U, {Vector3d::Zero(), Vector3d(NAN, 0, 0)}), GeometryError);
 }
+
+}  // namespace test_nurbs_eval

@@ -6,6 +6,9 @@
 #include "geometry/constructions.hpp"
 #include "geometry/rational_basis.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_rational_basis {
+
 using namespace iga;
 
 TEST_CASE("rational_basis: a circle's point, first and second derivatives from sum R_j P_j",
@@ -70,3 +73,5 @@ TEST_CASE("rational_basis: a torus's point and derivatives up to the second from
       CHECK((xuv - d.Suv).norm() < 1e-11 * (1.0 + d.Suv.norm()));
     }
 }
+
+}  // namespace test_rational_basis

@@ -7,6 +7,9 @@
 #include "geometry/refinement.hpp"
 #include "tests/support/random_nurbs.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_refinement {
+
 using namespace iga;
 
 namespace {
@@ -145,3 +148,5 @@ TEST_CASE("refine_knots: rejects knots outside the domain", "[geometry][refine][
   CHECK_THROWS_AS(refine_knots(c, bad), GeometryError);
   CHECK_THROWS_AS(insert_knot(c, 0.3, 3), GeometryError);  // multiplicity 3 > degree 2
 }
+
+}  // namespace test_refinement

@@ -9,6 +9,9 @@
 #include "geometry/analytic_surfaces.hpp"
 #include "geometry/trimmed_surface.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_trimmed_surface {
+
 using namespace iga;
 
 namespace {
@@ -85,3 +88,5 @@ TEST_CASE("TrimmedSurface: bad loops are errors", "[geometry][trimmed]") {
   const Plane bounded(Placement{}, {{0, 1}, {0, 1}});
   CHECK_THROWS_AS(TrimmedSurface(bounded, {{{0, 0}, {2, 0}, {2, 1}}}, {}, 0.0), GeometryError);
 }
+
+}  // namespace test_trimmed_surface

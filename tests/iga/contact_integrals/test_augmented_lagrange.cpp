@@ -18,6 +18,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/capstan.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_augmented_lagrange {
+
 using namespace iga;
 
 namespace {
@@ -566,3 +569,5 @@ TEST_CASE(
   const ContactCounts& c = aug.steps.back().contact;
   CHECK(std::abs(c.slip - c.active / 2) <= 2);
 }
+
+}  // namespace test_augmented_lagrange

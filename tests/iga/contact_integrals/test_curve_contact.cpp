@@ -19,6 +19,9 @@
 #include "tests/iga/fd_tangent.hpp"
 #include "tests/iga/same_bits.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_curve_contact {
+
 using namespace iga;
 using iga::test::residual;
 using iga::test::tangent_error;
@@ -181,3 +184,5 @@ TEST_CASE("CurveContact: assembly on 1 and 2 threads is the same bit for bit",
   REQUIRE(K[0].size() == K[1].size());
   CHECK(test::count_differences(R[0], R[1], K[0], K[1]) == 0);
 }
+
+}  // namespace test_curve_contact

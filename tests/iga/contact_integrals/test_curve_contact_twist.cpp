@@ -20,6 +20,9 @@
 #include "tests/iga/contact_integrals/moving_pair.hpp"
 #include "tests/iga/fd_tangent.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_curve_contact_twist {
+
 using namespace iga;
 
 namespace {
@@ -216,3 +219,5 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
     CHECK(test::tangent_error(pm, carried(x), 1e-7) <= 1e-6);
   }
 }
+
+}  // namespace test_curve_contact_twist

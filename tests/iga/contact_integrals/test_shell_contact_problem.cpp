@@ -11,6 +11,9 @@
 
 #include "iga/model/analysis.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_shell_contact_problem {
+
 using namespace iga;
 
 namespace {
@@ -165,3 +168,5 @@ TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of t
     }
   }
 }
+
+}  // namespace test_shell_contact_problem

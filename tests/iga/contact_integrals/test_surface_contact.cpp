@@ -29,6 +29,9 @@
 #include "tests/iga/fd_tangent.hpp"
 #include "tests/iga/same_bits.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_surface_contact {
+
 using namespace iga;
 using iga::test::residual;
 using iga::test::tangent_error;
@@ -477,3 +480,5 @@ TEST_CASE("SurfaceContact: assembly on 1 and 2 threads is the same bit for bit",
     CHECK(test::count_differences(R[0], R[1], K[0], K[1]) == 0);
   }
 }
+
+}  // namespace test_surface_contact

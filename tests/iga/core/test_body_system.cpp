@@ -17,6 +17,9 @@
 #include "iga/rod/kirchhoff_rod.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_body_system {
+
 using namespace iga;
 
 namespace {
@@ -156,3 +159,5 @@ TEST_CASE("ControlPointProblem: two contact pairs add up (two half-stiffness pai
   copy.assemble(u, 1.0, R3, nullptr);
   CHECK(rel(R2, R3) == 0.0);
 }
+
+}  // namespace test_body_system

@@ -5,6 +5,9 @@
 
 #include "iga/core/sampled_mesh.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_sampled_mesh {
+
 using Eigen::Vector3d;
 using iga::PointFields;
 
@@ -43,3 +46,5 @@ TEST_CASE("PointFields: named fields keep their order, a point's values go to ea
   CHECK(f.scalars.size() == 1);
   CHECK(f.vectors.empty());
 }
+
+}  // namespace test_sampled_mesh

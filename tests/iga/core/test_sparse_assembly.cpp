@@ -8,6 +8,9 @@
 
 #include "iga/core/sparse_assembly.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_sparse_assembly {
+
 using namespace iga;
 using Triplet = Eigen::Triplet<double>;
 using Matrix = Eigen::SparseMatrix<double>;
@@ -79,3 +82,5 @@ TEST_CASE("PatternAssembler: setFromTriplets' matrix, the pattern kept while the
   CHECK(K.nonZeros() == 0);
   CHECK(assembler.builds() == 4);
 }
+
+}  // namespace test_sparse_assembly

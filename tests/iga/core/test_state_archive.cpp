@@ -12,6 +12,9 @@
 #include "iga/core/state_archive.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_state_archive {
+
 using namespace iga;
 namespace fs = std::filesystem;
 
@@ -99,3 +102,5 @@ TEST_CASE("StateArchive: the same routine writes and reads, bit for bit", "[iga]
     CHECK_THROWS_WITH(b.finish(), Catch::Contains("bytes left unread"));
   }
 }
+
+}  // namespace test_state_archive

@@ -13,6 +13,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/capstan.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_analysis {
+
 using namespace iga;
 
 namespace {
@@ -278,3 +281,5 @@ TEST_CASE("analysis: a rope of 60000 elements is set up (no dense fit)", "[iga][
   const Analysis a = Analysis::from_json(doc, "capstan_fine.json");
   CHECK_THAT(a.describe(), Catch::Contains("rod of 60006 elements"));
 }
+
+}  // namespace test_analysis

@@ -15,6 +15,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_analysis_run {
+
 using namespace iga;
 
 namespace {
@@ -416,3 +419,5 @@ TEST_CASE(
   CHECK(p_max > 0.9 * q);  // the inside: about q
   CHECK_FALSE(has_non_finite_text(shell));
 }
+
+}  // namespace test_analysis_run

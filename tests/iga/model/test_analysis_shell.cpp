@@ -14,6 +14,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/shell_benchmarks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_analysis_shell {
+
 using namespace iga;
 
 namespace {
@@ -304,3 +307,5 @@ TEST_CASE(
     CHECK(uz == Approx((s - 1.0) * R).epsilon(1e-4));
   }
 }
+
+}  // namespace test_analysis_shell

@@ -19,6 +19,9 @@
 #include "iga/model/analysis.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_arch_snap {
+
 using namespace iga;
 
 namespace {
@@ -143,3 +146,5 @@ TEST_CASE("load_limit_points: maxima and minima of the load along the steps", "[
   CHECK(load_limit_points(steps).empty());
   CHECK(load_limit_points({}).empty());
 }
+
+}  // namespace test_arch_snap

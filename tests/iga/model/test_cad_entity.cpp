@@ -17,6 +17,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_cad_entity {
+
 using namespace iga;
 
 namespace {
@@ -310,3 +313,5 @@ TEST_CASE("cad entity: a plate that would fall through the die in one step is ca
   CHECK(uz < -1.5e-4);
   CHECK(uz > -5e-4);
 }
+
+}  // namespace test_cad_entity

@@ -23,6 +23,9 @@
 #include "iga/solvers/linear_solver.hpp"
 #include "tests/support/capstan.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_capstan {
+
 using namespace iga;
 
 namespace {
@@ -595,3 +598,5 @@ TEST_CASE(
   CHECK(pl.mean == Approx(exact).epsilon(0.01));
   CHECK(pl.spread() < 0.002);
 }
+
+}  // namespace test_capstan

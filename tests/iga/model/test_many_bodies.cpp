@@ -17,6 +17,9 @@
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_many_bodies {
+
 using namespace iga;
 
 namespace {
@@ -281,3 +284,5 @@ TEST_CASE("many bodies: references between bodies, conditions, pairs and output 
               Json::parse(R"([{"name": "mid", "at": 0.5, "body": "rope_b"}])");
         }) == "no error");
 }
+
+}  // namespace test_many_bodies

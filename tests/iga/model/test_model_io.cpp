@@ -13,6 +13,9 @@
 #include "iga/model/model.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_model_io {
+
 using namespace iga;
 namespace fs = std::filesystem;
 
@@ -189,3 +192,5 @@ TEST_CASE("model: save -> load is bit for bit for every model in data/", "[iga][
   }
   CHECK(count >= 15);
 }
+
+}  // namespace test_model_io

@@ -25,6 +25,9 @@
 #include "tests/iga/fd_tangent.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_moving_tools {
+
 using namespace iga;
 
 namespace {
@@ -407,3 +410,5 @@ TEST_CASE("moving tools: arc length through contact changes ends where load cont
   CHECK(Fa == Approx(Fl).epsilon(1e-6));
   CHECK(ra.steps.back().contact.active == rl.steps.back().contact.active);
 }
+
+}  // namespace test_moving_tools

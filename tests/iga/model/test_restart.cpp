@@ -22,6 +22,9 @@
 #include "iga/model/analysis.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_restart {
+
 using namespace iga;
 namespace fs = std::filesystem;
 
@@ -213,3 +216,5 @@ TEST_CASE("Restart: every N steps, and a file of another model is refused",
   CHECK_THROWS_WITH(same.run(nullptr, {}, {}, data("capstan.json")),
                     Catch::Contains("not a restart file"));
 }
+
+}  // namespace test_restart

@@ -20,6 +20,9 @@
 #include "iga/model/analysis.hpp"
 #include "iga/solvers/roundoff_probe.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_sze_shells {
+
 using namespace iga;
 
 namespace {
@@ -326,3 +329,5 @@ TEST_CASE("Load control over the hinged roof's limit point: the jump is reported
   CHECK(wc[j] > 19.5);        // beyond the minimum's: on the far branch
   CHECK_THAT(log.str(), Catch::Contains("jump:") && Catch::Contains("arc_length"));
 }
+
+}  // namespace test_sze_shells

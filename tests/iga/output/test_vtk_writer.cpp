@@ -10,6 +10,9 @@
 #include "iga/output/vtk_writer.hpp"
 #include "tests/support/files.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_vtk_writer {
+
 using namespace iga;
 namespace fs = std::filesystem;
 
@@ -86,3 +89,5 @@ TEST_CASE("write_vtk_polydata: non-finite values are written as 0 with the flag 
   CHECK(iga::test::slurp(path).find("non_finite") == std::string::npos);
   std::filesystem::remove(path);
 }
+
+}  // namespace test_vtk_writer

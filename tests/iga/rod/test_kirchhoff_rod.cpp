@@ -25,6 +25,9 @@
 #include "iga/solvers/roundoff_probe.hpp"
 #include "tests/support/random_nurbs.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_kirchhoff_rod {
+
 using namespace iga;
 
 namespace {
@@ -639,3 +642,5 @@ TEST_CASE("KirchhoffRod: bad input is rejected with a message", "[iga][rod]") {
   P.fix(1, 0);
   CHECK_THROWS_AS(P.clamp(RodEnd::kStart), RodError);
 }
+
+}  // namespace test_kirchhoff_rod

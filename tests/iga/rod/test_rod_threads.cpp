@@ -13,6 +13,9 @@
 #include "iga/rod/twisting_rod.hpp"
 #include "tests/iga/same_bits.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_rod_threads {
+
 using namespace iga;
 
 namespace {
@@ -72,3 +75,5 @@ TEST_CASE("TwistingRod: assembly on 1 and 2 threads is the same bit for bit",
   CHECK(f1.norm() > 0.0);
   CHECK(test::count_differences(f1, f2, T1, T2) == 0);
 }
+
+}  // namespace test_rod_threads

@@ -19,6 +19,9 @@
 #include "iga/solvers/nonlinear_solver.hpp"
 #include "iga/solvers/roundoff_probe.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_twisting_rod {
+
 using namespace iga;
 
 namespace {
@@ -576,3 +579,5 @@ TEST_CASE("TwistingRodProblem: a symmetry plane leaves the twist free (half mode
               dx.x(), dx.y(), dx.z());
   CHECK((dx - df).norm() > 1e-2 * df.norm());
 }
+
+}  // namespace test_twisting_rod

@@ -19,6 +19,9 @@
 #include "iga/solvers/nonlinear_solver.hpp"
 #include "tests/support/shell_benchmarks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_kirchhoff_love_shell {
+
 using namespace iga;
 
 namespace {
@@ -487,3 +490,5 @@ TEST_CASE("Slit annular plate: the error decreases under refinement, within 0.5 
   const double e48 = slit_annular_plate(4, 48, 3, 0.005);
   CHECK(e48 < e32);
 }
+
+}  // namespace test_kirchhoff_love_shell

@@ -15,6 +15,9 @@
 #include "iga/shell/shell_problem.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_shell_neo_hookean {
+
 using namespace iga;
 
 namespace {
@@ -164,3 +167,5 @@ TEST_CASE(
     CHECK(std::abs(s_svk - s) > 0.02 * (s - 1));  // the laws differ at these strains
   }
 }
+
+}  // namespace test_shell_neo_hookean

@@ -11,6 +11,9 @@
 #include "iga/solvers/nonlinear_solver.hpp"
 #include "tests/support/shell_benchmarks.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_shell_reactions {
+
 using namespace iga;
 
 namespace {
@@ -82,3 +85,5 @@ TEST_CASE("ShellProblem: a prescribed point with tied neighbours reports its who
   const int neighbour = q.point_index(1, n_v - 1);
   CHECK(std::abs(r[static_cast<std::size_t>(neighbour)].z()) < 1e-12 * kLoad);
 }
+
+}  // namespace test_shell_reactions

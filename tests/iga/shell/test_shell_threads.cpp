@@ -11,6 +11,9 @@
 #include "iga/shell/kirchhoff_love_shell.hpp"
 #include "tests/iga/same_bits.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_shell_threads {
+
 using namespace iga;
 
 TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for bit",
@@ -32,3 +35,5 @@ TEST_CASE("KirchhoffLoveShell: assembly on 1 and 2 threads is the same bit for b
   CHECK(f1.norm() > 0.0);
   CHECK(test::count_differences(f1, f2, T1, T2) == 0);
 }
+
+}  // namespace test_shell_threads

@@ -17,6 +17,9 @@
 #include "iga/solvers/roundoff_probe.hpp"
 #include "von_mises_truss.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_arc_length {
+
 using namespace iga;
 using iga::test::TrussWithSpring;
 using iga::test::VonMisesTruss;
@@ -287,3 +290,5 @@ TEST_CASE("Arc length: a step whose landing on t1 fails is cut back and ends on 
   CHECK(failed_landings == 1);
   CHECK_THAT(r.message, Catch::StartsWith("reached t1 = 1"));
 }
+
+}  // namespace test_arc_length

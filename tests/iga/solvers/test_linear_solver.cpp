@@ -13,6 +13,9 @@
 
 #include "iga/solvers/linear_solver.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_linear_solver {
+
 using namespace iga;
 
 namespace {
@@ -290,3 +293,5 @@ TEST_CASE("LinearSolver: reset forgets pattern, factorization and statistics", "
   check_solve(solver, random_matrix(20, 3, false, false, 2u), 1u);
   CHECK_FALSE(solver.reused_analysis());
 }
+
+}  // namespace test_linear_solver

@@ -19,6 +19,9 @@
 #include "iga/solvers/roundoff_probe.hpp"
 #include "von_mises_truss.hpp"
 
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_nonlinear_solver {
+
 using namespace iga;
 
 namespace {
@@ -542,3 +545,5 @@ TEST_CASE("NonlinearSolver: invalid settings and state sizes throw with the fiel
   VectorXd u = VectorXd::Zero(3);
   CHECK_THROWS_AS((void)solver.solve(chain, u), std::invalid_argument);
 }
+
+}  // namespace test_nonlinear_solver
