@@ -36,8 +36,8 @@
 // chosen unit), what OpenCASCADE multiplies the file's lengths by. A file unit that is not
 // finite, not positive or outside [1e-9 m, 1e9 m] is refused; every number of an imported
 // entity is within geometry_io's model bounds (|x| <= 1e100) or the import is refused.
-// Skipped entities (entities of the file OpenCASCADE could not read or transfer) are warnings
-// (CadImport::warnings), errors with CadOptions::strict.
+// Skipped entities (entities of the file OpenCASCADE could not read or transfer) and a damaged
+// header that costs no entity are warnings (CadImport::warnings), errors with CadOptions::strict.
 #pragma once
 
 #include <stdexcept>
@@ -79,7 +79,8 @@ struct CadOptions {
   /// "in", "ft", "um", "km".
   std::string unit = "mm";
   CadPlacement placement;
-  /// Entities of the file skipped by OpenCASCADE (CadImport::warnings) are an error.
+  /// Warnings (CadImport::warnings: entities skipped by OpenCASCADE, a damaged header) are an
+  /// error.
   bool strict = false;
 };
 

@@ -161,6 +161,16 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
         samples_[e].push_back({uv, s_.point(uv[0], uv[1])});
       }
   }
+  // The element borders where the patch may have a kink: inner knots of multiplicity >= the
+  // degree (C0 there), and the seam of a closed direction.
+  const KnotVector* kv[2] = {&s_.knots_u(), &s_.knots_v()};
+  const Domain2 dom = s_.domain();
+  for (int dir = 0; dir < 2; ++dir) {
+    const Interval& d = dir == 0 ? dom.u : dom.v;
+    for (const double b : kv[dir]->breaks())
+      if (b > d.lo && b < d.hi && kv[dir]->multiplicity(b) >= kv[dir]->degree())
+        kinks_[dir].push_back(b);
+  }
   build_tree();
 }
 
@@ -508,6 +518,7 @@ struct CertifiedSearch {
   const std::vector<std::vector<Sample>>& samples;  // per element
   int samples_per_dir;
   const std::vector<Node>& tree;
+  const std::vector<double>* kinks;  // [2]: the patch's C0 element borders in u and v
   ChordRegion chord_region;
   // The query
   const Vector3d& x;
@@ -528,6 +539,7 @@ struct CertifiedSearch {
   // An upper bound of the distance (a surface point at that distance exists, at ub_uv)
   double ub;
   Vector2d ub_uv = Vector2d::Zero();
+  bool ub_seen = false;  // ub is the distance of the surface point at ub_uv
   // Regions proven to hold no point closer than the best (at most kMaxProven kept).
   static constexpr int kMaxProven = 4;
   const Domain2* proven[kMaxProven] = {};
@@ -588,8 +600,12 @@ struct CertifiedSearch {
   }
 
   // Whether the minimum of F over a node, lying on its bound `side` (0 lo, 1 hi) in direction
-  // `dir`, is held by another node: the bound is inside the element, or (all elements
-  // searched) an element border inside the patch or a seam.
+  // `dir`, is held by another node that searches it: the bound is inside the element, or (all
+  // elements searched) an element border inside the patch across which the patch is C1. Not
+  // across a kink (an inner knot of multiplicity >= the degree) or a seam: there F_,dir may
+  // change sign, F of the nodes on both sides may decrease towards the bound, and each would
+  // leave the bound to the other (seen: a minimum at the corner of four degree-1 elements
+  // pruned by all four). Such a node is solved on its bound instead (settled_by_bounds).
   bool shared_bound(const Domain2& range, int element, int dir, int side) const {
     const Interval& r = dir == 0 ? range.u : range.v;
     const Domain2& er = elements[static_cast<std::size_t>(element)].range;
@@ -597,8 +613,9 @@ struct CertifiedSearch {
     const Interval& d = dir == 0 ? dom.u : dom.v;
     const double b = side == 0 ? r.lo : r.hi;
     if (b > el.lo && b < el.hi) return true;
-    if (!all_elements) return false;
-    return (b > d.lo && b < d.hi) || (dir == 0 ? cu : cv);
+    if (!all_elements || !(b > d.lo && b < d.hi)) return false;
+    const std::vector<double>& k = kinks[dir];
+    return !std::binary_search(k.begin(), k.end(), b);
   }
 
   // Newtons in an element from the discrete local minima of the distance over its sample grid,
@@ -683,7 +700,7 @@ struct CertifiedSearch {
     if (!stored) dc_here = surface.derivs(range.u.lo + a, range.v.lo + b, 1);
     const SurfaceDerivs& dc = stored ? node.centre : dc_here;
     const double dist_c = (x - dc.S).norm();
-    if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b);
+    if (dist_c < ub) ub = dist_c, ub_uv = Vector2d(range.u.lo + a, range.v.lo + b), ub_seen = true;
     const detail::PatchBounds& pb = node.bounds;
     // The node holding the best answer, an optimum of the patch: the chord test.
     if (best_patch_kkt && inside(range, best.uv) && detail::chord_test(pb, x - best.point))
@@ -717,10 +734,14 @@ struct CertifiedSearch {
           0.5 * rc.squaredNorm() - std::abs(dc.Su.dot(rc)) * a - std::abs(dc.Sv.dot(rc)) * b;
       if (lb > 0.0 && std::sqrt(2.0 * lb) > threshold()) return true;
     }
+    // F monotone in a parameter: the node's minimum lies on the bound it points to, so the
+    // search is on that bound alone (the Newton's box closed to it). That also keeps the Newton
+    // off the other side of a kink, whose derivative an evaluation on the bound may take.
     Vector2d s0(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
-    if (mono_u != 0) s0[0] = mono_u < 0 ? range.u.lo : range.u.hi;
-    if (mono_v != 0) s0[1] = mono_v < 0 ? range.v.lo : range.v.hi;
-    const ProjectionResult r = closest_point_local(surface, x, s0, range, opt);
+    Domain2 on = range;
+    if (mono_u != 0) s0[0] = on.u.lo = on.u.hi = mono_u < 0 ? range.u.lo : range.u.hi;
+    if (mono_v != 0) s0[1] = on.v.lo = on.v.hi = mono_v < 0 ? range.v.lo : range.v.hi;
+    const ProjectionResult r = closest_point_local(surface, x, s0, on, opt);
     consider(r, element, range, false);
     return found(r.status);
   }
@@ -765,6 +786,15 @@ struct CertifiedSearch {
       }
       best.iterations = iterations;
       return best;
+    }
+    // A surface point seen closer than the best answer (a sample or a node's centre) means the
+    // search missed the minimum: never so by construction; if it happens, the answer is not
+    // certified and the Newton from that point is taken where it comes closer.
+    if (ub_seen && ub < best_d - tol) {
+      certified = false;
+      ProjectionResult r = closest_point_local(surface, x, ub_uv, opt);
+      if (found(r.status) && (r.point - x).norm() < best_d)
+        best = r, best_d = (r.point - x).norm(), best_patch_kkt = true;
     }
     best.certified = certified;
     best.iterations = iterations;
@@ -842,6 +872,7 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
       .samples = samples_,
       .samples_per_dir = samples_per_dir_,
       .tree = tree_,
+      .kinks = kinks_,
       .chord_region = region_of,
       .x = x,
       .opt = opt,
@@ -865,7 +896,7 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     const auto first = std::min_element(order.begin(), order.end());
     for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
       const double d = (smp.x - x).norm();
-      if (d < cs.ub) cs.ub = d, cs.ub_uv = smp.uv;
+      if (d < cs.ub) cs.ub = d, cs.ub_uv = smp.uv, cs.ub_seen = true;
     }
     cs.ub *= 1.0 + 1e-12;
   }

@@ -96,6 +96,9 @@ class PatchProjector {
   std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
   std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])
   Box3 box_;
+  // Inner element borders of multiplicity >= the degree (the patch C0 there), sorted, per
+  // direction: the certified search does not leave a minimum on them to the other side.
+  std::vector<double> kinks_[2];
   // The subdivision of the certified search, precomputed to a fixed depth (kTreeNodes at most):
   // nodes 0 .. n_elements - 1 are the elements, each node's four children are consecutive.
   struct Node {

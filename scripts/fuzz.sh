@@ -26,6 +26,12 @@
 # The corpus grows in build/fuzz/corpus/<target> (inputs above -max_len, e.g. left by an older
 # run, are truncated on loading); a crash, leak, timeout (10 s per input) or uncaught exception
 # is written to build/fuzz/findings/<target>/ and makes the script exit 1.
+# fuzz_cad runs in fork mode (-fork=IGA_JOBS, default nproc) past crashes and timeouts:
+# OpenCASCADE's readers crash on many broken files, and the tool contains those crashes (reader
+# child process). Each crash found is replayed and its sanitizer report's first frame outside
+# the sanitizer runtime and libc names its owner: OpenCASCADE (libTK*: listed, reported
+# upstream, not a failure) or ours (anything else: exit 1). Timeouts are listed (the tool's
+# reader has a time limit, IGA_CAD_TIMEOUT).
 # Reproduce a finding: build/fuzz/fuzz/<target> build/fuzz/findings/<target>/crash-...
 # IGA_FUZZ_VERBOSE=1 build/fuzz/fuzz/fuzz_pipeline fuzz/seeds/models/*.json: what each seed does
 # (loaded, rejected with which message, steps run).
@@ -55,6 +61,29 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 export OMP_NUM_THREADS=${OMP_NUM_THREADS:-1}
 CAD_MAX_KB=17
 status=0
+
+# Replays each crash of fuzz_cad and names its owner by the first stack frame outside the
+# sanitizer runtime and libc: "OpenCASCADE" (a libTK* library) or "ours" (exit status 1).
+triage_cad() {  # findings dir, LSAN_OPTIONS
+  local dir=$1 lsan=$2 ours=0 occt=0 f frame
+  for f in "$dir"/crash-* "$dir"/leak-*; do
+    [[ -e $f ]] || continue
+    frame=$(cd "$build" && LSAN_OPTIONS=$lsan "$build/fuzz/fuzz_cad" "$f" 2>&1 |
+      grep -E '^ *#[0-9]+ ' | grep -vE 'libasan|libubsan|libclang_rt|compiler-rt|/libc\.so|sanitizer_common|__sanitizer|libFuzzer|FuzzerLoop' | head -1)
+    if [[ $frame == *libTK* ]]; then
+      occt=$((occt + 1))
+      echo "fuzz: OpenCASCADE: ${f##*/}: ${frame#"${frame%%[![:space:]]*}"}"
+    else
+      ours=$((ours + 1))
+      echo "fuzz: ours: ${f##*/}: ${frame:-no stack frame (replay it: build/fuzz/fuzz/fuzz_cad $f)}" >&2
+    fi
+  done
+  for f in "$dir"/timeout-* "$dir"/oom-*; do
+    [[ -e $f ]] && echo "fuzz: slow or large: ${f##*/} (the tool's reader stops at IGA_CAD_TIMEOUT)"
+  done
+  echo "fuzz: fuzz_cad findings: $occt inside OpenCASCADE, $ours ours"
+  ((ours == 0))
+}
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t" findings="$build/findings/$t"
   mkdir -p "$corpus" "$findings"
@@ -74,14 +103,22 @@ for t in "${targets[@]}"; do
   esac
   lsan=${LSAN_OPTIONS:-}
   [[ $t == fuzz_cad ]] && lsan="suppressions=$root/fuzz/lsan_occt.supp:print_suppressions=0${lsan:+:$lsan}"
+  mode=()
+  [[ $t == fuzz_cad ]] && mode=(-fork="${IGA_JOBS:-$(nproc)}" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
   echo "fuzz: $t for $seconds s (corpus $(ls "$corpus" | wc -l) inputs, seeds ${seeds[*]#"$root/"})"
   # the corpus first: libFuzzer writes new inputs to the first folder only
   if ! (cd "$build" && LSAN_OPTIONS=$lsan "$build/fuzz/$t" "$corpus" "${seeds[@]}" -max_total_time="$seconds" \
-      -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" -print_final_stats=1 \
-      -artifact_prefix="$findings/" 2>"$build/$t.log"); then
+      -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" -print_final_stats=1 "${mode[@]}" \
+      -artifact_prefix="$findings/" 2>"$build/$t.log") && [[ $t != fuzz_cad ]]; then
     status=1
     echo "fuzz: $t found a problem: $(ls "$findings")" >&2
   fi
-  grep -E "^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)|^Done" "$build/$t.log" || true
+  if [[ $t == fuzz_cad ]]; then
+    # fork mode: executions summed over the jobs ("#N DONE ... exec/s: R" per merge line)
+    grep -E "^#[0-9]+: cov" "$build/$t.log" | tail -1 || true
+    triage_cad "$findings" "$lsan" || status=1
+  else
+    grep -E "^stat::(number_of_executed_units|average_exec_per_sec|peak_rss_mb)|^Done" "$build/$t.log" || true
+  fi
 done
 exit $status

@@ -126,6 +126,25 @@ TEST_CASE(
 }
 
 TEST_CASE(
+    "cad import (OCCT data): a global section with a date OpenCASCADE cannot parse is a "
+    "warning, the faces import",
+    "[cad][occt]") {
+  const std::string path = occt_file("OCC131-1.igs");
+  const CadImport imp = import_cad(path, "occ131");
+  REQUIRE(imp.faces.size() == 1);
+  REQUIRE(imp.warnings.size() == 1);
+  CHECK_THAT(imp.warnings[0],
+             Contains(path) && Contains("damaged header") && Contains("Incorrect Date Format"));
+  // a strict import refuses it, with the same words
+  CadOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(import_cad(path, "occ131", strict),
+                    Contains("damaged header") && Contains("strict"));
+  const Totals t = import_and_compare("OCC131-1.igs");
+  CHECK(t.points == 200);
+}
+
+TEST_CASE(
     "cad import (OCCT data): a periodic degree-12 B-spline torus across its seam imports "
     "and projects as OpenCASCADE's",
     "[cad][occt]") {

@@ -81,6 +81,36 @@ TEST_CASE("PatchProjector: cold start finds the global minimum (brute-force refe
   CHECK(checked == 360);
 }
 
+TEST_CASE(
+    "PatchProjector: a minimum at a kink where four elements meet (a tent's apex) is found and "
+    "certified",
+    "[contact][closest]") {
+  // A degree-1 tent over [-1, 1]^2 with its apex (0, 0, 1) at the corner of its four elements:
+  // C0 across both inner knots. For x above the apex the closest point is the apex: every
+  // other point y has z_y < 1 and |x - y| >= x_z - z_y, which beats the apex's distance
+  // sqrt((x_z - 1)^2 + r^2) for r small. F decreases towards the apex on all four elements, so
+  // each element's minimum is on borders it shares with the others, and no element may leave
+  // it to another (PatchProjector's kinks; on OCC17026-1.igs, issue 34, all four did and the
+  // search returned a pole 4.4 times farther, marked certified; here the seeds find the apex).
+  std::vector<Vector3d> cps;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) cps.emplace_back(i - 1.0, j - 1.0, i == 1 && j == 1 ? 1.0 : 0.0);
+  const NurbsSurface tent(1, {0, 0, 0.5, 1, 1}, 1, {0, 0, 0.5, 1, 1}, cps);
+  const PatchProjector P(tent);
+  const Vector3d apex(0, 0, 1);
+  for (const Vector3d& x : {Vector3d(0.01, 0.02, 3.0), Vector3d(-0.03, 0.01, 2.0),
+                            Vector3d(0.0, 0.0, 1.5), Vector3d(0.02, -0.02, 1.2)}) {
+    INFO("x = " << x.transpose());
+    const ProjectionResult r = P.project(x);
+    REQUIRE(found(r.status));
+    CHECK((r.point - apex).norm() < 1e-12);
+    CHECK(r.uv.isApprox(Vector2d(0.5, 0.5), 1e-12));
+    CHECK(r.certified);
+    const ProjectionResult ref = test::brute_force_closest(tent, x);
+    CHECK((r.point - x).norm() <= (ref.point - x).norm() + 1e-12);
+  }
+}
+
 TEST_CASE("PatchProjector: warm and cold starts agree near the surface", "[contact][closest]") {
   const PatchProjector P(test::data_surface("freeform_bicubic.json"));
   std::mt19937 g(3);

@@ -116,7 +116,7 @@ TEST_CASE("saddle: master and slave strategies give the same centre deflections"
 }
 
 TEST_CASE("saddle: the rigid hyperboloid as 2 x 2 patches gives the results of the single patch",
-          "[iga][shell][contact][saddle]") {
+          "[iga][shell][contact][saddle][heavy]") {
   for (const double mu : {0.0, 0.125}) {
     Json one = quick_saddle(mu, "master");
     Json four = one;

@@ -233,7 +233,7 @@ TEST_CASE("cad entity: a plate pressed onto a filleted die read from STEP (data/
 }
 
 TEST_CASE("cad entity: face seams leave no trace: the plate on the die split into 24 faces",
-          "[iga][analysis][cad][trimmed]") {
+          "[iga][analysis][cad][trimmed][heavy]") {
   // data/cad/die_fillet_split.step is die_fillet.step cut by the planes x = 0.37 and
   // y = -0.61 (scripts/make_cad_data.sh): the same surface in 24 faces instead of 10, with
   // seams across the flat top, along the fillets and down the sides. The plate must not feel

@@ -79,7 +79,7 @@ void print(int n, const std::vector<Point>& c) {
 }  // namespace
 
 TEST_CASE("Sze, Liu & Lo: the hemisphere with a hole within 1 % of the published path (24 x 24)",
-          "[iga][model][sze]") {
+          "[iga][model][sze][heavy]") {
   std::vector<Point> c;
   const double worst = hemisphere(24, c);
   std::printf("hemisphere with an 18-degree hole, Kirchhoff-Love, cubic:\n");
@@ -270,7 +270,7 @@ void check_roof(const RoofReference& ref, const RoofPath& p) {
 }  // namespace
 
 TEST_CASE("Sze, Liu & Lo: the hinged roof through both limit points, the first maximum within 1 %",
-          "[iga][model][sze]") {
+          "[iga][model][sze][heavy]") {
   std::printf("hinged cylindrical roof (Sabir & Lock), Kirchhoff-Love, cubic, arc length:\n");
   for (const RoofReference& ref : kRoof) check_roof(ref, roof(ref, 8));
 }
