@@ -196,9 +196,9 @@ TEST_CASE(
     for (const AnalysisStep& sb : rb.steps)
       if (sa.t > 1.15 && std::abs(sa.t - sb.t) <= 1e-12) {  // 1.2 and 1.3: both slide
         ++common;
-        const double a = sa.reactions.at(0).norm(), b = sb.reactions.at(0).norm();
-        UNSCOPED_INFO("t = " << sa.t << ": T/T0 still " << a / kT0 << ", moved " << b / kT0);
-        worst = std::max(worst, std::abs(b / a - 1.0));
+        const double Ta = sa.reactions.at(0).norm(), Tb = sb.reactions.at(0).norm();
+        UNSCOPED_INFO("t = " << sa.t << ": T/T0 still " << Ta / kT0 << ", moved " << Tb / kT0);
+        worst = std::max(worst, std::abs(Tb / Ta - 1.0));
       }
   CHECK(common == 2);
   // Within 2e-5 when only the motion changes the steps. With steps cut back elsewhere on the
