@@ -161,8 +161,8 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
         samples_[e].push_back({uv, s_.point(uv[0], uv[1])});
       }
   }
-  // The element borders where the patch may have a kink: inner knots of multiplicity >= the
-  // degree (C0 there), and the seam of a closed direction.
+  // The inner element borders where the patch may have a kink: knots of multiplicity >= the
+  // degree (C0 there). A seam is never left to the other side either (shared_bound).
   const KnotVector* kv[2] = {&s_.knots_u(), &s_.knots_v()};
   const Domain2 dom = s_.domain();
   for (int dir = 0; dir < 2; ++dir) {
