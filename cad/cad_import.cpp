@@ -107,6 +107,14 @@ namespace iga {
 
 namespace {
 
+/// A face that covers no area of its surface (its boundary spans none, or no wire of it
+/// encloses any): nothing of the part is lost without it, so a whole-file import skips it with
+/// a warning (import_cad_in_process) instead of refusing the file.
+class FaceWithoutArea : public CadError {
+ public:
+  using CadError::CadError;
+};
+
 constexpr double kPi = std::numbers::pi;
 /// Seconds the reader process may take before it is stopped (IGA_CAD_TIMEOUT overrides).
 constexpr double kDefaultReaderTimeout = 900.0;
@@ -1216,9 +1224,9 @@ Converted from_other(const Handle(Geom_Surface) & s, const UvBox& b, double size
 
 Converted convert(const TopoDS_Face& f, const UvBox& b, double size) {
   if (!(b.u0 < b.u1 && b.v0 < b.v1))
-    throw CadError("its boundary spans no area in its surface's parameters (u [" + number(b.u0) +
-                   ", " + number(b.u1) + "], v [" + number(b.v0) + ", " + number(b.v1) +
-                   "]): a degenerate face");
+    throw FaceWithoutArea("its boundary spans no area in its surface's parameters (u [" +
+                          number(b.u0) + ", " + number(b.u1) + "], v [" + number(b.v0) + ", " +
+                          number(b.v1) + "]): a degenerate face");
   const Handle(Geom_Surface) s = BRep_Tool::Surface(f);
   const GeomAdaptor_Surface ad(s);
   Converted c;
@@ -1439,12 +1447,18 @@ TrimmedSurface trimmed_face(const TopoDS_Face& f, const Surface& base, const UvM
         short_wire_text(TopoDS::Wire(w.Current()), wires - 1, wire_edges, loop.size(), first, last,
                         std::max(joint_gap, first.Distance(last)), deflection);
   }
-  if (loops.empty())
-    throw CadError("none of its " + std::to_string(wires) +
-                   " boundary wires is a loop of 3 or more points in its parameters (" +
-                   std::to_string(walked) + " of " + std::to_string(edges_in_wires) +
-                   " edges reached walking the wires: fewer means a wire that is not connected); " +
-                   short_wire);
+  if (loops.empty()) {
+    const std::string why =
+        "none of its " + std::to_string(wires) +
+        " boundary wires is a loop of 3 or more points in its parameters (" +
+        std::to_string(walked) + " of " + std::to_string(edges_in_wires) +
+        " edges reached walking the wires: fewer means a wire that is not connected); " +
+        short_wire;
+    // Every edge walked and no wire with 3 points: no wire encloses any area. A wire not
+    // walked whole may, so that face is refused.
+    if (walked == edges_in_wires) throw FaceWithoutArea(why);
+    throw CadError(why);
+  }
   std::vector<NurbsCurve> edges;
   // Length scale of the face's coordinates (its position and its corner-to-corner extent).
   const Vector3d lo = base.point(dom.u.lo, dom.v.lo), hi = base.point(dom.u.hi, dom.v.hi);
@@ -1517,7 +1531,8 @@ CadFace describe_checked(const TopoDS_Face& face, int index) {
 }
 
 /// The face converted (f's entity_type, exact and tolerance set), or nullopt and `why`.
-std::optional<GeometryEntity> try_convert(const TopoDS_Face& face, CadFace& f, std::string& why) {
+std::optional<GeometryEntity> try_convert(const TopoDS_Face& face, CadFace& f, std::string& why,
+                                          bool* no_area = nullptr) {
   try {
     const UvBox b = uv_bounds(face);
     const Converted c = convert(face, b, (f.box_hi - f.box_lo).norm());
@@ -1534,6 +1549,9 @@ std::optional<GeometryEntity> try_convert(const TopoDS_Face& face, CadFace& f, s
     }
     check_bounds(entity_to_json(e), f.entity_type);
     return e;
+  } catch (const FaceWithoutArea& e) {
+    why = e.what();
+    if (no_area != nullptr) *no_area = true;
   } catch (const CadError& e) {
     why = e.what();
   } catch (const std::exception& e) {  // GeometryError of our constructors
@@ -2022,12 +2040,19 @@ CadImport import_cad_in_process(const std::string& path, const std::string& pref
         why = e.what();
       }
       std::optional<GeometryEntity> e;
-      if (why.empty()) e = try_convert(face, f, why);
-      if (!e)
-        throw CadError(path + ": face " + std::to_string(k) + " (" + f.cad_type + "): " + why);
+      bool no_area = false;
+      if (why.empty()) e = try_convert(face, f, why, &no_area);
+      const std::string named = path + ": face " + std::to_string(k) + " (" + f.cad_type + ")";
+      if (!e && no_area && options.faces.empty()) {  // nothing of the part is lost without it
+        if (options.strict) throw CadError(named + ": " + why + " (refused: strict import)");
+        out.warnings.push_back(named + " skipped, it covers no area: " + why);
+        continue;
+      }
+      if (!e) throw CadError(named + ": " + why);
       out.entities.emplace_back(prefix + ".face" + std::to_string(k), std::move(*e));
       out.faces.push_back(f);
     }
+    if (out.entities.empty()) throw CadError(path + ": the file holds no face that covers an area");
   } catch (const Standard_Failure& e) {
     throw CadError(path + ": OpenCASCADE failed: " + e.GetMessageString());
   }

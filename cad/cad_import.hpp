@@ -36,8 +36,11 @@
 // chosen unit), what OpenCASCADE multiplies the file's lengths by. A file unit that is not
 // finite, not positive or outside [1e-9 m, 1e9 m] is refused; every number of an imported
 // entity is within geometry_io's model bounds (|x| <= 1e100) or the import is refused.
-// Skipped entities (entities of the file OpenCASCADE could not read or transfer) and a damaged
-// header that costs no entity are warnings (CadImport::warnings), errors with CadOptions::strict.
+// Skipped entities (entities of the file OpenCASCADE could not read or transfer), a damaged
+// header that costs no entity, and, when no faces are chosen (the whole file), a face that
+// covers no area of its surface (its boundary spans none, or none of its wires encloses any)
+// are warnings (CadImport::warnings), errors with CadOptions::strict. A chosen face that does
+// not convert is an error.
 #pragma once
 
 #include <stdexcept>
@@ -79,8 +82,8 @@ struct CadOptions {
   /// "in", "ft", "um", "km".
   std::string unit = "mm";
   CadPlacement placement;
-  /// Warnings (CadImport::warnings: entities skipped by OpenCASCADE, a damaged header) are an
-  /// error.
+  /// Warnings (CadImport::warnings: entities skipped by OpenCASCADE, a damaged header, faces
+  /// covering no area skipped) are an error.
   bool strict = false;
 };
 
@@ -116,8 +119,9 @@ struct CadImport {
   std::vector<CadFace> faces;  ///< the chosen faces, same order as entities
   double seconds = 0.0;        ///< wall time of reading and converting
   CadUnits units;
-  /// What OpenCASCADE skipped (entities it could not read or transfer), one sentence each,
-  /// naming the file; empty for a complete import.
+  /// What was skipped (entities OpenCASCADE could not read or transfer, faces covering no
+  /// area) or a damaged header, one sentence each, naming the file; empty for a complete
+  /// import.
   std::vector<std::string> warnings;
 };
 

@@ -135,10 +135,16 @@ void bernstein_derivs(int p, double t, int order, BasisDerivs& B) {
 }
 
 SurfaceDerivs BezierSurface::derivs(double u, double v, int order) const {
-  order = std::clamp(order, 0, 2);
   u = std::clamp(u, domain_.u.lo, domain_.u.hi);
   v = std::clamp(v, domain_.v.lo, domain_.v.hi);
-  const BezierPatch& e = elements_[static_cast<std::size_t>(element_of(u, v))];
+  return derivs_on(element_of(u, v), u, v, order);
+}
+
+SurfaceDerivs BezierSurface::derivs_on(int element, double u, double v, int order) const {
+  order = std::clamp(order, 0, 2);
+  const BezierPatch& e = elements_[static_cast<std::size_t>(element)];
+  u = std::clamp(u, e.range.u.lo, e.range.u.hi);
+  v = std::clamp(v, e.range.v.lo, e.range.v.hi);
   const double hu = e.range.u.hi - e.range.u.lo, hv = e.range.v.hi - e.range.v.lo;
   BasisDerivs Bu, Bv;  // d/du = (1 / h_u) d/dt
   bernstein_any(e.degree_u, (u - e.range.u.lo) / hu, order, 1.0 / hu, Bu);

@@ -32,6 +32,10 @@ class BezierSurface final : public Surface {
   /// Index into elements() of the element holding (u, v) (clamped to the domain).
   int element_of(double u, double v) const;
 
+  /// The derivatives of element `e`'s polynomial at (u, v), clamped into its range: on an
+  /// element border, that element's side (derivs takes the element above it).
+  SurfaceDerivs derivs_on(int e, double u, double v, int order = 2) const;
+
   // Surface interface
   SurfaceDerivs derivs(double u, double v, int order = 2) const override;
   Domain2 domain() const override { return domain_; }

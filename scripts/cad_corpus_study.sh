@@ -35,7 +35,7 @@ for line in open(sys.argv[1], errors="replace"):
     elif c[0] == "FILE":
         files.append((c, cur)); cur = []
 whole = nofaces = partial = unreadable = crashed = 0
-faces = imported = cmpfail = points = same = closer = none = ties = outside = 0
+faces = imported = cmpfail = points = same = closer = none = ties = outside = unconv = 0
 classes = collections.Counter(); cmpclasses = collections.Counter(); examples = {}
 crashes = []
 def cls(msg):
@@ -63,12 +63,14 @@ for c, fl in files:
             points += int(f[6]); same += int(f[7]); closer += int(f[8]); none += int(f[9])
             ties += int(f[11]) if len(f) > 11 else 0
             outside += int(f[12]) if len(f) > 12 else 0
+            unconv += int(f[13]) if len(f) > 13 else 0
 print(f"files: {len(files)}; with faces, imported whole: {whole}; partly: {partial}; "
       f"no faces: {nofaces}; unreadable: {unreadable}; crashed/timed out: {crashed}")
 print(f"faces: {faces}; imported: {imported}; failed: {faces - imported}")
 print(f"comparison with OCCT: points {points}, same foot {same}, ours closer {closer}, "
       f"OCCT none {none}, feet apart on a bound {ties}, OCCT's foot outside an untrimmed face "
-      f"{outside}; faces whose comparison failed: {cmpfail}")
+      f"{outside}, equal distances with OCCT's foot not stationary {unconv}; "
+      f"faces whose comparison failed: {cmpfail}")
 print("import failure classes (count, message with numbers as #):")
 for k, v in classes.most_common(): print(f"  {v:6d}  {k}\n          e.g. {examples[k][:300]}")
 print("comparison failure classes:")

@@ -111,6 +111,75 @@ TEST_CASE(
   }
 }
 
+TEST_CASE(
+    "PatchProjector: a minimum next to a crease whose far side starts with a zero derivative "
+    "(repeated control points) is found",
+    "[contact][closest]") {
+  // In u (degree 2, double knot 0.5: C0 there) a parabola arch P0 P1 P2 and, past the crease, a
+  // segment that starts with zero speed (P3 = P2): S = P2 + t^2 (P4 - P2); swept along z in v
+  // (degree 1). x lies 0.3 off the arch along its outer normal at local t = 0.998 (u = 0.499),
+  // on the convex side, so that foot is the arch's only minimum, and x_y > 0, so the segment's
+  // nearest point is P2, farther: |x - P2|^2 = 0.09 + |f - P2|^2. On the segment's side of the
+  // crease F_u = 0 at u = 0.5 (S_u = 0): a Newton evaluated there took P2 for stationary and
+  // the search stopped on it (OCC17026-1.igs, issue 34: 3861.90 for 3861.53).
+  const Vector2d P0(0, 0), P1(0.5, 0.5), P2(1, 0), P4(1, -1);
+  std::vector<Vector3d> cps;
+  for (const double z : {0.0, 1.0})
+    for (const Vector2d& p : {P0, P1, P2, P2, P4}) cps.emplace_back(p.x(), p.y(), z);
+  const NurbsSurface s(2, {0, 0, 0, 0.5, 0.5, 1, 1, 1}, 1, {0, 0, 1, 1}, cps);
+  const PatchProjector P(s);
+  for (const double t : {0.998, 0.99, 0.9999}) {
+    const Vector2d f = (1 - t) * (1 - t) * P0 + 2 * t * (1 - t) * P1 + t * t * P2;
+    const Vector2d d = 2 * (1 - t) * (P1 - P0) + 2 * t * (P2 - P1);
+    const Vector2d n = Vector2d(-d.y(), d.x()).normalized();
+    REQUIRE(n.y() > 0);  // the outer side of the arch
+    const Vector2d xy = f + 0.3 * n;
+    const Vector3d x(xy.x(), xy.y(), 0.4);
+    INFO("t = " << t << ", x = " << x.transpose());
+    for (const ProjectionResult& r : {P.project(x), P.project(x, Vector2d(0.5, 0.4))}) {
+      REQUIRE(found(r.status));
+      CHECK((r.point - Vector3d(f.x(), f.y(), 0.4)).norm() < 1e-12);
+      CHECK(r.uv[0] == Approx(0.5 * t).margin(1e-12));
+      CHECK((r.point - x).norm() == Approx(0.3).epsilon(1e-13));
+      CHECK(r.certified);
+    }
+  }
+}
+
+TEST_CASE("PatchProjector: a minimum on a crease is converged along it", "[contact][closest]") {
+  // A roof whose ridge (v = 0.5, degree 1 across: C0) is the parabola arch R(u) with control
+  // points (-1, 0, 1), (0, 1, 1), (1, 0, 1); the roof falls to z = 0 at y -/+ 0.5 on both
+  // sides. For x well above the ridge the foot is on the ridge (as for a tent's apex), at the
+  // minimum of |x - R(u)| over u, found here by the 1-D Newton on the ridge's curve. A Newton
+  // on the patch zigzags across the crease and stops short along it (OCC17026-1.igs, issue 34:
+  // 0.026 off along a crease, 1.3e-7 farther, and certified: the certificate bounds the
+  // distance, not the foot).
+  std::vector<Vector3d> cps;
+  const Vector2d Q[3] = {{-1, 0}, {0, 1}, {1, 0}};
+  for (int j = 0; j < 3; ++j)
+    for (const Vector2d& q : Q) cps.emplace_back(q.x(), q.y() + (j - 1) * 0.5, j == 1 ? 1.0 : 0.0);
+  const NurbsSurface s(2, {0, 0, 0, 1, 1, 1}, 1, {0, 0, 0.5, 1, 1}, cps);
+  const NurbsCurve ridge(2, {0, 0, 0, 1, 1, 1},
+                         {Vector3d(-1, 0, 1), Vector3d(0, 1, 1), Vector3d(1, 0, 1)});
+  const PatchProjector P(s);
+  int checked = 0;
+  for (const double ux : {0.13, 0.31, 0.52, 0.77}) {
+    const Vector3d on = ridge.point(ux);
+    const Vector3d x = on + Vector3d(0.05, 0.02, 2.0);
+    const ProjectionResult ref = closest_point_local(ridge, x, ux);
+    REQUIRE(found(ref.status));
+    INFO("x = " << x.transpose() << ", the ridge's foot at u = " << ref.uv[0]);
+    for (const ProjectionResult& r : {P.project(x), P.project(x, Vector2d(ux, 0.3))}) {
+      REQUIRE(found(r.status));
+      CHECK(r.uv[1] == 0.5);
+      CHECK((r.point - ref.point).norm() < 1e-12);
+      CHECK(r.certified);
+      ++checked;
+    }
+  }
+  CHECK(checked == 8);
+}
+
 TEST_CASE("PatchProjector: warm and cold starts agree near the surface", "[contact][closest]") {
   const PatchProjector P(test::data_surface("freeform_bicubic.json"));
   std::mt19937 g(3);

@@ -41,7 +41,10 @@
 #include <Geom_Surface.hxx>
 #include <ShapeAnalysis_Surface.hxx>
 #include <Standard_Failure.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
 #include <TopoDS_Face.hxx>
+#include <gp_Vec.hxx>
 
 #include "contact/rigid_surface.hpp"
 #include "geometry/geometry_io.hpp"
@@ -56,6 +59,9 @@ struct OcctComparison {
   int occt_none = 0;     ///< OCCT found no extremum in B (ours still checked on S)
   int occt_outside = 0;  ///< untrimmed: OCCT's foot outside the face (B larger than the face)
   int bound_apart = 0;   ///< equal distances, our foot on B's bound, OCCT's apart along it
+  /// equal distances, feet apart, ours stationary (first-order condition by OCCT's derivatives)
+  /// and OCCT's not: OCCT's extremum not converged (e.g. along a C0 crease)
+  int occt_unconverged = 0;
   /// our projection ended without a foot (a status such as not_converged, never a wrong foot)
   int ours_failed = 0;
   std::string ours_failed_first;  ///< the first of those, described
@@ -81,6 +87,44 @@ inline void occt_box(const TopoDS_Face& face, const Handle(Geom_Surface) & s, co
   const bool extended_v = d.v.lo < b0 - ev || d.v.hi > b1 + ev;
   if (!bs->IsUPeriodic() && !extended_u) u0 = std::max(u0, a0), u1 = std::min(u1, a1);
   if (!bs->IsVPeriodic() && !extended_v) v0 = std::max(v0, b0), v1 = std::min(v1, b1);
+}
+
+/// True if `a` is a C0 parameter of a B-spline's direction: an inner knot of multiplicity >= the
+/// degree (a crease, where the derivative is one-sided), or within `eps` of the bound `lo`/`hi`.
+inline bool c0_at(double a, double lo, double hi, const TColStd_Array1OfReal& knots,
+                  const TColStd_Array1OfInteger& mult, int degree, double eps) {
+  if (std::abs(a - lo) <= eps || std::abs(a - hi) <= eps) return true;
+  for (int i = knots.Lower(); i <= knots.Upper(); ++i)
+    if (mult(i) >= degree && std::abs(a - knots(i)) <= eps) return true;
+  return false;
+}
+
+/// First-order residual of the distance from x at parameters (a, b) of S, in each direction
+/// where S is C1 there (not a crease or B's bound: a minimum there may be one-sided): the
+/// largest |(x - S) . S_w| / (|x - S| |S_w|). 0 where no direction qualifies or |x - S| = 0.
+inline double stationarity(const Handle(Geom_Surface) & s, const gp_Pnt& x, double a, double b,
+                           double u0, double u1, double v0, double v1) {
+  gp_Pnt p;
+  gp_Vec su, sv;
+  s->D1(a, b, p, su, sv);
+  const gp_Vec r(p, x);
+  if (r.Magnitude() == 0.0) return 0.0;
+  // Near a crease (within 1e-6 of the range: OCCT's parameters of a foot on one are that far
+  // off it, seen 1e-9 .. 1e-7) its direction is left out.
+  const double eu = 1e-6 * (u1 - u0), ev = 1e-6 * (v1 - v0);
+  bool cu = std::abs(a - u0) <= eu || std::abs(a - u1) <= eu;
+  bool cv = std::abs(b - v0) <= ev || std::abs(b - v1) <= ev;
+  if (const Handle(Geom_BSplineSurface) bs = Handle(Geom_BSplineSurface)::DownCast(s);
+      !bs.IsNull()) {
+    cu = cu || c0_at(a, u0, u1, bs->UKnots(), bs->UMultiplicities(), bs->UDegree(), eu);
+    cv = cv || c0_at(b, v0, v1, bs->VKnots(), bs->VMultiplicities(), bs->VDegree(), ev);
+  }
+  double worst = 0.0;
+  if (!cu && su.Magnitude() > 0.0)
+    worst = std::max(worst, std::abs(r.Dot(su)) / (r.Magnitude() * su.Magnitude()));
+  if (!cv && sv.Magnitude() > 0.0)
+    worst = std::max(worst, std::abs(r.Dot(sv)) / (r.Magnitude() * sv.Magnitude()));
+  return worst;
 }
 
 /// `approximation`: the face's stated bound (CadFace::tolerance; 0 if exact): the distances
@@ -139,6 +183,20 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
       // within 1e-9 of B's size outside it; else (e.g. at a pole, where the parameter of the
       // foot is any) the distance of our foot from S at that parameter clamped into B.
       double off = on.NbPoints() > 0 ? on.LowerDistance() : 1e300;
+      // OCCT's parameters of our foot, where known (for the first-order check below)
+      bool known_uv = off <= tol;
+      double yu = ours.uv.x(), yv = ours.uv.y();
+      if (known_uv) on.LowerDistanceParameters(yu, yv);
+      // Our own parameters: where they are OCCT's (a B-spline face imported in its own
+      // parameters), S(uv) is our foot. This also places a foot on a crease next to a zero
+      // derivative, where neither of OCCT's projections below converges (seen: OCC17026-1.igs,
+      // a foot 0.011 off by both, exactly on S at our parameters).
+      if (off > tol && ours.uv.x() >= u0 && ours.uv.x() <= u1 && ours.uv.y() >= v0 &&
+          ours.uv.y() <= v1) {
+        const double at_ours = Y.Distance(s->Value(ours.uv.x(), ours.uv.y()));
+        if (at_ours <= tol) known_uv = true;
+        off = std::min(off, at_ours);
+      }
       if (off > tol) {
         ShapeAnalysis_Surface sas(s);
         const gp_Pnt2d q = sas.ValueOfUV(Y, 1e-3 * tol);
@@ -189,6 +247,23 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
         continue;
       }
       const double dy = Vector3d(yO.X(), yO.Y(), yO.Z()).operator-(ours.point).norm();
+      if (dy > tol && ours.status == ProjectionStatus::interior && known_uv) {
+        // Equal distances, feet apart: the one that satisfies the first-order condition (by
+        // OCCT's derivatives, in each direction where S is C1 at the foot) is the minimum. Near a
+        // minimum the distance changes to second order along S, so 1e-9 h of distance can hide
+        // feet 1e-5 h apart; the first-order residual tells them apart (seen on creases of
+        // OCC17026-1.igs: ours 1e-15, OCCT's 1e-8).
+        double ou = 0, ov = 0;
+        proj.LowerDistanceParameters(ou, ov);
+        const double r_ours = stationarity(s, X, yu, yv, u0, u1, v0, v1);
+        const double r_occt = stationarity(s, X, ou, ov, u0, u1, v0, v1);
+        if (r_ours <= 1e-10 && r_occt > 100.0 * r_ours && r_occt > 1e-10) {
+          ++out.occt_unconverged;
+          continue;
+        }
+        why << "(first-order residuals: ours " << r_ours << " at (" << yu << ", " << yv
+            << "), OCCT's " << r_occt << " at (" << ou << ", " << ov << ")) ";
+      }
       if (dy > tol && ours.status == ProjectionStatus::interior) {
         why << "same distance " << d << " but feet " << dy / h << " h apart: ours ("
             << ours.point.transpose() << "), OCCT's (" << yO.X() << " " << yO.Y() << " " << yO.Z()
