@@ -248,9 +248,17 @@ NewtonOutcome<D> bounded_newton(Eval&& eval, Eigen::Matrix<double, D, 1> t, cons
       out.converged = true;
       break;
     }
+    // A small step that brought a parameter onto a bound is no answer yet: with the active set
+    // it changes, the next step may go on along the other parameter (seen: a start 1e-16
+    // inside u's bound, the coupled Newton step clamped in u and in v at a corner that is no
+    // minimum, 1e-7 of 1.7e-3 farther than the edge's minimum next to it).
+    bool newly_bound = false;
+    for (int i = 0; i < D; ++i)
+      newly_bound = newly_bound || (!box.wrap[i] && trial.t[i] != t[i] &&
+                                    (trial.t[i] <= box.lo[i] || trial.t[i] >= box.hi[i]));
     t = trial.t;
     m = trial.m;
-    if (step_is_small<D>(trial.taken, step_tol)) {
+    if (step_is_small<D>(trial.taken, step_tol) && !newly_bound) {
       out.converged = true;
       out.residual = projected_residual<D>(m, t, box);
       break;

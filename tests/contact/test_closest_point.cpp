@@ -180,6 +180,50 @@ TEST_CASE("PatchProjector: a minimum on a crease is converged along it", "[conta
   CHECK(checked == 8);
 }
 
+TEST_CASE(
+    "closest_point_local: a small step that clamps a parameter onto a bound goes on (a start "
+    "1e-16 inside a bound, next to a corner that is no minimum)",
+    "[contact][closest]") {
+  // Face 187 of OpenCASCADE's data/iges/bearing.iges (degree 1 x 3, one element). The minimum
+  // lies on the edge u = u_hi at v = 0.99622; at the corner (u_hi, 1) F_v > 0. Started at
+  // u_hi - 1e-16 (a sample of the search, 0.89474579999999992 for 0.8947458), the coupled
+  // Newton step clamped both parameters, the step was below the tolerance, and the corner was
+  // returned as converged: 1.03e-7 farther (of 1.72e-3), and then certified by the chord test,
+  // which assumes the optimality conditions hold.
+  const std::vector<Vector3d> cps = {
+      {-0.024809227412131075, 0.029382935342713443, 0.012134056738883228},
+      {-0.0108519205846876, 0.014695367453856, 0.028199602560149802},
+      {-0.023266806837404005, 0.03084867534271344, 0.01213405160097383},
+      {-0.009309497005704399, 0.016161107453856, 0.028199601928624602},
+      {-0.021994337412131075, 0.03205787534271344, 0.01046826160097383},
+      {-0.0080370305846876, 0.017370307453856, 0.0265338119286246},
+      {-0.02191361626267694, 0.032134585342713434, 0.008343393313610295},
+      {-0.0079563034267212, 0.017447017453855997, 0.024408942139133}};
+  const NurbsSurface s(1, {0.143681767, 0.143681767, 0.8947458, 0.8947458}, 3,
+                       {0, 0, 0, 0, 1, 1, 1, 1}, cps);
+  const Vector3d x(-0.0081180015097562144, 0.015734135967744256, 0.024357429434519313);
+  const double u_hi = s.domain().u.hi;
+  // The edge's minimum: F_v = 0 along u = u_hi, by bisection on the sign of F_v.
+  double a = 0.5, b = 1.0;
+  for (int k = 0; k < 200; ++k) {
+    const double m = 0.5 * (a + b);
+    const SurfaceDerivs d = s.derivs(u_hi, m, 1);
+    ((d.S - x).dot(d.Sv) < 0.0 ? a : b) = m;
+  }
+  const Vector3d foot = s.point(u_hi, a);
+  REQUIRE((s.point(u_hi, 1.0) - x).norm() > (foot - x).norm() + 1e-8);
+  const ProjectionResult r = closest_point_local(s, x, Vector2d(std::nextafter(u_hi, 0.0), 1.0));
+  REQUIRE(found(r.status));
+  CHECK(r.status == ProjectionStatus::edge);
+  CHECK(r.uv[1] == Approx(a).margin(1e-10));
+  CHECK((r.point - foot).norm() < 1e-14);
+  const PatchProjector P(s);
+  const ProjectionResult c = P.project(x);
+  REQUIRE(found(c.status));
+  CHECK((c.point - foot).norm() < 1e-14);
+  CHECK(c.certified);
+}
+
 TEST_CASE("PatchProjector: warm and cold starts agree near the surface", "[contact][closest]") {
   const PatchProjector P(test::data_surface("freeform_bicubic.json"));
   std::mt19937 g(3);
