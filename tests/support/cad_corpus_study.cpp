@@ -7,7 +7,7 @@
 // Usage: cad_corpus_study <file.step|.stp|.iges|.igs> [points per face, default 20]
 // Output, one line each (tab-separated):
 //   - FACE <k> <cad type> ok <entity type> cmp <points> <same> <closer> <none> <worst / h>
-//     <bound_apart> <occt_outside> <occt_unconverged>
+//     <bound_apart> <occt_outside> <occt_unconverged> <approx_apart> <approx_apart_worst / h>
 //   - FACE <k> <cad type> ok <entity type> cmpfail <failure>
 //   - FACE <k> <cad type> fail <message>
 //   - FILE <path> faces <n> imported <m> cmpfail <c>   (last; "faces 0": no faces)
@@ -81,7 +81,8 @@ int main(int argc, char** argv) {
       } else {
         std::cout << "\tcmp\t" << c.points << '\t' << c.same << '\t' << c.ours_closer << '\t'
                   << c.occt_none << '\t' << c.worst << '\t' << c.bound_apart << '\t'
-                  << c.occt_outside << '\t' << c.occt_unconverged << '\n';
+                  << c.occt_outside << '\t' << c.occt_unconverged << '\t' << c.approx_apart << '\t'
+                  << c.approx_apart_worst << '\n';
       }
     } catch (const std::exception& e) {
       std::cout << "?\tfail\t" << one_line(e.what()) << '\n';

@@ -22,7 +22,9 @@
 //   distance changes only to second order); ours is the converged 1-D minimum on that edge.
 // A face OCCT approximated within a bound b (CadFace::tolerance) is compared with 1e-9 h + 2 b
 // in place of 1e-9 h: our surface is within b of OCCT's at equal parameters, so distances
-// differ by up to b; 2 b leaves the same margin for the feet.
+// differ by up to b; 2 b leaves the same margin for the feet, except where the distance is flat
+// along the surface: feet apart by more, each a stationary point of its own surface, are
+// counted (approx_apart) with the largest gap.
 #pragma once
 
 #include <algorithm>
@@ -62,6 +64,9 @@ struct OcctComparison {
   /// equal distances, feet apart, ours stationary (first-order condition by OCCT's derivatives)
   /// and OCCT's not: OCCT's extremum not converged (e.g. along a C0 crease)
   int occt_unconverged = 0;
+  /// an approximated face: equal distances, feet apart, each stationary on its own surface
+  int approx_apart = 0;
+  double approx_apart_worst = 0.0;  ///< largest |y - y_o| / h among those
   /// our projection ended without a foot (a status such as not_converged, never a wrong foot)
   int ours_failed = 0;
   std::string ours_failed_first;  ///< the first of those, described
@@ -263,6 +268,33 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
         }
         why << "(first-order residuals: ours " << r_ours << " at (" << yu << ", " << yv
             << "), OCCT's " << r_occt << " at (" << ou << ", " << ov << ")) ";
+      }
+      if (dy > tol && ours.status == ProjectionStatus::interior && approximation > 0.0) {
+        // An approximated face: our surface is within b of OCCT's, not OCCT's, so feet of equal
+        // distance (within 1e-9 h + 2 b) may lie farther apart than 2 b where the distance is
+        // flat along the surface (the foot moves by about b / (1 - d kappa) and with the
+        // approximation's slope). Counted (approx_apart) where each foot is a stationary point
+        // of its own surface: ours by our derivatives, OCCT's by OCCT's.
+        const SurfaceDerivs dd = surf->derivs(ours.uv.x(), ours.uv.y(), 1);
+        const Vector3d rr = x - dd.S;
+        const Domain2 dm = surf->domain();
+        double r_own = 0.0;
+        const bool on_u = ours.uv.x() <= dm.u.lo || ours.uv.x() >= dm.u.hi;
+        const bool on_v = ours.uv.y() <= dm.v.lo || ours.uv.y() >= dm.v.hi;
+        if (!on_u && dd.Su.norm() > 0.0)
+          r_own = std::max(r_own, std::abs(rr.dot(dd.Su)) / (rr.norm() * dd.Su.norm()));
+        if (!on_v && dd.Sv.norm() > 0.0)
+          r_own = std::max(r_own, std::abs(rr.dot(dd.Sv)) / (rr.norm() * dd.Sv.norm()));
+        double ou = 0, ov = 0;
+        proj.LowerDistanceParameters(ou, ov);
+        const double r_occt = stationarity(s, X, ou, ov, u0, u1, v0, v1);
+        if (r_own <= 1e-10 && r_occt <= 1e-10) {
+          ++out.approx_apart;
+          out.approx_apart_worst = std::max(out.approx_apart_worst, dy / h);
+          continue;
+        }
+        why << "(approximated; first-order residuals on each own surface: ours " << r_own
+            << ", OCCT's " << r_occt << ") ";
       }
       if (dy > tol && ours.status == ProjectionStatus::interior) {
         why << "same distance " << d << " but feet " << dy / h << " h apart: ours ("
