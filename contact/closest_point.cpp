@@ -509,15 +509,19 @@ ProjectionResult far_result() {
 
 // The Newton on the whole patch, finished on a kink it stopped at. Across a kink (a C0 element
 // border) F has a corner: a Newton that reaches one zigzags across it, its line search fails,
-// and it stops short along the crease (seen: 0.026 of 2842 from the crease's minimum, by a
-// distance 1.3e-7 larger). Where the answer lies within 1e-7 of the domain of a kink, the 1-D
-// Newton along the crease (that parameter held on the kink; the crease's curve and its
-// derivatives along it are the same from both sides) is taken when it is not farther.
+// and it stops short along the crease, its residual above the tolerance (seen: 0.026 of 2842
+// from the crease's minimum, by a distance 1.3e-7 larger). Where such an answer lies within
+// 1e-7 of the domain of a kink, the 1-D Newton along the crease (that parameter held on the
+// kink; the crease's curve and its derivatives along it are the same from both sides) is taken
+// when it is not farther.
 ProjectionResult newton_on_patch(const BezierSurface& s, const std::vector<double>* kinks,
                                  const Vector3d& x, const Vector2d& start,
                                  const ProjectionOptions& opt) {
   ProjectionResult r = closest_point_local(s, x, start, opt);
-  if (!found(r.status)) return r;
+  // A Newton that met the optimality conditions stays as it is (a smooth minimum next to a
+  // knot of multiplicity >= the degree, e.g. of a NURBS circle, which is C1 there): only one
+  // that stopped with its residual above the tolerance can have stalled on a crease.
+  if (!found(r.status) || r.residual <= 10.0 * opt.tol_residual) return r;
   const Domain2 dom = s.domain();
   Domain2 on = dom;
   Vector2d uv = r.uv;
@@ -543,27 +547,24 @@ ProjectionResult newton_on_patch(const BezierSurface& s, const std::vector<doubl
   return c;
 }
 
-// One Bezier element of a patch as a surface of its own (its range the domain, nothing
-// closed): a Newton within a node evaluates that element's polynomial, also on its border. The
-// patch there may take the neighbour's side (BezierSurface::derivs), whose derivative at a kink
-// differs: seen, a zero derivative on the far side (repeated control points) that stopped the
-// Newton on the border as if it were stationary, short of the node's minimum next to it.
+// The patch evaluated on one of its Bezier elements (clamped into its range), also on the
+// element's border, where the patch takes the element above (BezierSurface::derivs): for the
+// Newton of CertifiedSearch::node_newton. Its domain and closedness are the patch's, so that
+// the Newton's scales (the residual's length, the step tolerance) are the patch's.
 class ElementSurface final : public Surface {
  public:
-  ElementSurface(const BezierSurface& s, int e)
-      : s_(s), e_(e), range_(s.elements()[static_cast<std::size_t>(e)].range) {
-    set_normal_sign(s.normal_sign());
-  }
+  ElementSurface(const BezierSurface& s, int e) : s_(s), e_(e) { set_normal_sign(s.normal_sign()); }
   SurfaceDerivs derivs(double u, double v, int order = 2) const override {
     return s_.derivs_on(e_, u, v, order);
   }
-  Domain2 domain() const override { return range_; }
+  Domain2 domain() const override { return s_.domain(); }
+  bool closed_u() const override { return s_.closed_u(); }
+  bool closed_v() const override { return s_.closed_v(); }
   std::string type_name() const override { return "bezier_element"; }
 
  private:
   const BezierSurface& s_;
   int e_;
-  Domain2 range_;
 };
 
 // The state of one certified search (PatchProjector::search below) and its steps: the best
@@ -617,6 +618,30 @@ struct CertifiedSearch {
   }
 
   double threshold() const { return std::min(ub, best_d - tol); }
+
+  // The Newton within a box of an element's node. The patch is evaluated as everywhere else,
+  // except where the answer rests on a kink on the box's bound and F, by the element's own
+  // derivative there, decreases into the box: then the answer took the neighbour's side of the
+  // kink (BezierSurface::derivs), which is no minimum of the node (seen: a zero derivative on
+  // the far side, from repeated control points, stopped the Newton on the border as if it were
+  // stationary, short of the node's minimum next to it), and the Newton is run again on the
+  // element's polynomial (ElementSurface).
+  ProjectionResult node_newton(int element, const Vector2d& start, const Domain2& box) {
+    ProjectionResult r = closest_point_local(surface, x, start, box, opt);
+    if (!found(r.status) || !on_kink(r.uv)) return r;
+    const SurfaceDerivs d = surface.derivs_on(element, r.uv[0], r.uv[1], 1);
+    const Vector3d g = d.S - x;  // F_,u = g . S_u, F_,v = g . S_v
+    const double scale = 1e-10 * g.norm();
+    const double fu = g.dot(d.Su), fv = g.dot(d.Sv);
+    const bool inward = (r.uv[0] >= box.u.hi && fu > scale * d.Su.norm()) ||
+                        (r.uv[0] <= box.u.lo && fu < -scale * d.Su.norm()) ||
+                        (r.uv[1] >= box.v.hi && fv > scale * d.Sv.norm()) ||
+                        (r.uv[1] <= box.v.lo && fv < -scale * d.Sv.norm());
+    if (!inward) return r;
+    ProjectionResult e = closest_point_local(ElementSurface(surface, element), x, start, box, opt);
+    e.iterations += r.iterations;
+    return found(e.status) ? e : r;
+  }
 
   // Whether uv lies on a kink (a C0 element border): the Newton's optimality conditions there
   // hold for one side only (the derivative it evaluates is one side's), so a Newton's answer
@@ -722,8 +747,7 @@ struct CertifiedSearch {
         if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
       }
     for (int q = 0; q < n_seeds; ++q)
-      consider(closest_point_local(ElementSurface(surface, element), x,
-                                   smp[static_cast<std::size_t>(seeds[q].second)].uv, range, opt),
+      consider(node_newton(element, smp[static_cast<std::size_t>(seeds[q].second)].uv, range),
                element, range, false);
   }
 
@@ -755,8 +779,7 @@ struct CertifiedSearch {
     }
     if (depth >= kMaxDepth) {
       const Vector2d c(0.5 * (range.u.lo + range.u.hi), 0.5 * (range.v.lo + range.v.hi));
-      consider(closest_point_local(ElementSurface(surface, element), x, c, range, opt), element,
-               range, false);
+      consider(node_newton(element, c, range), element, range, false);
       certified = false;
       return;
     }
@@ -815,8 +838,7 @@ struct CertifiedSearch {
     Domain2 on = range;
     if (mono_u != 0) s0[0] = on.u.lo = on.u.hi = mono_u < 0 ? range.u.lo : range.u.hi;
     if (mono_v != 0) s0[1] = on.v.lo = on.v.hi = mono_v < 0 ? range.v.lo : range.v.hi;
-    const ProjectionResult r =
-        closest_point_local(ElementSurface(surface, element), x, s0, on, opt);
+    const ProjectionResult r = node_newton(element, s0, on);
     consider(r, element, range, false);
     return found(r.status);
   }
@@ -892,8 +914,7 @@ struct CertifiedSearch {
                               (best.uv[1] <= best_range.v.lo && best_range.v.lo > er.v.lo) ||
                               (best.uv[1] >= best_range.v.hi && best_range.v.hi < er.v.hi);
       if (node_bound) {
-        const ProjectionResult r =
-            closest_point_local(ElementSurface(surface, best_element), x, best.uv, er, opt);
+        const ProjectionResult r = node_newton(best_element, best.uv, er);
         if (found(r.status) && (r.point - x).norm() <= best_d) {
           best = r;
           best.iterations += iterations;
