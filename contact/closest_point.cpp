@@ -891,7 +891,7 @@ struct CertifiedSearch {
       certified = false;
       ProjectionResult r = newton_on_patch(surface, kinks, x, ub_uv, opt);
       if (found(r.status) && (r.point - x).norm() < best_d)
-        best = r, best_d = (r.point - x).norm(), best_patch_kkt = !on_kink(r.uv);
+        best = r, best_d = (r.point - x).norm(), best_patch_kkt = !on_kink(r.uv), best_element = -1;
     }
     best.certified = certified;
     best.iterations = iterations;
@@ -902,8 +902,12 @@ struct CertifiedSearch {
     // The node's answer is a local minimum of the patch unless it rests on an element bound
     // inside the patch or on a seam (the bound of a closed direction); then polish on the whole
     // patch, which also wraps across the seam.
-    const Domain2& er = elements[static_cast<std::size_t>(best_element)].range;
-    const bool inner_bound = (best.uv[0] <= er.u.lo && (er.u.lo > dom.u.lo || cu)) ||
+    // No node's answer (a Newton on the whole patch ending on a kink: the warm start or the
+    // safety net above): polish on the whole patch.
+    const Domain2& er =
+        best_element >= 0 ? elements[static_cast<std::size_t>(best_element)].range : dom;
+    const bool inner_bound = best_element < 0 ||
+                             (best.uv[0] <= er.u.lo && (er.u.lo > dom.u.lo || cu)) ||
                              (best.uv[0] >= er.u.hi && (er.u.hi < dom.u.hi || cu)) ||
                              (best.uv[1] <= er.v.lo && (er.v.lo > dom.v.lo || cv)) ||
                              (best.uv[1] >= er.v.hi && (er.v.hi < dom.v.hi || cv));
