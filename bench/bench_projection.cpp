@@ -1,6 +1,6 @@
 // Projection benchmark of issue 3: closest point (cold and warm) and ray projection onto the
 // bicubic 8x8 free-form patch (data/freeform_bicubic.json) and the NURBS torus
-// (data/torus_patch.json), on three sets of random points:
+// (data/torus_patch.json), also raised to degree 8 ("torus8"), on three sets of random points:
 //   A: a band |distance| <= 5 % of the patch size around the surface, feet interior;
 //   B: a box 30 % larger than the patch's bounding box (many feet on edges and corners);
 //   C: far points, 1-3 bounding-box diagonals away.
@@ -11,7 +11,8 @@
 // also the share proven global) and with the sampled search of earlier versions; rays are cast from
 // each point towards its reference foot point (that foot is the nearest intersection), for the
 // points whose foot is interior.
-// Usage: bench_projection [N points per set, default 100000] [only: e.g. "freeform", "torus:C"]
+// Usage: bench_projection [N points per set, default 100000] [only: e.g. "freeform", "torus:C",
+// "torus8"]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -25,6 +26,7 @@
 #include "contact/ray_projection.hpp"
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
+#include "geometry/refinement.hpp"
 #include "tests/support/projection_reference.hpp"
 
 using namespace iga;
@@ -202,14 +204,18 @@ int main(int argc, char** argv) {
   const std::string only = argc > 2 ? argv[2] : "";
   if (argc > 3 || n_arg < 1 ||
       !(only.empty() || only.starts_with("freeform") || only.starts_with("torus"))) {
-    std::fprintf(stderr,
-                 "usage: %s [points per set >= 1, default 100000] [only: freeform|torus[:A|B|C]]\n",
-                 argv[0]);
+    std::fprintf(
+        stderr,
+        "usage: %s [points per set >= 1, default 100000] [only: freeform|torus|torus8[:A|B|C]]\n",
+        argv[0]);
     return 2;
   }
   const std::size_t N = static_cast<std::size_t>(n_arg);
   std::printf("closest point and ray projection, %zu points per set, one core\n", N);
   run_case("freeform", test::data_surface("freeform_bicubic.json"), N, only);
   run_case("torus", test::data_surface("torus_patch.json"), N, only);
+  // The torus raised to degree 8 (the same surface): nets of degree above 5 (detail::HighNet),
+  // as CAD files' B-spline faces of degree 6 to 10.
+  run_case("torus8", elevate_degree(test::data_surface("torus_patch.json"), 6, 6), N, only);
   return 0;
 }

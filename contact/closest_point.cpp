@@ -6,6 +6,8 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <optional>
 #include <tuple>
 
 #include "contact/bounded_newton.hpp"
@@ -171,7 +173,12 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
       if (b > d.lo && b < d.hi && kv[dir]->multiplicity(b) >= kv[dir]->degree())
         kinks_[dir].push_back(b);
   }
-  build_tree();
+  int degree = 0;
+  for (const BezierPatch& b : bez_.elements()) degree = std::max({degree, b.degree_u, b.degree_v});
+  if (degree <= detail::kMaxNetDegree)
+    build_tree(tree_);
+  else if (degree <= detail::kMaxHighNetDegree)
+    build_tree(high_tree_);
 }
 
 int PatchProjector::element_of(const Vector2d& uv) const {
@@ -212,8 +219,9 @@ bool c1_border(const KnotVector& kv, const std::vector<double>& br, int I, int l
 
 // The piece of a Bezier net over the parameter rectangle r (within its range): four de
 // Casteljau splits.
-detail::Net sub_net(const detail::Net& b, const Domain2& r) {
-  detail::Net lo, hi, piece = b;
+template <class Net>
+Net sub_net(const Net& b, const Domain2& r) {
+  Net lo, hi, piece = b;
   if (r.u.lo > piece.range.u.lo) detail::split_at(piece, 0, r.u.lo, lo, piece);
   if (r.u.hi < piece.range.u.hi) detail::split_at(piece, 0, r.u.hi, piece, hi);
   if (r.v.lo > piece.range.v.lo) detail::split_at(piece, 1, r.v.lo, lo, piece);
@@ -379,36 +387,39 @@ std::size_t PatchProjector::tree_budget() {
   return tree_budget_nodes.load(std::memory_order_relaxed);
 }
 
-void PatchProjector::build_tree() {
+template <class N>
+void PatchProjector::build_tree(std::vector<N>& tree) {
   const int nu = static_cast<int>(bez_.breaks_u().size()) - 1,
             nv = static_cast<int>(bez_.breaks_v().size()) - 1;
   const std::size_t n_el = bez_.elements().size();
   if (static_cast<std::size_t>(nu * nv) != n_el) return;
   for (const BezierPatch& b : bez_.elements())
-    if (b.degree_u > detail::kMaxNetDegree || b.degree_v > detail::kMaxNetDegree) return;
+    if (b.degree_u > decltype(N::net)::kCapacity || b.degree_v > decltype(N::net)::kCapacity)
+      return;
   // Depth: as deep as the budget allows, at most 4 (256 leaves per element). A node takes
   // about 3.5 kB (the net and points held for degree 5), so a patch up to 21 MB with the
-  // default budget (kTreeNodes).
-  const std::size_t budget = tree_budget();
+  // default budget (kTreeNodes); the budget is in bytes of such nodes, so the bigger nodes of
+  // higher degrees (HighNode) go less deep.
+  const std::size_t budget = tree_budget() * sizeof(Node) / sizeof(N);
   int depth = 0;
   while (depth < 4 && n_el * (((std::size_t{1} << (2 * (depth + 2))) - 1) / 3) <= budget) ++depth;
   // Nodes level by level; grid[l][I + (nu 2^l) J] is the node of cell (I, J) at level l.
   std::vector<std::vector<int>> grid(static_cast<std::size_t>(depth + 1));
   std::vector<std::array<int, 2>> cell;  // (I, J) of each node at its level
   std::vector<int> level;
-  auto make = [&](Node& n) {
+  auto make = [&](N& n) {
     finish_node(n);
     const Domain2& r = n.net.range;
     n.centre = s_.derivs(0.5 * (r.u.lo + r.u.hi), 0.5 * (r.v.lo + r.v.hi), 1);
     n.bounds = detail::patch_bounds(n.net, detail::tangent_frame(n.centre));
   };
-  tree_.reserve(n_el * (((std::size_t{1} << (2 * (depth + 1))) - 1) / 3));
-  tree_.resize(n_el);
+  tree.reserve(n_el * (((std::size_t{1} << (2 * (depth + 1))) - 1) / 3));
+  tree.resize(n_el);
   grid[0].assign(n_el, -1);
   for (std::size_t e = 0; e < n_el; ++e) {
-    detail::to_net(bez_.elements()[e], tree_[e].net);
-    make(tree_[e]);
-    tree_[e].element = static_cast<int>(e);
+    detail::to_net(bez_.elements()[e], tree[e].net);
+    make(tree[e]);
+    tree[e].element = static_cast<int>(e);
     cell.push_back({bez_.elements()[e].element_u, bez_.elements()[e].element_v});
     level.push_back(0);
     grid[0][static_cast<std::size_t>(bez_.elements()[e].element_u +
@@ -419,43 +430,44 @@ void PatchProjector::build_tree() {
     const int wu = nu << l;
     grid[static_cast<std::size_t>(l)].assign(static_cast<std::size_t>(wu * (nv << l)), -1);
     for (std::size_t k = first; k < last; ++k) {
-      tree_[k].child = static_cast<int>(tree_.size());
-      Node c[4];
-      detail::Net lo, hi;
-      detail::split_half(tree_[k].net, 0, lo, hi);
+      tree[k].child = static_cast<int>(tree.size());
+      N c[4];
+      decltype(N::net) lo, hi;
+      detail::split_half(tree[k].net, 0, lo, hi);
       detail::split_half(lo, 1, c[0].net, c[1].net);
       detail::split_half(hi, 1, c[2].net, c[3].net);
       for (int q = 0; q < 4; ++q) {
         const int I = 2 * cell[k][0] + q / 2, J = 2 * cell[k][1] + q % 2;
         grid[static_cast<std::size_t>(l)][static_cast<std::size_t>(I + wu * J)] =
-            static_cast<int>(tree_.size());
+            static_cast<int>(tree.size());
         cell.push_back({I, J});
         level.push_back(l);
-        c[q].element = tree_[k].element;
+        c[q].element = tree[k].element;
         c[q].level = l;
-        tree_.push_back(c[q]);
+        tree.push_back(c[q]);
       }
     }
 #pragma omp parallel for schedule(dynamic, 16)
-    for (std::size_t k = last; k < tree_.size(); ++k) make(tree_[k]);
+    for (std::size_t k = last; k < tree.size(); ++k) make(tree[k]);
     first = last;
-    last = tree_.size();
+    last = tree.size();
   }
-  cert_.assign(tree_.size(), Cert{});
-  for (std::size_t k = 0; k < tree_.size(); ++k) {
+  cert_.assign(tree.size(), Cert{});
+  for (std::size_t k = 0; k < tree.size(); ++k) {
     Cert& c = cert_[k];
-    c.range = tree_[k].net.range;
-    c.child = tree_[k].child;
-    c.box = tree_[k].box;
-    c.frame_box = detail::frame_box(tree_[k].bounds);
+    c.range = tree[k].net.range;
+    c.child = tree[k].child;
+    c.box = tree[k].box;
+    c.frame_box = detail::frame_box(tree[k].bounds);
   }
-  set_regions(tree_, cert_, s_, bez_.breaks_u(), bez_.breaks_v(), grid, cell, level);
-  set_gaps(tree_, cert_, n_el);
-  set_near_lists(tree_, cert_, n_el);
+  set_regions(tree, cert_, s_, bez_.breaks_u(), bez_.breaks_v(), grid, cell, level);
+  set_gaps(tree, cert_, n_el);
+  set_near_lists(tree, cert_, n_el);
 }
 
 std::size_t PatchProjector::memory_bytes() const {
-  std::size_t b = sizeof(*this) + tree_.size() * (sizeof(Node) + sizeof(Cert)) +
+  std::size_t b = sizeof(*this) + tree_.size() * sizeof(Node) +
+                  high_tree_.size() * sizeof(HighNode) + cert_.size() * sizeof(Cert) +
                   boxes_.size() * sizeof(Box3) + hull_.size() * sizeof(Vector3d) +
                   hull_offset_.size() * sizeof(std::size_t);
   for (const auto& v : samples_) b += v.size() * sizeof(Sample);
@@ -507,6 +519,16 @@ ProjectionResult far_result() {
   return r;
 }
 
+// The kink of one direction (`kinks`, sorted) within rel times the domain's width `d` of the
+// parameter a, if any.
+std::optional<double> kink_near(const std::vector<double>& kinks, double a, const Interval& d,
+                                double rel) {
+  const double eps = rel * (d.hi - d.lo);
+  for (const double k : kinks)
+    if (std::abs(a - k) <= eps) return k;
+  return std::nullopt;
+}
+
 // The Newton on the whole patch, finished on a kink it stopped at. Across a kink (a C0 element
 // border) F has a corner: a Newton that reaches one zigzags across it, its line search fails,
 // and it stops short along the crease, its residual above the tolerance (seen: 0.026 of 2842
@@ -528,13 +550,10 @@ ProjectionResult newton_on_patch(const BezierSurface& s, const std::vector<doubl
   bool held = false;
   for (int dir = 0; dir < 2; ++dir) {
     Interval& b = dir == 0 ? on.u : on.v;
-    const double eps = 1e-7 * (b.hi - b.lo);
-    for (const double k : kinks[dir])
-      if (std::abs(uv[dir] - k) <= eps) {
-        uv[dir] = b.lo = b.hi = k;
-        held = true;
-        break;
-      }
+    if (const std::optional<double> k = kink_near(kinks[dir], uv[dir], b, 1e-7)) {
+      uv[dir] = b.lo = b.hi = *k;
+      held = true;
+    }
   }
   if (!held) return r;
   ProjectionResult c = closest_point_local(s, x, uv, on, opt);
@@ -648,13 +667,7 @@ struct CertifiedSearch {
   // there is no optimum of the patch. Seen: a zero derivative on one side (repeated control
   // points) made a point on a crease look stationary while F decreased into the other side.
   bool on_kink(const Vector2d& uv) const {
-    for (int dir = 0; dir < 2; ++dir) {
-      const Interval& d = dir == 0 ? dom.u : dom.v;
-      const double eps = 1e-12 * (d.hi - d.lo);
-      for (const double k : kinks[dir])
-        if (std::abs(uv[dir] - k) <= eps) return true;
-    }
-    return false;
+    return kink_near(kinks[0], uv[0], dom.u, 1e-12) || kink_near(kinks[1], uv[1], dom.v, 1e-12);
   }
 
   bool is_proven(const Domain2& r) const {
@@ -854,13 +867,27 @@ struct CertifiedSearch {
       for (const auto& [lb2, k] : by_bound) visit(c[k], true, element, depth + 1);
       return;
     }
-    Node children[4];
-    {
-      detail::Net lo, hi;
-      detail::split_half(node.net, 0, lo, hi);
-      detail::split_half(lo, 1, children[0].net, children[1].net);
-      detail::split_half(hi, 1, children[2].net, children[3].net);
+    // The four children and the halves they come from: on the heap for the nodes of high
+    // degrees (HighNode), which would take tens of kB of stack at each of kMaxDepth levels.
+    if constexpr (sizeof(Split) > 16384) {
+      const auto split = std::make_unique<Split>();
+      visit_pieces(node, *split, element, depth);
+    } else {
+      Split split;
+      visit_pieces(node, split, element, depth);
     }
+  }
+  struct Split {
+    std::array<Node, 4> children;
+    decltype(Node::net) lo, hi;
+  };
+  // The halves in u and v of a piece below the tree's depth, visited nearest first.
+  void visit_pieces(const Node& node, Split& split, int element, int depth) {
+    std::array<Node, 4>& children = split.children;
+    std::pair<double, int> by_bound[4];
+    detail::split_half(node.net, 0, split.lo, split.hi);
+    detail::split_half(split.lo, 1, children[0].net, children[1].net);
+    detail::split_half(split.hi, 1, children[2].net, children[3].net);
     for (int k = 0; k < 4; ++k) {
       finish_node(children[k]);
       children[k].bounds = detail::patch_bounds_within(children[k].net, node.bounds);
@@ -955,24 +982,34 @@ struct CertifiedSearch {
 ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::size_t n_ids,
                                         double max_distance, const ProjectionOptions& opt,
                                         const ProjectionResult* start, bool pieces) const {
+  if (!high_tree_.empty())
+    return search_in(high_tree_, x, ids, n_ids, max_distance, opt, start, pieces);
+  return search_in(tree_, x, ids, n_ids, max_distance, opt, start, pieces);
+}
+
+template <class N>
+ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vector3d& x,
+                                           const int* ids, std::size_t n_ids, double max_distance,
+                                           const ProjectionOptions& opt,
+                                           const ProjectionResult* start, bool pieces) const {
   thread_local std::vector<std::pair<double, int>> order;
   order.clear();
   const double limit2 = max_distance < kInf ? max_distance * max_distance : kInf;
   for (std::size_t k = 0; k < n_ids; ++k) {
     const int e = ids ? ids[k] : static_cast<int>(k);
     const double lb2 = box_distance2(
-        pieces ? tree_[static_cast<std::size_t>(e)].box : boxes_[static_cast<std::size_t>(e)], x);
+        pieces ? tree[static_cast<std::size_t>(e)].box : boxes_[static_cast<std::size_t>(e)], x);
     if (lb2 <= limit2) order.emplace_back(lb2, e);
   }
   const auto region_of = [this](const Vector2d& uv, const Vector3d& r_star) {
     return chord_region(uv, r_star);
   };
-  CertifiedSearch<Node, Sample, kMaxSamples, decltype(region_of)> cs{
+  CertifiedSearch<N, Sample, kMaxSamples, decltype(region_of)> cs{
       .surface = bez_,
       .elements = bez_.elements(),
       .samples = samples_,
       .samples_per_dir = samples_per_dir_,
-      .tree = tree_,
+      .tree = tree,
       .kinks = kinks_,
       .chord_region = region_of,
       .x = x,
@@ -1007,8 +1044,8 @@ ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::
     if (cs.everything_proven) break;
     const double t = cs.threshold();
     if (t < 0.0 || lb2 > t * t) break;
-    if (!tree_.empty()) {
-      const Node& n = tree_[static_cast<std::size_t>(e)];
+    if (!tree.empty()) {
+      const N& n = tree[static_cast<std::size_t>(e)];
       cs.visit(n, true, n.element, n.level);
     } else {  // degrees above the nets' capacity: the sampled search, not certified
       const std::size_t k = static_cast<std::size_t>(e);
@@ -1150,7 +1187,7 @@ bool PatchProjector::ball_clear(const Ball& ball, const Domain2& region, Unclear
 ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOptions& opt) const {
   std::size_t first = 0;
   double first2 = kInf;
-  if (opt.certify && !tree_.empty())
+  if (opt.certify && has_tree())
     for (std::size_t e = 0; e < boxes_.size(); ++e) {
       const double d2 = box_distance2(boxes_[e], x);
       if (d2 < first2) first2 = d2, first = e;

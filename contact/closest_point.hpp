@@ -47,8 +47,9 @@ class PatchProjector {
   const Box3& box() const { return box_; }
   const std::vector<BezierPatch>& elements() const { return bez_.elements(); }
   const std::vector<Box3>& element_boxes() const { return boxes_; }
-  /// Nodes of the precomputed subdivision of the certified search (0: none, degrees above 5).
-  std::size_t tree_nodes() const { return tree_.size(); }
+  /// Nodes of the precomputed subdivision of the certified search (0: none, a degree above the
+  /// basis' limit or a budget too small).
+  std::size_t tree_nodes() const { return tree_.size() + high_tree_.size(); }
   /// The node budget of that subdivision, read when a projector is built: the tree goes as
   /// deep below the elements as n_elements x nodes per element <= budget allows (at most 4
   /// levels; the elements themselves always). Process-wide; default kTreeNodes. A smaller
@@ -101,15 +102,20 @@ class PatchProjector {
   std::vector<double> kinks_[2];
   // The subdivision of the certified search, precomputed to a fixed depth (kTreeNodes at most):
   // nodes 0 .. n_elements - 1 are the elements, each node's four children are consecutive.
-  struct Node {
-    detail::Net net;
-    std::array<Vector3d, std::tuple_size_v<decltype(detail::Net::pw)>> points;  // projected
+  // Patches of degree 5 at most hold their nodes in tree_, the others (up to kMaxDegree) in
+  // high_tree_: the same nodes on bigger nets (at most one of the two is not empty).
+  template <int D>
+  struct NodeOf {
+    detail::NetOf<D> net;
+    std::array<Vector3d, detail::NetOf<D>::kPoints> points;  // projected
     Box3 box;
     detail::PatchBounds bounds;  // in the tangent frame at the centre
     SurfaceDerivs centre;        // S, S_u, S_v at the centre of net.range
     int child = -1;              // the tree's: first of the four children (-1: none)
     int element = 0, level = 0;  // the element holding it, its depth below the element
   };
+  using Node = NodeOf<detail::kMaxNetDegree>;
+  using HighNode = NodeOf<detail::kMaxHighNetDegree>;
   // What the certificate of a foot reads of tree node k, in cert_[k]: apart from the search's
   // nodes and small, so that a certificate touches few cache lines (a warm start's time is
   // mostly the memory it reads). Each node has a region, the node and those of its level
@@ -140,8 +146,15 @@ class PatchProjector {
     std::array<Near, kNear> near{};
   };
   std::vector<Node> tree_;
+  std::vector<HighNode> high_tree_;
   std::vector<Cert> cert_;
-  void build_tree();
+  bool has_tree() const { return !tree_.empty() || !high_tree_.empty(); }
+  template <class N>
+  void build_tree(std::vector<N>& tree);
+  template <class N>
+  ProjectionResult search_in(const std::vector<N>& tree, const Vector3d& x, const int* ids,
+                             std::size_t n_ids, double max_distance, const ProjectionOptions& opt,
+                             const ProjectionResult* start, bool pieces) const;
   // The leaves of the tree that a certificate's ball test could not clear (by their boxes
   // within the ball's radius of x): a search among them alone completes the proof, as the rest
   // of the patch is the region or clear.

@@ -60,7 +60,8 @@ Poly<T> make_poly(int m, int n) {
   f.c.assign(static_cast<std::size_t>((m + 1) * (n + 1)), zero<T>());
   return f;
 }
-// Binomial coefficients C(n, k) for n < 32 (degrees up to 3 kMaxNetDegree).
+// Binomial coefficients C(n, k) for n < 32 (degrees up to 3 kMaxHighNetDegree).
+static_assert(3 * kMaxHighNetDegree < 32);
 struct Binomials {
   double c[32][32] = {};
   constexpr Binomials() {
@@ -170,8 +171,9 @@ IVec3 meet3(const IVec3& a, const IVec3& b) {
 
 }  // namespace
 
-bool to_net(const BezierPatch& b, Net& out) {
-  if (b.degree_u > kMaxNetDegree || b.degree_v > kMaxNetDegree) return false;
+template <int D>
+bool to_net(const BezierPatch& b, NetOf<D>& out) {
+  if (b.degree_u > D || b.degree_v > D) return false;
   out.range = b.range;
   out.p = b.degree_u;
   out.q = b.degree_v;
@@ -188,10 +190,6 @@ Eigen::Matrix3d tangent_frame(const SurfaceDerivs& d) {
   R.row(2) = n.normalized();
   R.row(1) = R.row(2).cross(R.row(0));
   return R;
-}
-
-PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame) {
-  return patch_bounds(b.pw.data(), b.p, b.q, b.range, frame);
 }
 
 PatchBounds patch_bounds(const BezierPatch& b, const Eigen::Matrix3d& frame) {
@@ -290,8 +288,9 @@ PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
   return bounds_of(pw, p, q, range, frame, true);
 }
 
-PatchBounds patch_bounds_within(const Net& piece, const PatchBounds& whole) {
-  PatchBounds out = bounds_of(piece.pw.data(), piece.p, piece.q, piece.range, whole.frame, false);
+PatchBounds patch_bounds_within(const Vector4d* pw, int p, int q, const Domain2& range,
+                                const PatchBounds& whole) {
+  PatchBounds out = bounds_of(pw, p, q, range, whole.frame, false);
   out.Su = meet3(out.Su, whole.Su);
   out.Sv = meet3(out.Sv, whole.Sv);
   out.Suu = meet3(out.Suu, whole.Suu);
@@ -439,7 +438,8 @@ DistanceBounds distance_bounds(const PatchBounds& b, const Vector3d& x) {
   return d;
 }
 
-void split_at(const Net& b, int dir, double t, Net& low, Net& high) {
+template <int D>
+void split_at(const NetOf<D>& b, int dir, double t, NetOf<D>& low, NetOf<D>& high) {
   low.p = high.p = b.p;
   low.q = high.q = b.q;
   low.range = high.range = b.range;
@@ -451,7 +451,7 @@ void split_at(const Net& b, int dir, double t, Net& low, Net& high) {
   auto at = [&](int k, int row) {  // index of point k along the split direction in a row
     return static_cast<std::size_t>(dir == 0 ? k + (p + 1) * row : row + (p + 1) * k);
   };
-  std::array<Vector4d, kMaxNetDegree + 1> tri;
+  std::array<Vector4d, D + 1> tri;
   for (int row = 0; row < rows; ++row) {
     for (int k = 0; k <= n; ++k) tri[static_cast<std::size_t>(k)] = b.pw[at(k, row)];
     low.pw[at(0, row)] = tri[0];
@@ -470,9 +470,17 @@ void split_at(const Net& b, int dir, double t, Net& low, Net& high) {
   hi_range.lo = t;
 }
 
-void split_half(const Net& b, int dir, Net& low, Net& high) {
+template <int D>
+void split_half(const NetOf<D>& b, int dir, NetOf<D>& low, NetOf<D>& high) {
   const Interval whole = dir == 0 ? b.range.u : b.range.v;
   split_at(b, dir, 0.5 * (whole.lo + whole.hi), low, high);
 }
+
+template bool to_net(const BezierPatch&, Net&);
+template bool to_net(const BezierPatch&, HighNet&);
+template void split_at(const Net&, int, double, Net&, Net&);
+template void split_at(const HighNet&, int, double, HighNet&, HighNet&);
+template void split_half(const Net&, int, Net&, Net&);
+template void split_half(const HighNet&, int, HighNet&, HighNet&);
 
 }  // namespace iga::detail

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 
+#include "geometry/bspline_basis.hpp"
 #include "geometry/derivatives.hpp"
 #include "geometry/refinement.hpp"
 
@@ -67,18 +68,27 @@ inline Iv norm2(const IVec3& a) {
   return sq(a.c[0]) + sq(a.c[1]) + sq(a.c[2]);
 }
 
-/// A Bezier patch of degree at most kMaxNetDegree in each direction, on the stack: the nodes of
-/// the subdivision in the certified search.
-constexpr int kMaxNetDegree = 5;
-struct Net {
+/// A Bezier patch of degree at most D in each direction, on the stack: the nodes of the
+/// subdivision in the certified search. Two capacities: Net for the patches of most models and
+/// CAD files (degree 5 at most), HighNet for the rest up to the basis' limit (kMaxDegree), so
+/// that a bicubic patch's nodes hold no room for degree 10.
+template <int D>
+struct NetOf {
+  static constexpr int kCapacity = D;
+  static constexpr std::size_t kPoints = static_cast<std::size_t>((D + 1) * (D + 1));
   Domain2 range;
-  int p = 0, q = 0;                                                    ///< degrees in u and v
-  std::array<Vector4d, (kMaxNetDegree + 1) * (kMaxNetDegree + 1)> pw;  ///< (w P, w), u fastest
+  int p = 0, q = 0;                  ///< degrees in u and v
+  std::array<Vector4d, kPoints> pw;  ///< (w P, w), u fastest
   const Vector4d& at(int i, int j) const { return pw[static_cast<std::size_t>(i + (p + 1) * j)]; }
   int size() const { return (p + 1) * (q + 1); }
 };
-/// The element as a Net; false when its degree is above kMaxNetDegree.
-bool to_net(const BezierPatch& b, Net& out);
+constexpr int kMaxNetDegree = 5;
+constexpr int kMaxHighNetDegree = kMaxDegree;
+using Net = NetOf<kMaxNetDegree>;
+using HighNet = NetOf<kMaxHighNetDegree>;
+/// The element as a net; false when its degree is above D.
+template <int D>
+bool to_net(const BezierPatch& b, NetOf<D>& out);
 
 /// Boxes over one Bezier patch, in the coordinates y = frame (X - centre), `centre` the centre
 /// of the box of its points and `frame` a rotation (rows: an orthonormal basis): S and the
@@ -119,7 +129,11 @@ inline double frame_box_distance2(const FrameBox& b, const Vector3d& x) {
 Eigen::Matrix3d tangent_frame(const SurfaceDerivs& d);
 PatchBounds patch_bounds(const Vector4d* pw, int p, int q, const Domain2& range,
                          const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
-PatchBounds patch_bounds(const Net& b, const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
+template <int D>
+PatchBounds patch_bounds(const NetOf<D>& b,
+                         const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity()) {
+  return patch_bounds(b.pw.data(), b.p, b.q, b.range, frame);
+}
 PatchBounds patch_bounds(const BezierPatch& b,
                          const Eigen::Matrix3d& frame = Eigen::Matrix3d::Identity());
 /// The bounds of a piece of a patch (a node split off by de Casteljau) whose bounds `whole`
@@ -127,7 +141,12 @@ PatchBounds patch_bounds(const BezierPatch& b,
 /// intersected with whole's (the piece's values are among the patch's). Without the products of
 /// rational numerators and denominators that patch_bounds forms for a rational patch: a
 /// fraction of its cost, for the pieces below the projector's tree.
-PatchBounds patch_bounds_within(const Net& piece, const PatchBounds& whole);
+PatchBounds patch_bounds_within(const Vector4d* pw, int p, int q, const Domain2& range,
+                                const PatchBounds& whole);
+template <int D>
+PatchBounds patch_bounds_within(const NetOf<D>& piece, const PatchBounds& whole) {
+  return patch_bounds_within(piece.pw.data(), piece.p, piece.q, piece.range, whole);
+}
 /// Widens `a` to hold `b` too (both in the same frame): the boxes of a region made of the two
 /// patches. The chord test on the union holds for points of a convex parameter region covered
 /// by the patches where the surface is C1 (the chord's Taylor remainder needs a continuous
@@ -188,8 +207,10 @@ inline bool convex(const DistanceBounds& d, const PatchBounds& b, const Vector3d
 }
 
 /// de Casteljau halving of a Bezier patch in u (dir 0) or v (dir 1).
-void split_half(const Net& b, int dir, Net& low, Net& high);
+template <int D>
+void split_half(const NetOf<D>& b, int dir, NetOf<D>& low, NetOf<D>& high);
 /// de Casteljau split at the parameter t of the patch's range.
-void split_at(const Net& b, int dir, double t, Net& low, Net& high);
+template <int D>
+void split_at(const NetOf<D>& b, int dir, double t, NetOf<D>& low, NetOf<D>& high);
 
 }  // namespace iga::detail

@@ -37,6 +37,8 @@ for line in open(sys.argv[1], errors="replace"):
 whole = nofaces = partial = unreadable = crashed = 0
 faces = imported = cmpfail = points = same = closer = none = ties = outside = unconv = approx = 0
 approx_worst = 0.0
+ill = 0
+ill_reach = 0.0
 classes = collections.Counter(); cmpclasses = collections.Counter(); examples = {}
 crashes = []
 def cls(msg):
@@ -67,13 +69,17 @@ for c, fl in files:
             unconv += int(f[13]) if len(f) > 13 else 0
             if len(f) > 15:
                 approx += int(f[14]); approx_worst = max(approx_worst, float(f[15]))
+            if len(f) > 17:
+                ill += int(f[16]); ill_reach = max(ill_reach, float(f[17]))
 print(f"files: {len(files)}; with faces, imported whole: {whole}; partly: {partial}; "
       f"no faces: {nofaces}; unreadable: {unreadable}; crashed/timed out: {crashed}")
 print(f"faces: {faces}; imported: {imported}; failed: {faces - imported}")
 print(f"comparison with OCCT: points {points}, same foot {same}, ours closer {closer}, "
       f"OCCT none {none}, feet apart on a bound {ties}, OCCT's foot outside an untrimmed face "
       f"{outside}, equal distances with OCCT's foot not stationary {unconv}, approximated faces' "
-      f"feet apart, each stationary on its own surface {approx} (at most {approx_worst:.3g} h); "
+      f"feet apart, each stationary on its own surface {approx} (at most {approx_worst:.3g} h), "
+      f"feet of an ill-conditioned foot apart within its round-off reach {ill} (reach at most "
+      f"{ill_reach:.3g} h); "
       f"faces whose comparison failed: {cmpfail}")
 print("import failure classes (count, message with numbers as #):")
 for k, v in classes.most_common(): print(f"  {v:6d}  {k}\n          e.g. {examples[k][:300]}")

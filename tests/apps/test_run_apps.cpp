@@ -161,8 +161,11 @@ TEST_CASE(
     "[apps][capstan][output]") {
   // Issue 12 item 6: per element the mean pressure at full slip against the closed form; the
   // end elements (centres within 0.2 rad of an end: lift-off zones of the bending rope) are
-  // left out. Measured at mu 0.3, phi 180
-  // on the default mesh: within 0.8 %.
+  // left out. The elements next to them (centres within 0.6 rad of an end) lie in the rope's
+  // bending boundary layer, whose state at the detection of full slip depends on the steps the
+  // run took, which round-off changes (issue 34): measured at mu 0.3, phi 180 on the default
+  // mesh over 10 seeds of IGA_ROUNDOFF_PROBE, within 1.6 % there (2.5 % required) and within
+  // 0.6 % on the rest of the arc (1 % required).
   const fs::path out = fresh("capstan_pressure");
   const Result r = run(CAPSTAN_EXE, "--mu 0.3 --phi-deg 180 --out \"" + out.string() + "\"");
   INFO(r.out);
@@ -178,7 +181,8 @@ TEST_CASE(
                  exact = std::stod(rows[k][5]);
     CHECK(exact == Approx(10.0 * std::exp(0.3 * theta) / 1.02).epsilon(1e-9));
     if (theta < 0.2 || theta > M_PI - 0.2) continue;  // end elements: half an element + lift-off
-    CHECK(p == Approx(exact).epsilon(1e-2));
+    const bool boundary_layer = theta < 0.6 || theta > M_PI - 0.6;
+    CHECK(p == Approx(exact).epsilon(boundary_layer ? 2.5e-2 : 1e-2));
     ++interior;
   }
   CHECK(interior >= 7);

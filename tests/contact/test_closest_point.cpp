@@ -15,6 +15,7 @@
 #include "contact/ray_projection.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/differential_geometry.hpp"
+#include "geometry/refinement.hpp"
 #include "tests/support/projection_reference.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
@@ -467,10 +468,19 @@ TEST_CASE("PatchProjector: the certified search finds the global minimum where s
 TEST_CASE("PatchProjector: certified cold and warm projections on random points are global",
           "[contact][closest][certified]") {
   // The three point sets of bench_projection (near band, around the box, far), on the
-  // polynomial free-form patch and the rational torus, against a dense reference.
-  for (const char* file : {"freeform_bicubic.json", "torus_patch.json"}) {
-    const NurbsSurface s = test::data_surface(file);
+  // polynomial free-form patch and the rational torus, and on both raised to degrees 7 and 8
+  // (the nets of degrees above 5: HighNet; CAD files have such faces), against a dense
+  // reference.
+  const NurbsSurface freeform = test::data_surface("freeform_bicubic.json");
+  const NurbsSurface torus = test::data_surface("torus_patch.json");
+  const std::pair<const char*, NurbsSurface> patches[] = {
+      {"freeform_bicubic.json", freeform},
+      {"torus_patch.json", torus},
+      {"freeform_bicubic.json raised to degree 7 x 8", elevate_degree(freeform, 4, 5)},
+      {"torus_patch.json raised to degree 8 x 7", elevate_degree(torus, 6, 5)}};
+  for (const auto& [file, s] : patches) {
     const PatchProjector P(s);
+    REQUIRE(P.tree_nodes() > 0);
     const Box3 box = P.box();
     const Vector3d c = 0.5 * (box.lo + box.hi);
     const double diag = (box.hi - box.lo).norm(), size = (box.hi - box.lo).maxCoeff();
@@ -616,6 +626,12 @@ TEST_CASE("PatchProjector: the tree and its memory", "[contact][closest][certifi
   CHECK(freeform.tree_nodes() == 25 * 85);
   CHECK(torus.memory_bytes() > torus.tree_nodes() * sizeof(detail::Net));
   CHECK(torus.memory_bytes() < std::size_t{64} << 20);
+  // Raised to degree 8 its nodes hold bigger nets (HighNet): the same budget in bytes gives
+  // three levels, 16 (1 + 4 + 16 + 64) nodes.
+  const PatchProjector high(elevate_degree(test::data_surface("torus_patch.json"), 6, 6));
+  CHECK(high.tree_nodes() == 16 * 85);
+  CHECK(high.memory_bytes() > high.tree_nodes() * sizeof(detail::HighNet));
+  CHECK(high.memory_bytes() < std::size_t{64} << 20);
 }
 
 TEST_CASE("PatchProjector: a smaller tree budget gives shallower trees and the same feet",

@@ -82,7 +82,8 @@ int main(int argc, char** argv) {
         std::cout << "\tcmp\t" << c.points << '\t' << c.same << '\t' << c.ours_closer << '\t'
                   << c.occt_none << '\t' << c.worst << '\t' << c.bound_apart << '\t'
                   << c.occt_outside << '\t' << c.occt_unconverged << '\t' << c.approx_apart << '\t'
-                  << c.approx_apart_worst << '\n';
+                  << c.approx_apart_worst << '\t' << c.ill_posed_apart << '\t' << c.ill_posed_reach
+                  << '\n';
       }
     } catch (const std::exception& e) {
       std::cout << "?\tfail\t" << one_line(e.what()) << '\n';

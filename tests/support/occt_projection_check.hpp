@@ -24,14 +24,20 @@
 // in place of 1e-9 h: our surface is within b of OCCT's at equal parameters, so distances
 // differ by up to b; 2 b leaves the same margin for the feet, except where the distance is flat
 // along the surface: feet apart by more, each a stationary point of its own surface, are
-// counted (approx_apart) with the largest gap.
+// counted (approx_apart) with the largest gap. Where the foot is ill-conditioned (x near a focal
+// point of S, or S_u and S_v nearly parallel) the gradient's round-off fixes it only to a reach
+// far above eps |x|: feet of equal distance apart by less, each stationary, are counted
+// (ill_posed_apart).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <sstream>
 #include <string>
+
+#include <Eigen/Cholesky>
 
 #include <BRepBndLib.hxx>
 #include <BRepClass_FaceClassifier.hxx>
@@ -67,6 +73,10 @@ struct OcctComparison {
   /// an approximated face: equal distances, feet apart, each stationary on its own surface
   int approx_apart = 0;
   double approx_apart_worst = 0.0;  ///< largest |y - y_o| / h among those
+  /// equal distances, feet apart within the round-off reach of an ill-conditioned foot (x near a
+  /// focal point of S, or S_u and S_v nearly parallel), each stationary on S
+  int ill_posed_apart = 0;
+  double ill_posed_reach = 0.0;  ///< the largest reach / h among those
   /// our projection ended without a foot (a status such as not_converged, never a wrong foot)
   int ours_failed = 0;
   std::string ours_failed_first;  ///< the first of those, described
@@ -129,6 +139,23 @@ inline double stationarity(const Handle(Geom_Surface) & s, const gp_Pnt& x, doub
     worst = std::max(worst, std::abs(r.Dot(su)) / (r.Magnitude() * su.Magnitude()));
   if (!cv && sv.Magnitude() > 0.0)
     worst = std::max(worst, std::abs(r.Dot(sv)) / (r.Magnitude() * sv.Magnitude()));
+  return worst;
+}
+
+/// The same first-order residual on our surface, by our derivatives, at our parameters uv, in
+/// each direction where uv is not on the domain's bound.
+inline double own_stationarity(const Surface& surf, const Vector3d& x, const Vector2d& uv) {
+  const SurfaceDerivs d = surf.derivs(uv.x(), uv.y(), 1);
+  const Vector3d r = x - d.S;
+  if (r.norm() == 0.0) return 0.0;
+  const Domain2 dm = surf.domain();
+  const bool on_u = uv.x() <= dm.u.lo || uv.x() >= dm.u.hi;
+  const bool on_v = uv.y() <= dm.v.lo || uv.y() >= dm.v.hi;
+  double worst = 0.0;
+  if (!on_u && d.Su.norm() > 0.0)
+    worst = std::max(worst, std::abs(r.dot(d.Su)) / (r.norm() * d.Su.norm()));
+  if (!on_v && d.Sv.norm() > 0.0)
+    worst = std::max(worst, std::abs(r.dot(d.Sv)) / (r.norm() * d.Sv.norm()));
   return worst;
 }
 
@@ -275,16 +302,7 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
         // flat along the surface (the foot moves by about b / (1 - d kappa) and with the
         // approximation's slope). Counted (approx_apart) where each foot is a stationary point
         // of its own surface: ours by our derivatives, OCCT's by OCCT's.
-        const SurfaceDerivs dd = surf->derivs(ours.uv.x(), ours.uv.y(), 1);
-        const Vector3d rr = x - dd.S;
-        const Domain2 dm = surf->domain();
-        double r_own = 0.0;
-        const bool on_u = ours.uv.x() <= dm.u.lo || ours.uv.x() >= dm.u.hi;
-        const bool on_v = ours.uv.y() <= dm.v.lo || ours.uv.y() >= dm.v.hi;
-        if (!on_u && dd.Su.norm() > 0.0)
-          r_own = std::max(r_own, std::abs(rr.dot(dd.Su)) / (rr.norm() * dd.Su.norm()));
-        if (!on_v && dd.Sv.norm() > 0.0)
-          r_own = std::max(r_own, std::abs(rr.dot(dd.Sv)) / (rr.norm() * dd.Sv.norm()));
+        const double r_own = own_stationarity(*surf, x, ours.uv);
         double ou = 0, ov = 0;
         proj.LowerDistanceParameters(ou, ov);
         const double r_occt = stationarity(s, X, ou, ov, u0, u1, v0, v1);
@@ -295,6 +313,45 @@ inline OcctComparison compare_with_occt(const TopoDS_Face& face, const GeometryE
         }
         why << "(approximated; first-order residuals on each own surface: ours " << r_own
             << ", OCCT's " << r_occt << ") ";
+      }
+      if (dy > tol && ours.status == ProjectionStatus::interior && approximation == 0.0) {
+        // An ill-conditioned foot. The gradient (16) is computed with a round-off of about
+        // eps |x| |S_w| in each parameter w, which moves the Newton's foot by
+        // J H^-1 (eps |x| |S_u|, eps |x| |S_v|) (J = [S_u, S_v], H the Hessian (17)): about
+        // eps |x| where the foot is well posed, far more where x is near a focal point of S (H
+        // nearly singular along S) or S_u and S_v are nearly parallel (seen: trj6_b1-ec-214.stp
+        // face 86, a degree-8 face whose tangents meet at 1e-4 rad there, feet 3.5e-9 h apart).
+        // Feet apart by less than 64 times that reach, each stationary on S, are counted
+        // (ill_posed_apart), with the largest reach.
+        const SurfaceDerivs dd = surf->derivs(ours.uv.x(), ours.uv.y(), 2);
+        const Vector3d rr = x - dd.S;
+        Eigen::Matrix<double, 3, 2> J;
+        J << dd.Su, dd.Sv;
+        Eigen::Matrix2d H = J.transpose() * J;
+        H(0, 0) -= dd.Suu.dot(rr);
+        H(0, 1) -= dd.Suv.dot(rr);
+        H(1, 0) -= dd.Suv.dot(rr);
+        H(1, 1) -= dd.Svv.dot(rr);
+        const Eigen::LDLT<Eigen::Matrix2d> ldlt(H);
+        double reach = 0.0;
+        if (ldlt.info() == Eigen::Success && ldlt.isPositive() && H.determinant() > 0.0) {
+          const double noise =
+              64.0 * std::numeric_limits<double>::epsilon() * (x.cwiseAbs().maxCoeff() + h);
+          for (const double su : {-1.0, 1.0})
+            reach = std::max(
+                reach,
+                noise * (J * ldlt.solve(Eigen::Vector2d(su * dd.Su.norm(), dd.Sv.norm()))).norm());
+        }
+        const double r_own = own_stationarity(*surf, x, ours.uv);
+        double ou = 0, ov = 0;
+        proj.LowerDistanceParameters(ou, ov);
+        const double r_occt = stationarity(s, X, ou, ov, u0, u1, v0, v1);
+        if (dy <= reach && r_own <= 1e-9 && r_occt <= 1e-9) {
+          ++out.ill_posed_apart;
+          out.ill_posed_reach = std::max(out.ill_posed_reach, reach / h);
+          continue;
+        }
+        why << "(round-off reach of the foot " << reach / h << " h) ";
       }
       if (dy > tol && ours.status == ProjectionStatus::interior) {
         why << "same distance " << d << " but feet " << dy / h << " h apart: ours ("
