@@ -393,9 +393,7 @@ void PatchProjector::build_tree(std::vector<N>& tree) {
             nv = static_cast<int>(bez_.breaks_v().size()) - 1;
   const std::size_t n_el = bez_.elements().size();
   if (static_cast<std::size_t>(nu * nv) != n_el) return;
-  for (const BezierPatch& b : bez_.elements())
-    if (b.degree_u > decltype(N::net)::kCapacity || b.degree_v > decltype(N::net)::kCapacity)
-      return;
+  // (The constructor chose N by the largest degree: every element's net fits.)
   // Depth: as deep as the budget allows, at most 4 (256 leaves per element). A node takes
   // about 3.5 kB (the net and points held for degree 5), so a patch up to 21 MB with the
   // default budget (kTreeNodes); the budget is in bytes of such nodes, so the bigger nodes of
@@ -1047,7 +1045,7 @@ ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vec
     if (!tree.empty()) {
       const N& n = tree[static_cast<std::size_t>(e)];
       cs.visit(n, true, n.element, n.level);
-    } else {  // degrees above the nets' capacity: the sampled search, not certified
+    } else {  // no tree (the elements are not a full grid): the sampled search, not certified
       const std::size_t k = static_cast<std::size_t>(e);
       if (hull_lower_bound(boxes_[k], hull_.data() + hull_offset_[k],
                            hull_offset_[k + 1] - hull_offset_[k], x,

@@ -47,8 +47,8 @@ class PatchProjector {
   const Box3& box() const { return box_; }
   const std::vector<BezierPatch>& elements() const { return bez_.elements(); }
   const std::vector<Box3>& element_boxes() const { return boxes_; }
-  /// Nodes of the precomputed subdivision of the certified search (0: none, a degree above the
-  /// basis' limit or a budget too small).
+  /// Nodes of the precomputed subdivision of the certified search (0: none, when the Bezier
+  /// elements do not form a full grid).
   std::size_t tree_nodes() const { return tree_.size() + high_tree_.size(); }
   /// The node budget of that subdivision, read when a projector is built: the tree goes as
   /// deep below the elements as n_elements x nodes per element <= budget allows (at most 4

@@ -63,15 +63,15 @@ RigidSurface RigidSurface::from_geometry(const GeometryModel& g, const std::stri
   if (std::holds_alternative<NurbsCurve>(*e))
     throw std::invalid_argument("'" + name + "' is a curve, not a rigid surface");
   RigidSurface rs;
-  for (const Surface* s : g.surfaces_of(name)) {
-    if (const auto* n = dynamic_cast<const NurbsSurface*>(s))
-      rs.add(*n);
-    else if (const auto* a = dynamic_cast<const AnalyticSurface*>(s))
-      rs.add(*a);
-    else if (const auto* t = dynamic_cast<const TrimmedSurface*>(s))
-      rs.add(*t);
-  }
+  for (const Surface* s : g.surfaces_of(name)) rs.add(*s);
   return rs;
+}
+
+int RigidSurface::add(const Surface& s) {
+  if (const auto* n = dynamic_cast<const NurbsSurface*>(&s)) return add(*n);
+  if (const auto* a = dynamic_cast<const AnalyticSurface*>(&s)) return add(*a);
+  if (const auto* t = dynamic_cast<const TrimmedSurface*>(&s)) return add(*t);
+  throw std::invalid_argument("a rigid surface cannot hold a " + s.type_name());
 }
 
 int RigidSurface::push(Piece p) {

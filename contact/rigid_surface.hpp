@@ -27,6 +27,9 @@ class RigidSurface {
 
   /// Adds a patch; returns its index. Shared edges are recomputed.
   int add(const NurbsSurface& s);
+  /// Adds a NURBS, analytic or trimmed surface as the overloads below; std::invalid_argument
+  /// for another kind.
+  int add(const Surface& s);
   int add(const AnalyticSurface& s);
   /// A trimmed face (issue 15, item 3): its closest point is the base surface's foot when that
   /// lies inside the trimming loops, else the closest point on the face's edge curves (status

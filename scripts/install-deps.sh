@@ -12,6 +12,7 @@ packages=(
   libocct-data-exchange-dev libtbb-dev  # OCCT: its CMake package names libtbb.so, which only libtbb-dev holds
   libopenblas0-serial  # the BLAS of CHOLMOD's supernodal factorization (Debian's alternatives)
   python3 python3-matplotlib clang-format clang-tidy
+  python3-dev python3-numpy python3-pytest pybind11-dev  # the Python module (python/)
 )
 [[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)
 

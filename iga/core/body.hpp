@@ -30,6 +30,8 @@ class Body : public NonlinearProblem {
   virtual int default_samples() const = 0;
   /// Displacement of the body point at parameters (pu, pv) (rods: pu) in the state (u, t).
   virtual Vector3d displacement(double pu, double pv, const VectorXd& u, double t) const = 0;
+  /// Displacements of the control points (Cartesian, one per point) in the state (u, t).
+  virtual std::vector<Vector3d> control_point_displacements(const VectorXd& u, double t) const = 0;
   /// f_int - f_ext + contact per control point, Cartesian, in the state (u, t), without
   /// disturbing the contact state kept for output: the reactions at constrained points.
   virtual std::vector<Vector3d> reactions(const VectorXd& u, double t) = 0;

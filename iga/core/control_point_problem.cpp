@@ -141,6 +141,13 @@ std::vector<Vector3d> ControlPointProblem::current_points(const VectorXd& u, dou
   return x;
 }
 
+std::vector<Vector3d> ControlPointProblem::control_point_displacements(const VectorXd& u,
+                                                                       double t) const {
+  std::vector<Vector3d> x = current_points(u, t);
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] -= X_[i];
+  return x;
+}
+
 VectorXd ControlPointProblem::dead_load(double t) const {
   VectorXd f = VectorXd::Zero(3 * static_cast<Eigen::Index>(X_.size()));
   for (const NodalLoad& L : dead_loads_) {

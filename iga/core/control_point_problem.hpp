@@ -84,6 +84,8 @@ class ControlPointProblem : public Body {
   // ---- state <-> geometry ----------------------------------------------------------------------
   /// Current control points x_i = X_i + Q_i d_i(u, t).
   std::vector<Vector3d> current_points(const VectorXd& u, double t) const;
+  /// x_i - X_i.
+  std::vector<Vector3d> control_point_displacements(const VectorXd& u, double t) const override;
   void current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const;
   /// f_int - f_ext (+ contributions) per control point, Cartesian: the reactions at the
   /// constrained points of an equilibrium state, ~0 at free components.

@@ -338,22 +338,31 @@ std::vector<std::string> Analysis::csv_columns() const {
   return columns;
 }
 
-void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
-  // csv_number: a non-finite value is an empty cell, never nan or inf.
-  const double lambda = load_factor(st.t);
-  csv << index << "," << csv_number(st.t) << "," << csv_number(lambda) << "," << st.iterations
-      << "," << st.contact.active << "," << st.contact.stick << "," << st.contact.slip;
+std::vector<double> Analysis::step_values(int index, const AnalysisStep& st) const {
+  std::vector<double> v{static_cast<double>(index),
+                        st.t,
+                        load_factor(st.t),
+                        static_cast<double>(st.iterations),
+                        static_cast<double>(st.contact.active),
+                        static_cast<double>(st.contact.stick),
+                        static_cast<double>(st.contact.slip)};
   if (num_pairs() > 1)
     for (const ContactCounts& c : st.pairs)
-      csv << "," << c.active << "," << c.stick << "," << c.slip;
+      v.insert(v.end(), {static_cast<double>(c.active), static_cast<double>(c.stick),
+                         static_cast<double>(c.slip)});
   for (const auto& [F, M] : st.tool_loads)
-    for (int i = 0; i < 6; ++i) csv << "," << csv_number(i < 3 ? F[i] : M[i - 3]);
-  for (const Vector3d& r : st.reactions)
-    csv << "," << csv_number(r.x()) << "," << csv_number(r.y()) << "," << csv_number(r.z()) << ","
-        << csv_number(r.norm());
-  for (const Vector3d& d : st.displacements)
-    csv << "," << csv_number(d.x()) << "," << csv_number(d.y()) << "," << csv_number(d.z());
-  for (const auto& [name, curve] : curves_) csv << "," << csv_number(curve(st.t));
+    v.insert(v.end(), {F.x(), F.y(), F.z(), M.x(), M.y(), M.z()});
+  for (const Vector3d& r : st.reactions) v.insert(v.end(), {r.x(), r.y(), r.z(), r.norm()});
+  for (const Vector3d& d : st.displacements) v.insert(v.end(), {d.x(), d.y(), d.z()});
+  for (const auto& [name, curve] : curves_) v.push_back(curve(st.t));
+  return v;
+}
+
+void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
+  // csv_number: a non-finite value is an empty cell, never nan or inf; the counts print as
+  // integers.
+  const std::vector<double> v = step_values(index, st);
+  for (std::size_t i = 0; i < v.size(); ++i) csv << (i > 0 ? "," : "") << csv_number(v[i]);
   csv << std::endl;  // flushed: a run that stops midway keeps its rows
 }
 

@@ -170,6 +170,9 @@ class Analysis {
   const AnalysisOutput& output() const { return output_; }
   /// The columns of steps.csv, in order.
   std::vector<std::string> csv_columns() const;
+  /// The values of steps.csv's row for step `st` with 1-based number `index`, in the order of
+  /// csv_columns() (counts as whole numbers; the CSV prints them with 12 digits).
+  std::vector<double> step_values(int index, const AnalysisStep& st) const;
   /// Pseudo-time after which the run stops once `full_slip_steps` consecutive steps slide
   /// steadily (steady_sliding, curve_contact.hpp: every active point slips, all pulling one
   /// way, friction along the rope) (< 0: off). "solver": {"stop_at_full_slip_after": t,

@@ -69,38 +69,13 @@ struct PairAtTime {
 /// `skipped`: the columns left out (a kink within both steps).
 double tangent_error_off_kinks(PairAtTime& c, const std::vector<Vector3d>& x, double h,
                                int& skipped) {
-  const auto same = [](const ContactCounts& a, const ContactCounts& b) {
-    return a.active == b.active && a.stick == b.stick && a.slip == b.slip;
-  };
-  VectorXd R = VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
-  std::vector<Triplet> trip;
-  c.assemble(x, R, &trip);
+  test::residual(c, x);
   const ContactCounts at_x = c.pair.counts();
-  SparseMatrix K(R.size(), R.size());
-  K.setFromTriplets(trip.begin(), trip.end());
-  const Eigen::MatrixXd Kd(K);
-  double err = 0.0;
-  skipped = 0;
-  for (Eigen::Index j = 0; j < R.size(); ++j) {
-    double col = std::numeric_limits<double>::infinity();
-    for (const double step : {h, h / 3, h / 10, h / 30, h / 100}) {
-      std::vector<Vector3d> xp = x, xm = x;
-      xp[static_cast<std::size_t>(j / 3)][j % 3] += step;
-      xm[static_cast<std::size_t>(j / 3)][j % 3] -= step;
-      const VectorXd rp = test::residual(c, xp);
-      const bool kink_p = !same(c.pair.counts(), at_x);
-      const VectorXd rm = test::residual(c, xm);
-      if (kink_p || !same(c.pair.counts(), at_x)) continue;
-      col = std::min(col, ((rp - rm) / (2 * step) - Kd.col(j)).cwiseAbs().maxCoeff());
-    }
-    if (std::isinf(col)) {
-      ++skipped;
-      continue;
-    }
-    err = std::max(err, col);
-  }
-  c.assemble(x, R, nullptr);
-  return err / std::max(Kd.cwiseAbs().maxCoeff(), 1e-300);
+  const auto same_counts = [&] {
+    const ContactCounts n = c.pair.counts();
+    return n.active == at_x.active && n.stick == at_x.stick && n.slip == at_x.slip;
+  };
+  return test::tangent_error(c, x, {h, h / 3, h / 10, h / 30, h / 100}, same_counts, &skipped);
 }
 
 }  // namespace
