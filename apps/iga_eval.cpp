@@ -242,6 +242,38 @@ void grid_curve(std::ostream& os, const std::string& name, const NurbsCurve& c, 
   }
 }
 
+/// One surface: its grid's rows (the header before the first), or its point at --uv / --center.
+void eval_surface(const EvalOptions& o, const std::string& name, const Surface& s,
+                  std::ostream& csv, bool& header) {
+  if (o.has_u) throw std::invalid_argument(name + " is a surface: use --uv U,V");
+  if (o.grid > 0) {
+    if (!header) csv << "entity,u,v,x,y,z,nx,ny,nz,k1,k2,H,K,singular\n";
+    header = true;
+    grid_surface(csv, name, s, o.grid);
+    return;
+  }
+  const double u = o.center ? mid(s.domain().u) : o.uv[0];
+  const double v = o.center ? mid(s.domain().v) : o.uv[1];
+  check_in(s.domain().u, u, "u");
+  check_in(s.domain().v, v, "v");
+  print_surface(name, s, u, v);
+}
+
+/// One curve: its grid's rows (the header before the first), or its point at --u / --center.
+void eval_curve(const EvalOptions& o, const std::string& name, const NurbsCurve& c,
+                std::ostream& csv, bool& header) {
+  if (!o.uv.empty()) throw std::invalid_argument(name + " is a curve: use --u U");
+  if (o.grid > 0) {
+    if (!header) csv << "entity,u,x,y,z,tx,ty,tz,curvature,torsion,singular\n";
+    header = true;
+    grid_curve(csv, name, c, o.grid);
+    return;
+  }
+  const double u = o.center ? mid(c.domain()) : o.u;
+  check_in(c.domain(), u, "u");
+  print_curve(name, c, u);
+}
+
 int run_eval(const EvalOptions& o) {
   const Model m = load_model(o.file);
   const int modes = (!o.uv.empty()) + o.has_u + o.center + (o.grid > 0);
@@ -267,35 +299,12 @@ int run_eval(const EvalOptions& o) {
   }
   bool surface_header = false, curve_header = false;
   for (const auto& [name, e] : todo) {
-    const Surface* s = as_surface(*e);
-    const NurbsCurve* c = std::get_if<NurbsCurve>(e);
-    if (s) {
-      if (o.has_u) throw std::invalid_argument(name + " is a surface: use --uv U,V");
-      if (o.grid > 0) {
-        if (!surface_header) *csv << "entity,u,v,x,y,z,nx,ny,nz,k1,k2,H,K,singular\n";
-        surface_header = true;
-        grid_surface(*csv, name, *s, o.grid);
-        continue;
-      }
-      const double u = o.center ? mid(s->domain().u) : o.uv[0];
-      const double v = o.center ? mid(s->domain().v) : o.uv[1];
-      check_in(s->domain().u, u, "u");
-      check_in(s->domain().v, v, "v");
-      print_surface(name, *s, u, v);
-    } else if (c) {
-      if (!o.uv.empty()) throw std::invalid_argument(name + " is a curve: use --u U");
-      if (o.grid > 0) {
-        if (!curve_header) *csv << "entity,u,x,y,z,tx,ty,tz,curvature,torsion,singular\n";
-        curve_header = true;
-        grid_curve(*csv, name, *c, o.grid);
-        continue;
-      }
-      const double u = o.center ? mid(c->domain()) : o.u;
-      check_in(c->domain(), u, "u");
-      print_curve(name, *c, u);
-    } else {
+    if (const Surface* s = as_surface(*e))
+      eval_surface(o, name, *s, *csv, surface_header);
+    else if (const NurbsCurve* c = std::get_if<NurbsCurve>(e))
+      eval_curve(o, name, *c, *csv, curve_header);
+    else
       throw std::invalid_argument(name + " is a patch group: evaluate one of its patches");
-    }
   }
   if (o.grid > 0 && !o.out.empty()) std::cerr << "iga eval: wrote " << o.out << "\n";
   return 0;

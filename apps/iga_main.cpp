@@ -15,7 +15,9 @@
 #include "apps/common/app_common.hpp"
 #include "apps/iga_commands.hpp"
 
-int main(int argc, char** argv) {
+namespace {
+
+int run_iga(int argc, char** argv) {
   // 1. Command line: one subcommand is required.
   CLI::App app{
       "iga: isogeometric contact of rods and shells with rigid NURBS and analytic surfaces.\n"
@@ -31,16 +33,22 @@ int main(int argc, char** argv) {
   // --help, --version: 0; a bad command line: 2
   if (const int status = iga::app::parse_command_line(app, argc, argv); status >= 0) return status;
 
-  // 2. Run the chosen subcommand; every library error ends here with a message.
-  try {
-    const std::string name = app.get_subcommands().front()->get_name();
-    if (name == "info") return info();
-    if (name == "eval") return eval();
-    if (name == "make") return make();
-    if (name == "import") return import();
-    if (name == "project") return project();
-    if (name == "run") return run();
-    return 2;
+  // 2. Run the chosen subcommand.
+  const std::string name = app.get_subcommands().front()->get_name();
+  if (name == "info") return info();
+  if (name == "eval") return eval();
+  if (name == "make") return make();
+  if (name == "import") return import();
+  if (name == "project") return project();
+  if (name == "run") return run();
+  return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {  // every library error ends here with a message
+    return run_iga(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "iga: error: " << e.what() << "\n";
     return 1;

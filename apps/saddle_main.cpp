@@ -301,276 +301,336 @@ BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t,
   return res;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) try {
-  CLI::App cli{
-      "saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. "
-      "6.1-6.2)"};
+/// The command line.
+struct SaddleOptions {
   std::string model_file = iga::app::resource("data/saddle.json");
   std::vector<double> mu_list;
   std::vector<std::string> sets;
   std::string strategy, out = "out/saddle";
   bool quick = false, verbose = false, blocks_only = false;
-  cli.add_option("model", model_file, "Model file (JSON, format iga-contact-model)")
+};
+
+/// Parses the command line into `o`; a status >= 0 to exit with (--help, a bad option), else -1.
+int parse_options(int argc, char** argv, SaddleOptions& o) {
+  CLI::App cli{
+      "saddle: a plate pressed onto a rigid hyperboloid, STAS contact with friction ([KS15] Sects. "
+      "6.1-6.2)"};
+  cli.add_option("model", o.model_file, "Model file (JSON, format iga-contact-model)")
       ->capture_default_str();
-  cli.add_option("--mu", mu_list,
+  cli.add_option("--mu", o.mu_list,
                  "Friction coefficients (a list: 0,0.125); eps_T = eps_N when mu > 0")
       ->delimiter(',');
-  cli.add_option("--strategy", strategy,
+  cli.add_option("--strategy", o.strategy,
                  "Penetration strategy: the rigid surface as master (closest point) or slave (ray)")
       ->check(CLI::IsMember({"master", "slave"}));
-  cli.add_option("--set", sets, "Override a model value: /json/pointer=value (repeatable)");
-  cli.add_option("--out,-o", out, "Output folder")->capture_default_str();
-  cli.add_flag("--quick", quick, "Coarse version: apply the model's app/quick overrides first");
-  cli.add_flag("--blocks-only", blocks_only,
+  cli.add_option("--set", o.sets, "Override a model value: /json/pointer=value (repeatable)");
+  cli.add_option("--out,-o", o.out, "Output folder")->capture_default_str();
+  cli.add_flag("--quick", o.quick, "Coarse version: apply the model's app/quick overrides first");
+  cli.add_flag("--blocks-only", o.blocks_only,
                "Only the sticking-circle check (79)-(81): the small block of app/block_model at "
                "radii around mu/a");
-  cli.add_flag("--verbose,-v", verbose, "Print the solver's progress line per step");
-  if (const int status = iga::app::parse_command_line(cli, argc, argv); status >= 0) return status;
+  cli.add_flag("--verbose,-v", o.verbose, "Print the solver's progress line per step");
+  return iga::app::parse_command_line(cli, argc, argv);
+}
 
-  // 1. Model: read, quick overrides, --set, validated once before any run.
-  Json doc = iga::app::read_model(model_file, quick, sets);
-  AppSection app = read_app(doc, model_file);
-  if (!strategy.empty()) doc[app.strategy] = strategy;
-  if (!mu_list.empty()) {
+/// The model and what every run reads from it, validated before any run.
+struct Saddle {
+  Json doc;
+  AppSection app;
+  std::optional<BlockModel> block_model;
+  std::string describe;
+  double t_end = 1.0, a = 0.0, q_final = 0.0;
+  int centre = -1;  ///< the index of the centre's monitor
+  LoadCurve lambda;
+};
+
+/// Snapshot times inside (0, t_end) become step ends (the last one is t_end itself).
+void snapshot_hit_times(Json& doc, const AppSection& app, const std::string& file) {
+  const JsonPointer t_end_ptr("/solver/t_end");
+  const double t_end = doc.contains(t_end_ptr) && doc.at(t_end_ptr).is_number()
+                           ? doc.at(t_end_ptr).get<double>()
+                           : 1.0;
+  const JsonCursor snaps = JsonCursor(doc, file)["app"]["snapshots"];
+  Json hits = Json::array();
+  for (std::size_t k = 0; k < app.snapshots.size(); ++k) {
+    const double t = app.snapshots[k];
+    if (!(t > 0.0 && t <= t_end))
+      snaps[k].fail("must lie in (0, t_end] = (0, " + std::to_string(t_end) + "]");
+    if (t < t_end) hits.push_back(t);
+  }
+  doc["solver"]["hit_times"] = hits;
+}
+
+/// The model: read, quick overrides, --set, the command line's runs and strategy; validated once
+/// before any run, with the block model of the sticking-circle check.
+Saddle read_saddle(const SaddleOptions& o) {
+  Saddle sd;
+  Json& doc = sd.doc;
+  const std::string& file = o.model_file;
+  doc = iga::app::read_model(file, o.quick, o.sets);
+  sd.app = read_app(doc, file);
+  AppSection& app = sd.app;
+  if (!o.strategy.empty()) doc[app.strategy] = o.strategy;
+  if (!o.mu_list.empty()) {
     const double eps_n = doc.at(JsonPointer("/contact/0/eps_N")).get<double>();
     app.runs.clear();
-    for (double mu : mu_list) {
+    for (double mu : o.mu_list) {
       if (!(mu >= 0.0))
         throw std::invalid_argument("--mu: must be >= 0, got " + std::to_string(mu));
       app.runs.push_back({mu, mu > 0.0 ? eps_n : 0.0, run_name(mu)});
     }
   }
-  {  // snapshot times inside (0, t_end) become step ends (the last one is t_end itself)
-    const JsonPointer t_end_ptr("/solver/t_end");
-    const double t_end = doc.contains(t_end_ptr) && doc.at(t_end_ptr).is_number()
-                             ? doc.at(t_end_ptr).get<double>()
-                             : 1.0;
-    const JsonCursor snaps = JsonCursor(doc, model_file)["app"]["snapshots"];
-    Json hits = Json::array();
-    for (std::size_t k = 0; k < app.snapshots.size(); ++k) {
-      const double t = app.snapshots[k];
-      if (!(t > 0.0 && t <= t_end))
-        snaps[k].fail("must lie in (0, t_end] = (0, " + std::to_string(t_end) + "]");
-      if (t < t_end) hits.push_back(t);
-    }
-    doc["solver"]["hit_times"] = hits;
-  }
-  const Analysis probe = Analysis::from_json(doc, model_file);  // validates the whole model
+  snapshot_hit_times(doc, app, file);
+  const Analysis probe = Analysis::from_json(doc, file);  // validates the whole model
+  sd.describe = probe.describe();
   // The sticking-circle check's model is read and validated now, before any run.
-  std::optional<BlockModel> block_model;
-  if (!app.block_model.empty()) block_model = read_block_model(app.block_model);
-  const double t_end = probe.solver_settings().t1;
-  const double a = doc.at(app.a).get<double>();
+  if (!app.block_model.empty()) sd.block_model = read_block_model(app.block_model);
+  sd.t_end = probe.solver_settings().t1;
+  sd.a = doc.at(app.a).get<double>();
   const std::vector<double> load_vec = doc.at(app.load).get<std::vector<double>>();
-  const double q_final =
+  sd.q_final =
       std::sqrt(std::inner_product(load_vec.begin(), load_vec.end(), load_vec.begin(), 0.0));
-  int centre = -1;
   for (std::size_t k = 0; k < probe.output().monitors.size(); ++k)
-    if (probe.output().monitors[k].name == app.centre_monitor) centre = static_cast<int>(k);
-  if (centre < 0)
-    throw std::invalid_argument(model_file + ": app/centre_monitor: no output monitor named '" +
+    if (probe.output().monitors[k].name == app.centre_monitor) sd.centre = static_cast<int>(k);
+  if (sd.centre < 0)
+    throw std::invalid_argument(file + ": app/centre_monitor: no output monitor named '" +
                                 app.centre_monitor + "'");
-  LoadCurve lambda;
   for (const auto& [name, curve] : probe.load_curves())
-    if (name == app.load_curve) lambda = curve;
-  if (!lambda)
-    throw std::invalid_argument(model_file + ": app/load_curve: no load curve named '" +
-                                app.load_curve + "'");
+    if (name == app.load_curve) sd.lambda = curve;
+  if (!sd.lambda)
+    throw std::invalid_argument(file + ": app/load_curve: no load curve named '" + app.load_curve +
+                                "'");
+  return sd;
+}
 
-  // 2. Output folder.
-  const fs::path dir(out);
+/// The run's summary in saddle_summary.json.
+Json run_summary(const RunSpec& run, const Saddle& sd, int dofs, const SurfaceContactPair& contact,
+                 const AnalysisResult& r, const Json& snaps) {
+  const NonlinearSolverResult& s = r.solver;
+  Json j = zone_json(stick_zone(contact.contact()));
+  j["name"] = run.name;
+  j["mu"] = run.mu;
+  j["eps_T"] = run.eps_t;
+  j["expected_radius_mu_over_a"] = run.mu / sd.a;
+  j["status"] = to_string(s.status);
+  j["message"] = s.message;
+  j["t_reached"] = s.t;
+  j["steps"] = s.steps;
+  j["cutbacks"] = s.cutbacks;
+  j["newton_iterations"] = s.total_iterations;
+  j["iterations_per_step"] = static_cast<double>(s.total_iterations) / std::max(s.steps, 1);
+  j["dofs"] = dofs;
+  j["contact_quadrature_points"] = contact.contact().points().size();
+  j["time_total_s"] = s.time_total;
+  j["time_assembly_s"] = s.time_assembly;
+  j["time_contact_s"] = r.contact_time;
+  j["time_linear_solve_s"] = s.time_linear_solve;
+  j["time_per_iteration_s"] = s.time_total / std::max(s.total_iterations, 1);
+  j["centre_deflection"] =
+      r.steps.empty() ? 0.0
+                      : -r.steps.back().displacements[static_cast<std::size_t>(sd.centre)].z();
+  j["snapshots"] = snaps;
+  return j;
+}
+
+/// One run of the plate: its rows of saddle.csv, its contact points and ParaView files at the
+/// snapshots, its summary appended to `summary`. Returns whether it reached t_end.
+bool run_plate(const SaddleOptions& o, const Saddle& sd, const RunSpec& run, const fs::path& dir,
+               std::ostream& csv, Json& summary) {
+  Json d = sd.doc;
+  d[sd.app.mu] = run.mu;
+  d[sd.app.eps_t] = run.eps_t;
+  Analysis an = Analysis::from_json(d, o.model_file);
+  SurfaceContactPair* contact = an.shell_contact();
+  if (contact == nullptr)
+    throw std::invalid_argument(
+        o.model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");
+  const fs::path run_dir = dir / run.name;
+  fs::create_directories(run_dir);
+  std::ofstream points(dir / ("contact_" + run.name + ".csv"));
+  points << "t,x,y,z,foot_u,foot_v,N,stick\n" << std::setprecision(10);
+  VtkCollection pvd_shell((run_dir / "snapshots_shell.pvd").string());
+  VtkCollection pvd_contact((run_dir / "snapshots_contact.pvd").string());
+  Json snaps = Json::array();
+  std::cout << "saddle: run " << run.name << " (mu = " << run.mu << ", eps_T = " << run.eps_t
+            << ")\n";
+  const auto snapshot = [&](const VectorXd& u, double t, const AnalysisStep& st, double w) {
+    for (const SurfaceContactPoint& cp : contact->contact().points())
+      if (cp.active)
+        points << t << "," << cp.x.x() << "," << cp.x.y() << "," << cp.x.z() << ","
+               << cp.foot.uv.x() << "," << cp.foot.uv.y() << "," << cp.N << ","
+               << (contact->contact().sticks(cp) ? 1 : 0) << "\n";
+    points.flush();
+    std::ostringstream stem;
+    stem << "t" << t;
+    const std::vector<std::string> f = an.write_vtk(run_dir.string(), stem.str(), u, t);
+    pvd_shell.add(t, f[0]);
+    pvd_contact.add(t, f[1]);
+    Json z = zone_json(stick_zone(contact->contact()));
+    z["t"] = t;
+    z["centre_deflection"] = w;
+    snaps.push_back(z);
+    std::cout << "  t = " << std::setw(6) << t << "  q = " << std::setw(8)
+              << sd.q_final * sd.lambda(t) << "  centre deflection " << std::setw(9) << w
+              << "  contact " << st.contact.active << " (stick " << st.contact.stick << ", slide "
+              << st.contact.slip << ")\n";
+  };
+  auto on_step = [&](const VectorXd& u, double t, const AnalysisStep& st) {
+    const double w = -st.displacements[static_cast<std::size_t>(sd.centre)].z();
+    csv << run.name << "," << run.mu << "," << t << "," << sd.q_final * sd.lambda(t) << "," << w
+        << "," << st.contact.active << "," << st.contact.stick << "," << st.contact.slip << ","
+        << st.iterations << std::endl;
+    for (double ts : sd.app.snapshots)
+      if (std::abs(t - ts) <= 1e-9 * sd.t_end) snapshot(u, t, st, w);
+    return true;
+  };
+  const AnalysisResult r = an.run(o.verbose ? &std::cout : nullptr, run_dir.string(), on_step);
+  const NonlinearSolverResult& s = r.solver;
+  summary["runs"].push_back(run_summary(run, sd, an.problem().num_dofs(), *contact, r, snaps));
+  std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";  // after each run
+  std::cout << "  " << run.name << ": " << to_string(s.status) << " at t = " << s.t << ", "
+            << s.steps << " steps, " << s.total_iterations << " Newton iterations ("
+            << static_cast<double>(s.total_iterations) / std::max(s.steps, 1) << " per step), "
+            << s.time_total << " s: assembly " << 100 * s.time_assembly / s.time_total
+            << " % (contact " << 100 * r.contact_time / s.time_total << " %), linear solves "
+            << 100 * s.time_linear_solve / s.time_total << " %\n";
+  if (run.mu > 0.0) {
+    const StickZone zone = stick_zone(contact->contact());
+    std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points ("
+              << zone.first_contact << " in their first step of contact), radius "
+              << zone.radius_fit << " (fit), " << zone.radius_area
+              << " (area), mu/a = " << run.mu / sd.a << ", centroid (" << zone.centroid.x() << ", "
+              << zone.centroid.y() << ")\n";
+  }
+  if (!s.converged())
+    std::cout << "saddle: run " << run.name << " ended early: " << s.message << "\n";
+  return s.converged();
+}
+
+/// One friction coefficient's check of the circle: the block at each radius (rows of
+/// saddle_blocks.csv, an entry of summary["sticking_circle"]). Returns the blocks that failed.
+int circle_check(const Saddle& sd, const RunSpec& run, const std::string& strategy,
+                 std::ostream& bcsv, Json& summary) {
+  const BlockModel& bm = *sd.block_model;
+  const double a = sd.a;
+  Json c = Json::object();
+  c["mu"] = run.mu;
+  c["eps_T"] = run.eps_t;
+  c["expected_radius_mu_over_a"] = run.mu / a;
+  double hold_max = 0.0, slide_min = std::numeric_limits<double>::infinity(), err = 0.0;
+  bool consistent = true;
+  int failed = 0;
+  Json blocks = Json::array();
+  for (double f : bm.radii) {
+    const BlockResult b = run_block(bm, a, run.mu, run.eps_t, strategy, f);
+    bcsv << run.mu << "," << run.eps_t << "," << f << "," << b.r_start << "," << b.r << ","
+         << b.tan_gamma << "," << b.active << "," << b.stick << "," << b.slip << "," << b.state
+         << "," << b.ratio << "," << b.theory << "," << (b.converged ? 1 : 0) << std::endl;
+    if (!b.converged) ++failed;
+    const bool holds = b.active > 0 && b.state != "slide";
+    if (holds) hold_max = std::max(hold_max, b.r);
+    if (b.state == "slide") slide_min = std::min(slide_min, b.r);
+    // a mass point sticks inside the circle, slides outside (radii exactly on it are not judged)
+    if ((f < 1.0 && !holds) || (f > 1.0 && b.state != "slide") || !b.converged) consistent = false;
+    if (b.active > 0 && b.theory > 0.0)
+      err = std::max(err, std::abs(b.ratio - b.theory) / b.theory);
+    blocks.push_back({{"radius_fraction", f},
+                      {"r_start", b.r_start},
+                      {"r", b.r},
+                      {"tan_gamma", b.tan_gamma},
+                      {"contact_points", b.active},
+                      {"sticking_points", b.stick},
+                      {"sliding_points", b.slip},
+                      {"state", b.state},
+                      {"T_over_N", b.ratio},
+                      {"theory_min_tan_gamma_mu", b.theory},
+                      {"converged", b.converged},
+                      {"message", b.status}});
+  }
+  c["holds_up_to_r"] = hold_max;
+  c["slides_from_r"] = std::isfinite(slide_min) ? Json(slide_min) : Json(nullptr);
+  c["consistent_with_circle"] = consistent;
+  c["max_relative_error_T_over_N"] = err;
+  c["blocks"] = blocks;
+  summary["sticking_circle"].push_back(c);
+  std::cout << "saddle: sticking circle, mu = " << run.mu << " (mu/a = " << run.mu / a
+            << "): the block holds up to r = " << hold_max << ", slides from r = " << slide_min
+            << (consistent ? " (as (79)-(81))" : " (NOT as (79)-(81))")
+            << "; T/N vs min(a r, mu) within " << 100.0 * err << " %\n";
+  return failed;
+}
+
+/// The sticking-circle check (79)-(81): per frictional run, the block at radii around mu/a.
+/// Returns the blocks that failed.
+int sticking_circle(const Saddle& sd, const fs::path& dir, Json& summary) {
+  const std::string strategy = sd.doc.at(sd.app.strategy).get<std::string>();
+  std::ofstream bcsv(dir / "saddle_blocks.csv");
+  bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_"
+          "points,state,"
+          "T_over_N,theory,converged\n"
+       << std::setprecision(10);
+  summary["block_model"] = sd.app.block_model;
+  summary["sticking_circle"] = Json::array();
+  // Once per friction coefficient, with the stiffest tangential penalty of its runs: the block
+  // measures T/N = tan(gamma) only while eps_T * (its area) is far above its springs' stiffness.
+  std::vector<RunSpec> checks;
+  for (const RunSpec& run : sd.app.runs) {
+    if (!(run.mu > 0.0 && run.eps_t > 0.0)) continue;
+    auto same = std::find_if(checks.begin(), checks.end(),
+                             [&](const RunSpec& c) { return c.mu == run.mu; });
+    if (same == checks.end())
+      checks.push_back(run);
+    else
+      same->eps_t = std::max(same->eps_t, run.eps_t);
+  }
+  int failed = 0;
+  for (const RunSpec& run : checks) failed += circle_check(sd, run, strategy, bcsv, summary);
+  std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";
+  return failed;
+}
+
+int run_saddle(int argc, char** argv) {
+  SaddleOptions o;
+  if (const int status = parse_options(argc, argv, o); status >= 0) return status;
+  const Saddle sd = read_saddle(o);
+  const std::string strategy = sd.doc.at(sd.app.strategy).get<std::string>();
+
+  const fs::path dir(o.out);
   fs::create_directories(dir);
-  std::ofstream(dir / "model_used.json") << format_json(doc) << "\n";
+  std::ofstream(dir / "model_used.json") << format_json(sd.doc) << "\n";
   std::ofstream csv(dir / "saddle.csv");
   if (!csv) throw std::runtime_error("cannot write " + (dir / "saddle.csv").string());
   csv << "run,mu,t,load,centre_deflection,contact_points,sticking_points,sliding_points,"
          "iterations\n"
       << std::setprecision(10);
-  std::cout << "saddle: " << probe.describe() << "\n";
-  std::cout << "saddle: " << app.runs.size() << " run(s), strategy "
-            << doc.at(app.strategy).get<std::string>() << ", results in " << dir.string() << "\n";
+  std::cout << "saddle: " << sd.describe << "\n";
+  std::cout << "saddle: " << sd.app.runs.size() << " run(s), strategy " << strategy
+            << ", results in " << dir.string() << "\n";
 
-  // 3. The runs.
   Json summary = Json::object();
-  summary["model"] = model_file;
-  summary["strategy"] = doc.at(app.strategy).get<std::string>();
-  summary["a"] = a;
+  summary["model"] = o.model_file;
+  summary["strategy"] = strategy;
+  summary["a"] = sd.a;
   summary["runs"] = Json::array();
   int failed = 0;
-  for (const RunSpec& run : app.runs) {
-    if (blocks_only) break;
-    Json d = doc;
-    d[app.mu] = run.mu;
-    d[app.eps_t] = run.eps_t;
-    Analysis an = Analysis::from_json(d, model_file);
-    SurfaceContactPair* contact = an.shell_contact();
-    if (contact == nullptr)
-      throw std::invalid_argument(
-          model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");
-    const fs::path run_dir = dir / run.name;
-    fs::create_directories(run_dir);
-    std::ofstream points(dir / ("contact_" + run.name + ".csv"));
-    points << "t,x,y,z,foot_u,foot_v,N,stick\n" << std::setprecision(10);
-    VtkCollection pvd_shell((run_dir / "snapshots_shell.pvd").string());
-    VtkCollection pvd_contact((run_dir / "snapshots_contact.pvd").string());
-    Json snaps = Json::array();
-    std::cout << "saddle: run " << run.name << " (mu = " << run.mu << ", eps_T = " << run.eps_t
-              << ")\n";
-    auto on_step = [&](const VectorXd& u, double t, const AnalysisStep& st) {
-      const double w = -st.displacements[static_cast<std::size_t>(centre)].z();
-      csv << run.name << "," << run.mu << "," << t << "," << q_final * lambda(t) << "," << w << ","
-          << st.contact.active << "," << st.contact.stick << "," << st.contact.slip << ","
-          << st.iterations << std::endl;
-      for (double ts : app.snapshots) {
-        if (std::abs(t - ts) > 1e-9 * t_end) continue;
-        for (const SurfaceContactPoint& cp : contact->contact().points())
-          if (cp.active)
-            points << t << "," << cp.x.x() << "," << cp.x.y() << "," << cp.x.z() << ","
-                   << cp.foot.uv.x() << "," << cp.foot.uv.y() << "," << cp.N << ","
-                   << (contact->contact().sticks(cp) ? 1 : 0) << "\n";
-        points.flush();
-        std::ostringstream stem;
-        stem << "t" << t;
-        const std::vector<std::string> f = an.write_vtk(run_dir.string(), stem.str(), u, t);
-        pvd_shell.add(t, f[0]);
-        pvd_contact.add(t, f[1]);
-        Json z = zone_json(stick_zone(contact->contact()));
-        z["t"] = t;
-        z["centre_deflection"] = w;
-        snaps.push_back(z);
-        std::cout << "  t = " << std::setw(6) << t << "  q = " << std::setw(8)
-                  << q_final * lambda(t) << "  centre deflection " << std::setw(9) << w
-                  << "  contact " << st.contact.active << " (stick " << st.contact.stick
-                  << ", slide " << st.contact.slip << ")\n";
-      }
-      return true;
-    };
-    const AnalysisResult r = an.run(verbose ? &std::cout : nullptr, run_dir.string(), on_step);
-    const NonlinearSolverResult& s = r.solver;
-    const StickZone zone = stick_zone(contact->contact());
-    Json j = zone_json(zone);
-    j["name"] = run.name;
-    j["mu"] = run.mu;
-    j["eps_T"] = run.eps_t;
-    j["expected_radius_mu_over_a"] = run.mu / a;
-    j["status"] = to_string(s.status);
-    j["message"] = s.message;
-    j["t_reached"] = s.t;
-    j["steps"] = s.steps;
-    j["cutbacks"] = s.cutbacks;
-    j["newton_iterations"] = s.total_iterations;
-    j["iterations_per_step"] = static_cast<double>(s.total_iterations) / std::max(s.steps, 1);
-    j["dofs"] = an.problem().num_dofs();
-    j["contact_quadrature_points"] = contact->contact().points().size();
-    j["time_total_s"] = s.time_total;
-    j["time_assembly_s"] = s.time_assembly;
-    j["time_contact_s"] = r.contact_time;
-    j["time_linear_solve_s"] = s.time_linear_solve;
-    j["time_per_iteration_s"] = s.time_total / std::max(s.total_iterations, 1);
-    j["centre_deflection"] =
-        r.steps.empty() ? 0.0 : -r.steps.back().displacements[static_cast<std::size_t>(centre)].z();
-    j["snapshots"] = snaps;
-    summary["runs"].push_back(j);
-    std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";  // after each run
-    std::cout << "  " << run.name << ": " << to_string(s.status) << " at t = " << s.t << ", "
-              << s.steps << " steps, " << s.total_iterations << " Newton iterations ("
-              << static_cast<double>(s.total_iterations) / std::max(s.steps, 1) << " per step), "
-              << s.time_total << " s: assembly " << 100 * s.time_assembly / s.time_total
-              << " % (contact " << 100 * r.contact_time / s.time_total << " %), linear solves "
-              << 100 * s.time_linear_solve / s.time_total << " %\n";
-    if (run.mu > 0.0)
-      std::cout << "  sticking zone: " << zone.stick << " of " << zone.active << " contact points ("
-                << zone.first_contact << " in their first step of contact), radius "
-                << zone.radius_fit << " (fit), " << zone.radius_area
-                << " (area), mu/a = " << run.mu / a << ", centroid (" << zone.centroid.x() << ", "
-                << zone.centroid.y() << ")\n";
-    if (!s.converged()) {
-      ++failed;
-      std::cout << "saddle: run " << run.name << " ended early: " << s.message << "\n";
-    }
-  }
+  if (!o.blocks_only)
+    for (const RunSpec& run : sd.app.runs)
+      failed += run_plate(o, sd, run, dir, csv, summary) ? 0 : 1;
+  if (sd.block_model) failed += sticking_circle(sd, dir, summary);
 
-  // 4. The sticking-circle check (79)-(81): per frictional run, the block at radii around mu/a.
-  if (block_model) {
-    const BlockModel& bm = *block_model;
-    const std::string strat = doc.at(app.strategy).get<std::string>();
-    std::ofstream bcsv(dir / "saddle_blocks.csv");
-    bcsv << "mu,eps_T,radius_fraction,r_start,r,tan_gamma,contact_points,sticking_points,sliding_"
-            "points,state,"
-            "T_over_N,theory,converged\n"
-         << std::setprecision(10);
-    summary["block_model"] = app.block_model;
-    summary["sticking_circle"] = Json::array();
-    // Once per friction coefficient, with the stiffest tangential penalty of its runs: the block
-    // measures T/N = tan(gamma) only while eps_T * (its area) is far above its springs' stiffness.
-    std::vector<RunSpec> checks;
-    for (const RunSpec& run : app.runs) {
-      if (!(run.mu > 0.0 && run.eps_t > 0.0)) continue;
-      auto same = std::find_if(checks.begin(), checks.end(),
-                               [&](const RunSpec& c) { return c.mu == run.mu; });
-      if (same == checks.end())
-        checks.push_back(run);
-      else
-        same->eps_t = std::max(same->eps_t, run.eps_t);
-    }
-    for (const RunSpec& run : checks) {
-      Json c = Json::object();
-      c["mu"] = run.mu;
-      c["eps_T"] = run.eps_t;
-      c["expected_radius_mu_over_a"] = run.mu / a;
-      double hold_max = 0.0, slide_min = std::numeric_limits<double>::infinity(), err = 0.0;
-      bool consistent = true;
-      Json blocks = Json::array();
-      for (double f : bm.radii) {
-        const BlockResult b = run_block(bm, a, run.mu, run.eps_t, strat, f);
-        bcsv << run.mu << "," << run.eps_t << "," << f << "," << b.r_start << "," << b.r << ","
-             << b.tan_gamma << "," << b.active << "," << b.stick << "," << b.slip << "," << b.state
-             << "," << b.ratio << "," << b.theory << "," << (b.converged ? 1 : 0) << std::endl;
-        if (!b.converged) ++failed;
-        const bool holds = b.active > 0 && b.state != "slide";
-        if (holds) hold_max = std::max(hold_max, b.r);
-        if (b.state == "slide") slide_min = std::min(slide_min, b.r);
-        // a mass point sticks inside the circle, slides outside (radii exactly on it are not
-        // judged)
-        if ((f < 1.0 && !holds) || (f > 1.0 && b.state != "slide") || !b.converged)
-          consistent = false;
-        if (b.active > 0 && b.theory > 0.0)
-          err = std::max(err, std::abs(b.ratio - b.theory) / b.theory);
-        blocks.push_back({{"radius_fraction", f},
-                          {"r_start", b.r_start},
-                          {"r", b.r},
-                          {"tan_gamma", b.tan_gamma},
-                          {"contact_points", b.active},
-                          {"sticking_points", b.stick},
-                          {"sliding_points", b.slip},
-                          {"state", b.state},
-                          {"T_over_N", b.ratio},
-                          {"theory_min_tan_gamma_mu", b.theory},
-                          {"converged", b.converged},
-                          {"message", b.status}});
-      }
-      c["holds_up_to_r"] = hold_max;
-      c["slides_from_r"] = std::isfinite(slide_min) ? Json(slide_min) : Json(nullptr);
-      c["consistent_with_circle"] = consistent;
-      c["max_relative_error_T_over_N"] = err;
-      c["blocks"] = blocks;
-      summary["sticking_circle"].push_back(c);
-      std::cout << "saddle: sticking circle, mu = " << run.mu << " (mu/a = " << run.mu / a
-                << "): the block holds up to r = " << hold_max << ", slides from r = " << slide_min
-                << (consistent ? " (as (79)-(81))" : " (NOT as (79)-(81))")
-                << "; T/N vs min(a r, mu) within " << 100.0 * err << " %\n";
-    }
-    std::ofstream(dir / "saddle_summary.json") << format_json(summary) << "\n";
-  }
-
-  // 5. Plots.
   const std::string script = iga::app::resource("scripts/plot_saddle.py");
   if (!iga::app::run_python(script, {dir.string()}))
     std::cout << "saddle: warning: the plots failed (" << script << " " << dir.string() << ")\n";
   return failed > 0 ? 2 : 0;
-} catch (const std::exception& e) {
-  std::cerr << "saddle: error: " << e.what() << "\n";
-  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_saddle(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "saddle: error: " << e.what() << "\n";
+    return 1;
+  }
 }

@@ -35,7 +35,9 @@ Block block(const std::string& type, const std::string& name, int components,
   return b;
 }
 
-double finite(double x) { return std::isfinite(x) ? x : 0.0; }
+double finite(double x) {
+  return std::isfinite(x) ? x : 0.0;
+}
 
 std::vector<double> flat(const std::vector<Eigen::Vector3d>& v) {
   std::vector<double> out;

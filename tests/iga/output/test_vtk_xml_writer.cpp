@@ -61,7 +61,8 @@ std::map<std::string, Array> read_back(const fs::path& file, std::string& header
       a.values.assign(v.begin(), v.end());
     } else {
       REQUIRE(a.type == "UInt8");
-      for (std::uint64_t k = 0; k < bytes; ++k) a.values.push_back(static_cast<unsigned char>(p[k]));
+      for (std::uint64_t k = 0; k < bytes; ++k)
+        a.values.push_back(static_cast<unsigned char>(p[k]));
     }
     out[(*it)[2].matched ? std::string((*it)[2]) : std::string()] = a;
   }
@@ -83,9 +84,11 @@ TEST_CASE("write_vtk_xml: a grid as a structured grid (.vts) with its fields", "
   m.nu = 3;
   m.nv = 2;
   for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 3; ++i) m.points.emplace_back(0.1 * i, 1.0 / 3.0 * j, std::sqrt(2.0) * i * j);
+    for (int i = 0; i < 3; ++i)
+      m.points.emplace_back(0.1 * i, 1.0 / 3.0 * j, std::sqrt(2.0) * i * j);
   m.fields.name({"pressure"}, {"displacement"});
-  for (int k = 0; k < 6; ++k) m.fields.append({1e-300 * k + k / 7.0}, {Eigen::Vector3d(k, -k, 0.5)});
+  for (int k = 0; k < 6; ++k)
+    m.fields.append({1e-300 * k + k / 7.0}, {Eigen::Vector3d(k, -k, 0.5)});
   REQUIRE(std::string(vtk_xml_extension(m)) == ".vts");
   const fs::path file = temp_dir() / "shell.vts";
   write_vtk_xml(file.string(), m);
@@ -100,7 +103,8 @@ TEST_CASE("write_vtk_xml: a grid as a structured grid (.vts) with its fields", "
   REQUIRE(a.at("Points").values.size() == 18);
   for (int k = 0; k < 6; ++k)
     for (int c = 0; c < 3; ++c) {
-      CHECK(a.at("Points").values[static_cast<std::size_t>(3 * k + c)] == m.points[static_cast<std::size_t>(k)][c]);
+      CHECK(a.at("Points").values[static_cast<std::size_t>(3 * k + c)] ==
+            m.points[static_cast<std::size_t>(k)][c]);
       CHECK(a.at("displacement").values[static_cast<std::size_t>(3 * k + c)] ==
             m.fields.vectors[0].second[static_cast<std::size_t>(k)][c]);
     }
