@@ -36,7 +36,13 @@ bool CurveContactPair::symmetric() const {
 
 ContactCounts CurveContactPair::counts() const {
   const CurveContactCounts c = contact().counts();
-  return {c.active, c.stick, c.slip, c.drag_ratio(), std::min(c.slip_positive, c.slip_negative)};
+  return {c.active, c.stick, c.slip};
+}
+
+bool CurveContactPair::sliding_steadily() const {
+  const CurveContactCounts c = contact().counts();
+  return steady_sliding(c.active, c.slip, std::min(c.slip_positive, c.slip_negative),
+                        c.drag_ratio(), mu());
 }
 
 std::string CurveContactPair::describe() const {

@@ -23,6 +23,9 @@ class CurveContactPair final : public RigidContactPair<CurveContact> {
   /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)).
   bool symmetric() const override;
   ContactCounts counts() const override;
+  /// The rope's rule (steady_sliding): every active point slips, all pulling one way, and the
+  /// friction lies along the rope.
+  bool sliding_steadily() const override;
   /// "CTRS contact with a rigid surface of 1 piece(s), 80 contact points".
   std::string describe() const override;
   /// Per rod element, at the samples in it: contact_pressure -N (force per reference length),

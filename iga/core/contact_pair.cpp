@@ -3,6 +3,12 @@
 
 namespace iga {
 
+bool ContactPair::sliding_steadily() const {
+  if (mu() == 0.0) return true;
+  const ContactCounts c = counts();
+  return c.active > 0 && c.slip == c.active;
+}
+
 void ContactPair::add_fields(SampledMesh& body) const {
   const std::size_t first = body.fields.vectors.size();
   add_tool_fields(body);

@@ -28,8 +28,6 @@ namespace iga {
 /// Contact point counts of a pair at its last assembly.
 struct ContactCounts {
   int active = 0, stick = 0, slip = 0;
-  double drag_ratio = 0.0;  ///< rods: friction across / along the rope (CurveContactCounts)
-  int slip_back = 0;        ///< rods: slipping points pulling the other way than the most
 };
 
 /// A contact point seen from the rigid tool: its foot, the pressure and the traction the body
@@ -65,6 +63,11 @@ class ContactPair {
   /// "contact 24 (stick 10, slip 14)" (and ", |gap| 3.1e-05" with exact enforcement).
   virtual std::string status() const = 0;
   virtual ContactCounts counts() const = 0;
+  /// Whether the pair's contact slides steadily at the last assembly: the rule of a sliding
+  /// plateau, which a model selects as its stop criterion ("solver": "stop_at_full_slip_after").
+  /// Here every active point slips (always, without friction); a pair refines it to its own
+  /// kind of contact (a rod's: CurveContactPair, steady_sliding in curve_contact.hpp).
+  virtual bool sliding_steadily() const;
   /// Coulomb coefficient.
   virtual double mu() const = 0;
   /// Seconds spent in add() so far.

@@ -246,8 +246,6 @@ ContactCounts Analysis::contact_counts() const {
     sum.active += c.active;
     sum.stick += c.stick;
     sum.slip += c.slip;
-    sum.drag_ratio = std::max(sum.drag_ratio, c.drag_ratio);
-    sum.slip_back += c.slip_back;
   }
   return sum;
 }
@@ -278,10 +276,9 @@ bool Analysis::sliding_steadily() const {
   // tool the body does not touch, holds nothing back), and some pair is in contact.
   bool any = false;
   for (const PairRef& p : pairs_) {
-    const ContactCounts c = p.pair->counts();
-    if (c.active == 0) continue;
+    if (p.pair->counts().active == 0) continue;
     any = true;
-    if (!steady_sliding(c.active, c.slip, c.slip_back, c.drag_ratio, p.pair->mu())) return false;
+    if (!p.pair->sliding_steadily()) return false;
   }
   return any;
 }

@@ -77,7 +77,7 @@ struct AnalysisStep {
   int step = 0;  ///< its number in steps.csv (a restart's earlier steps counted)
   double t = 0.0;
   int iterations = 0;
-  ContactCounts contact;             ///< summed over the pairs (drag_ratio: the largest)
+  ContactCounts contact;             ///< summed over the pairs
   std::vector<ContactCounts> pairs;  ///< each pair's, in the model's order
   /// Each pair's force on its tool and the moment about the pair's moment point (world frame).
   std::vector<std::pair<Vector3d, Vector3d>> tool_loads;
@@ -173,10 +173,11 @@ class Analysis {
   /// The values of steps.csv's row for step `st` with 1-based number `index`, in the order of
   /// csv_columns() (counts as whole numbers; the CSV prints them with 12 digits).
   std::vector<double> step_values(int index, const AnalysisStep& st) const;
-  /// Pseudo-time after which the run stops once `full_slip_steps` consecutive steps slide
-  /// steadily (steady_sliding, curve_contact.hpp: every active point slips, all pulling one
-  /// way, friction along the rope) (< 0: off). "solver": {"stop_at_full_slip_after": t,
-  /// "full_slip_steps": n (1)}.
+  /// The stop criterion of a sliding plateau, selected by the model: the pseudo-time after which
+  /// the run stops once `full_slip_steps` consecutive steps slide steadily (every pair in
+  /// contact by its own rule, ContactPair::sliding_steadily: a rope's every active point slips,
+  /// all pulling one way, friction along the rope; elsewhere every active point slips)
+  /// (< 0: off). "solver": {"stop_at_full_slip_after": t, "full_slip_steps": n (1)}.
   double stop_at_full_slip_after() const { return stop_full_slip_after_; }
   int full_slip_steps() const { return full_slip_steps_; }
 
@@ -241,7 +242,8 @@ class Analysis {
 
  private:
   Analysis() = default;
-  /// Whether every pair slides steadily (steady_sliding); false without pairs.
+  /// Whether every pair in contact slides steadily (ContactPair::sliding_steadily) and some pair
+  /// is in contact.
   bool sliding_steadily() const;
   /// After a converged step at t: counts the consecutive steps of steady sliding past
   /// stop_at_full_slip_after (sliding_steps) and tells whether they complete the plateau.
