@@ -52,12 +52,14 @@ std::map<std::string, Array> read_back(const fs::path& file, std::string& header
     std::memcpy(&bytes, s.data() + at, sizeof bytes);
     REQUIRE(at + sizeof bytes + bytes <= s.size());
     const char* p = s.data() + at + sizeof bytes;
+    // (An empty block has no bytes to copy: memcpy must not get the null data() of an empty
+    // vector.)
     if (a.type == "Float64") {
       a.values.resize(bytes / 8);
-      std::memcpy(a.values.data(), p, bytes);
+      if (bytes > 0) std::memcpy(a.values.data(), p, bytes);
     } else if (a.type == "Int64") {
       std::vector<std::int64_t> v(bytes / 8);
-      std::memcpy(v.data(), p, bytes);
+      if (bytes > 0) std::memcpy(v.data(), p, bytes);
       a.values.assign(v.begin(), v.end());
     } else {
       REQUIRE(a.type == "UInt8");
