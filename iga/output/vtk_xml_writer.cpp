@@ -56,19 +56,20 @@ std::vector<Block> point_data(const std::string& path, const SampledMesh& mesh) 
     if (!ok) flag[i] = 1.0, flagged = true;
   };
   for (std::size_t i = 0; i < n; ++i) mark(i, mesh.points[i].allFinite());
+  const auto check_length = [&](const std::string& name, std::size_t size) {
+    if (size != n)
+      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(size) +
+                               " values for " + std::to_string(n) + " points");
+  };
   std::vector<Block> blocks;
   for (const auto& [name, v] : mesh.fields.scalars) {
-    if (v.size() != n)
-      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(v.size()) +
-                               " values for " + std::to_string(n) + " points");
+    check_length(name, v.size());
     std::vector<double> w(n);
     for (std::size_t i = 0; i < n; ++i) mark(i, std::isfinite(v[i])), w[i] = finite(v[i]);
     blocks.push_back(block("Float64", name, 1, w));
   }
   for (const auto& [name, v] : mesh.fields.vectors) {
-    if (v.size() != n)
-      throw std::runtime_error(path + ": field '" + name + "' has " + std::to_string(v.size()) +
-                               " values for " + std::to_string(n) + " points");
+    check_length(name, v.size());
     for (std::size_t i = 0; i < n; ++i) mark(i, v[i].allFinite());
     blocks.push_back(block("Float64", name, 3, flat(v)));
   }

@@ -232,7 +232,6 @@ class Result:
     def __init__(self, analysis):
         self._a = analysis
         self.info = {}
-        self._error = None
 
     def _run(self, out, on_step, log, restart):
         try:

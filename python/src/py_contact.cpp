@@ -207,7 +207,7 @@ void bind_contact(pb::module_& m) {
             parallel_points(P.n, threads, [&](pb::ssize_t i) {
               const double *x = P.row(i), *d = N.row(i);
               r[static_cast<std::size_t>(i)] =
-                  rs.ray(Vector3d(x[0], x[1], x[2]), Vector3d(d[0], d[1], d[2]).normalized());
+                  rs.ray(Vector3d(x[0], x[1], x[2]), Vector3d(d[0], d[1], d[2]));
             });
             return result_dict(r);
           },

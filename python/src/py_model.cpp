@@ -106,6 +106,7 @@ class PyAnalysis {
   PyAnalysis(const std::string& text, const std::string& file)
       : a_(std::make_unique<Analysis>(Analysis::from_json(parse_json_text(text, file), file))) {
     u_ = VectorXd::Zero(a_->problem().num_dofs());
+    columns_ = a_->csv_columns();
     t_ = a_->solver_settings().t0;
   }
 
@@ -153,7 +154,7 @@ class PyAnalysis {
 
   /// The steps table of the last run: column -> (steps,) array.
   pb::dict steps() const {
-    const std::vector<std::string> cols = a_->csv_columns();
+    const std::vector<std::string>& cols = columns_;
     std::vector<std::vector<double>> by(cols.size());
     for (std::size_t k = 0; k < result_.steps.size(); ++k) {
       const std::vector<double> v = a_->step_values(result_.steps[k].step, result_.steps[k]);
@@ -172,12 +173,13 @@ class PyAnalysis {
   }
 
   VectorXd block(int b) const { return a_->problem().block(u_, b); }
+  const std::vector<std::string>& columns() const { return columns_; }
   const VectorXd& u() const { return u_; }
   double t() const { return t_; }
 
  private:
   pb::dict step_dict(const AnalysisStep& st) const {
-    const std::vector<std::string> cols = a_->csv_columns();
+    const std::vector<std::string>& cols = columns_;
     const std::vector<double> v = a_->step_values(st.step, st);
     pb::dict d;
     for (std::size_t c = 0; c < cols.size() && c < v.size(); ++c) d[pb::str(cols[c])] = v[c];
@@ -185,6 +187,7 @@ class PyAnalysis {
   }
 
   std::unique_ptr<Analysis> a_;
+  std::vector<std::string> columns_;  ///< of steps.csv, fixed when the analysis is built
   AnalysisResult result_;
   VectorXd u_;
   double t_ = 0.0;
@@ -257,7 +260,7 @@ void bind_model(pb::module_& m) {
                                return names(p.a().num_pairs(),
                                             [&](int k) { return p.a().pair_name(k); });
                              })
-      .def_property_readonly("columns", [](PyAnalysis& p) { return p.a().csv_columns(); })
+      .def_property_readonly("columns", &PyAnalysis::columns)
       .def_property_readonly("num_dofs", [](PyAnalysis& p) { return p.a().problem().num_dofs(); })
       .def_property_readonly("t", &PyAnalysis::t)
       .def("run", &PyAnalysis::run, pb::arg("out_dir"), pb::arg("on_step"), pb::arg("log"),
