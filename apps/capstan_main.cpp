@@ -13,7 +13,7 @@
 // Writes to --out (default out/capstan): capstan.csv (case,sweep,mu,phi,T_ratio,exact,rel_error,
 // pull,status: one row per case, a case without full slip with its status and empty T_ratio),
 // capstan_steps.csv (every converged step), model_used.json, capstan.png (plot), and for each
-// case <case>_rod.vtk (centre line with axial force and curvature) and <case>_contact.vtk
+// case <case>_rod.vtu (centre line with axial force and curvature) and <case>_contact.vtu
 // (contact points with N, T, B, slip) for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 

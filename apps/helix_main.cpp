@@ -9,7 +9,7 @@
 //
 // Writes to --out (default out/helix): helix.csv (case,mu,phi,pitch,T_ratio,exact,rel_error),
 // helix_steps.csv, model_used.json, helix.png (computed, 3-D formula (83), 2-D formula (82)),
-// <case>_rod.vtk and <case>_contact.vtk for ParaView. The sweep driver: apps/rope_sweep.hpp.
+// <case>_rod.vtu and <case>_contact.vtu for ParaView. The sweep driver: apps/rope_sweep.hpp.
 #include <iostream>
 
 #include "apps/common/resources.hpp"

@@ -27,8 +27,8 @@
 //                         min(a r, mu); also in saddle_summary.json ("sticking_circle")
 //   saddle_contact_<run>.png, saddle_load_deflection.png, saddle_sticking_circle.png   plots
 //                         (scripts/plot_saddle.py)
-//   <run>/                steps.csv, summary.json, shell and contact .vtk + .pvd per snapshot,
-//                         rigid.vtk (ParaView)
+//   <run>/                steps.csv, summary.json, shell and contact .vts/.vtu + .pvd per snapshot,
+//                         rigid.vts (ParaView)
 // Exit status: 0 all runs reached t_end, 1 bad input, 2 a bad command line or a run that ended
 // early (its rows are kept).
 #include <algorithm>

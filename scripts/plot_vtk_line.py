@@ -1,22 +1,49 @@
 #!/usr/bin/python3
-"""Plots a point field of a legacy-VTK file (a body's samples, e.g. last_shell.vtk of
-`iga run`) along a line of constant coordinate, with the given positions marked (face seams of
+"""Plots a point field of a VTK file (a body's samples, e.g. last_shell.vts of `iga run`; VTK
+XML with raw appended data as iga writes it, or legacy ASCII .vtk) along a line of constant coordinate, with the given positions marked (face seams of
 a CAD tool): e.g. the contact pressure of data/plate_on_die.json across the seams between the
 die's flat top and its fillets.
 
-usage: plot_vtk_line.py FILE.vtk FIELD AXIS VALUE MARKS out.png
-FIELD: a SCALARS array (contact_pressure); AXIS: x or y, the coordinate plotted along; the
+usage: plot_vtk_line.py FILE FIELD AXIS VALUE MARKS out.png
+FIELD: a scalar point array (contact_pressure); AXIS: x or y, the coordinate plotted along; the
 samples within 1e-3 of VALUE in the other coordinate are used; MARKS: positions along AXIS
 separated by ',' (or '-' for none).
-  plot_vtk_line.py out/last_shell.vtk contact_pressure x 0 -1.5,1.5 pressure_x.png
+  plot_vtk_line.py out/last_shell.vts contact_pressure x 0 -1.5,1.5 pressure_x.png
 """
+import re
+import struct
 import sys
 
 from plot_common import save
 
 
+def read_vtk_xml(path, field):
+    """(points, values) of the scalar point array `field` of a VTK XML file with raw appended
+    data and UInt64 block headers (iga/output/vtk_xml_writer.hpp)."""
+    data = open(path, "rb").read()
+    start = data.find(b'<AppendedData encoding="raw">')
+    if start < 0:
+        sys.exit(f"{path}: not a VTK XML file with raw appended data")
+    base = data.index(b"_", start) + 1
+    arrays = {}
+    for m in re.finditer(rb'<DataArray type="Float64"(?: Name="(\w+)")? NumberOfComponents="(\d+)"'
+                         rb' format="appended" offset="(\d+)"/>', data[:start]):
+        at = base + int(m.group(3))
+        (size,) = struct.unpack_from("<Q", data, at)
+        values = struct.unpack_from(f"<{size // 8}d", data, at + 8)
+        arrays[(m.group(1) or b"Points").decode()] = (int(m.group(2)), values)
+    if field not in arrays or arrays[field][0] != 1:
+        sys.exit(f"{path}: no scalar point array {field}")
+    flat = arrays["Points"][1]
+    points = [list(flat[3 * i:3 * i + 3]) for i in range(len(flat) // 3)]
+    return points, list(arrays[field][1])
+
+
 def read_vtk(path, field):
-    """(points, values) of the SCALARS array `field` of a legacy-VTK file."""
+    """(points, values) of the scalar point array `field` of a VTK file: XML (.vts, .vtu) or
+    legacy ASCII (SCALARS)."""
+    if path.endswith((".vts", ".vtu")):
+        return read_vtk_xml(path, field)
     lines = open(path).read().split("\n")
 
     def numbers(start, count):

@@ -102,7 +102,7 @@ def main():
         if done.returncode != 0:  # reported by iga run; its results so far are in `run`
             print(f"{n} elements, eps_N {eps:.0e}: iga run failed (exit {done.returncode})")
             continue
-        y, p = along_x0(os.path.join(run, "last_shell.vtk"))
+        y, p = along_x0(os.path.join(run, "last_shell.vts"))
         a, b, c = zones(y, p)
         flat, fillet = integrate(y, p, 0.0, XS), integrate(y, p, XS, 10.0)
         rows.append({"elements": n, "eps_N": eps, "a": a, "b": b, "c": c, "flat": flat,

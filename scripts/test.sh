@@ -14,3 +14,10 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 # OpenCASCADE's process-wide objects, never freed (scripts/lsan_occt.supp)
 export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/scripts/lsan_occt.supp:print_suppressions=0}
 ctest --test-dir "$root/build/$flavour" --output-on-failure --parallel "$(nproc)" --timeout 600
+# The slowest tests of this run (CTest's cost data: seconds per test), to keep CI within its time.
+cost="$root/build/$flavour/Testing/Temporary/CTestCostData.txt"
+if [[ -f "$cost" ]]; then
+  echo "test.sh: the 12 slowest tests ($flavour), seconds:"
+  awk '/^---/ {exit} NF >= 3 {printf "%8.1f  %s\n", $NF, substr($0, 1, length($0) - length($(NF-1)) - length($NF) - 2)}' \
+    "$cost" | sort -rn | head -12 || true
+fi

@@ -18,7 +18,6 @@
 #include "iga/model/model.hpp"
 #include "iga/model/sections.hpp"
 #include "iga/output/output_format.hpp"
-#include "iga/output/vtk_writer.hpp"
 
 namespace iga {
 
@@ -308,31 +307,22 @@ AnalysisStep Analysis::record_step(const VectorXd& u, double t, int iterations) 
   return st;
 }
 
-void Analysis::write_csv_header(std::ostream& csv) const {
-  csv << "step,t,lambda,iterations,active,stick,slip";
+std::vector<std::string> Analysis::csv_columns() const {
+  std::vector<std::string> c{"step", "t", "lambda", "iterations", "active", "stick", "slip"};
   if (num_pairs() > 1)  // the counts of each pair
     for (const PairRef& p : pairs_)
-      for (const char* c : {"active", "stick", "slip"}) csv << "," << p.name << "_" << c;
+      for (const char* q : {"active", "stick", "slip"}) c.push_back(p.name + "_" + q);
   for (const PairRef& p : pairs_)  // the force and moment on each pair's tool
-    for (const char* c : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) csv << "," << p.name << "_" << c;
-  for (const AnalysisReaction& q : output_.reactions)
-    for (const char* c : {"x", "y", "z", "norm"})
-      csv << ",R" << (num_bodies() > 1 ? body_name(q.body) + "_" : "") << q.point << "_" << c;
+    for (const char* q : {"Fx", "Fy", "Fz", "Mx", "My", "Mz"}) c.push_back(p.name + "_" + q);
+  for (const AnalysisReaction& r : output_.reactions)
+    for (const char* q : {"x", "y", "z", "norm"})
+      c.push_back("R" + (num_bodies() > 1 ? body_name(r.body) + "_" : "") +
+                  std::to_string(r.point) + "_" + q);
   for (const AnalysisMonitor& m : output_.monitors)
-    for (const char* c : {"ux", "uy", "uz"})  // with several bodies <body>_<name>_u*
-      csv << "," << (num_bodies() > 1 ? body_name(m.body) + "_" : "") << m.name << "_" << c;
-  for (const auto& [name, curve] : curves_) csv << "," << name;
-  csv << "\n";
-}
-
-std::vector<std::string> Analysis::csv_columns() const {
-  std::ostringstream header;
-  write_csv_header(header);
-  std::vector<std::string> columns;
-  std::string line = header.str(), column;
-  std::istringstream in(line.substr(0, line.find('\n')));
-  while (std::getline(in, column, ',')) columns.push_back(column);
-  return columns;
+    for (const char* q : {"ux", "uy", "uz"})  // with several bodies <body>_<name>_u*
+      c.push_back((num_bodies() > 1 ? body_name(m.body) + "_" : "") + m.name + "_" + q);
+  for (const auto& [name, curve] : curves_) c.push_back(name);
+  return c;
 }
 
 std::vector<double> Analysis::step_values(int index, const AnalysisStep& st) const {
@@ -355,15 +345,7 @@ std::vector<double> Analysis::step_values(int index, const AnalysisStep& st) con
   return v;
 }
 
-void Analysis::write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const {
-  // csv_number: a non-finite value is an empty cell, never nan or inf; the counts print as
-  // integers.
-  const std::vector<double> v = step_values(index, st);
-  for (std::size_t i = 0; i < v.size(); ++i) csv << (i > 0 ? "," : "") << csv_number(v[i]);
-  csv << std::endl;  // flushed: a run that stops midway keeps its rows
-}
-
-void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& res) const {
+Json Analysis::summary(const AnalysisResult& res) const {
   Json s = Json::object();
   s["name"] = name_;
   std::string types;  // "rod", "shell" or, with several bodies, e.g. "rod, shell"
@@ -413,24 +395,11 @@ void Analysis::write_summary(const std::string& out_dir, const AnalysisResult& r
   s["time_assembly_s"] = json_number(res.solver.time_assembly);
   s["time_contact_s"] = json_number(res.contact_time);
   s["time_linear_solve_s"] = json_number(res.solver.time_linear_solve);
-  std::ofstream(fs::path(out_dir) / "summary.json") << format_json(s) << "\n";
+  return s;
 }
 
-std::string Analysis::open_output(const std::string& out_dir, std::ofstream& csv) const {
-  fs::create_directories(out_dir);
-  csv.open(fs::path(out_dir) / "steps.csv");
-  if (!csv) throw std::runtime_error(out_dir + "/steps.csv: cannot write file");
-  write_csv_header(csv);
-  if (output_.vtk == AnalysisOutput::Vtk::kNone) return {};
-  try {
-    write_rigid_vtk(out_dir, "rigid");
-  } catch (const std::exception& e) {
-    return std::string("writing the rigid surface's ParaView file: ") + e.what();
-  }
-  return {};
-}
-
-void Analysis::archive_run(StateArchive& a, RunState& s) {
+void Analysis::archive_run(StateArchive& a, RunState& s,
+                           const std::vector<std::unique_ptr<OutputSink>>& sinks) {
   a.section("analysis");
   // What must not change between the run that wrote the file and the one that reads it.
   const auto same = [&](auto value, auto&& name_of) {
@@ -445,28 +414,15 @@ void Analysis::archive_run(StateArchive& a, RunState& s) {
     return "the file's run uses " + f + " control, this one " + m +
            " (the path control cannot change in a restart)";
   });
-  std::ostringstream header;
-  write_csv_header(header);
-  same(header.str(), [](const std::string& f, const std::string& m) {
+  std::string header;  // steps.csv's header line
+  for (const std::string& c : csv_columns()) header += (header.empty() ? "" : ",") + c;
+  same(header + "\n", [](const std::string& f, const std::string& m) {
     return "the file's steps.csv has other columns (" + f.substr(0, f.size() - 1) +
            "), this model's: " + m.substr(0, m.size() - 1);
   });
   a.io(s.steps);
   a.io(s.sliding_steps);
-  a.io(s.csv_rows);
-  a.items(
-      s.series,
-      [&](std::pair<std::string, VtkCollection::Entries>& e) {
-        a.io(e.first);
-        a.items(
-            e.second,
-            [&](std::pair<double, std::string>& f) {
-              a.io(f.first);
-              a.io(f.second);
-            },
-            "series entries");
-      },
-      "ParaView series");
+  for (const std::unique_ptr<OutputSink>& sink : sinks) sink->archive(a);  // rows, series
   a.section("state");
   a.io(s.u);
   if (a.loading() && s.u.size() != system_->num_dofs()) a.fail("the state has another size");
@@ -474,23 +430,27 @@ void Analysis::archive_run(StateArchive& a, RunState& s) {
   system_->archive(a);
 }
 
-// The output side of one run(): steps.csv, the ParaView series, restart files, the error that
-// ends the run.
+// The output side of one run(): the sinks (steps table, field series, summary; iga/output), restart
+// files, the error that ends the run.
 struct Analysis::RunContext {
   RunContext(Analysis& a, std::ostream* l, std::string dir, AnalysisResult& r)
-      : an(a), log(l), out_dir(std::move(dir)), res(r) {}
+      : an(a), log(l), out_dir(std::move(dir)), res(r) {
+    // Made whether or not there is an output folder: a restart file holds their state.
+    for (const std::string& format :
+         {std::string("csv"), an.output_.field_format, std::string("summary")})
+      sinks.push_back(make_output_sink(format));
+  }
   Analysis& an;
   std::ostream* log;
   std::string out_dir;
   AnalysisResult& res;
-  RunState rs;  // a restart's state; then the rows and series so far
-  std::ofstream csv;
+  RunState rs;  // a restart's state
+  std::vector<std::unique_ptr<OutputSink>> sinks;
+  bool opened = false;  // the sinks write into out_dir
   // An error after the start (output of a converged step, the problem's history update, the
   // user's callback, the last ParaView files) ends the run with status `failed` and this
   // message; summary.json and the rows written so far stay.
   std::string error;
-  // One ParaView series (<series>.pvd) per body, pair and piece of a tool (write_output).
-  std::map<std::string, VtkCollection> pvd;
   std::string restart_path;  // empty: no output folder
   int restart_step = -1;     // the step of the last restart file written
   int sliding_steps = 0;     // consecutive steps of steady sliding (the plateau so far)
@@ -499,38 +459,47 @@ struct Analysis::RunContext {
   // The number of the step that converged last (the rows before a restart included).
   int step_number() const { return rs.steps + static_cast<int>(res.steps.size()); }
 
-  std::string series_file(const std::string& series) const {
-    return (fs::path(out_dir) / (series + ".pvd")).string();
-  }
-
-  // steps.csv with its header and a restart's rows, the series of a restart, the rigid tools.
+  // The sinks open in out_dir (steps.csv with its header and a restart's rows, the series of a
+  // restart); the rigid tools at t0. steps.csv that cannot be written: std::runtime_error.
   void open() {
     if (out_dir.empty()) return;
+    fs::create_directories(out_dir);
     restart_path = (fs::path(out_dir) / "restart.bin").string();
-    error = an.open_output(out_dir, csv);
-    csv << rs.csv_rows << std::flush;
-    for (auto& [series, entries] : rs.series) {
-      auto it = pvd.emplace(series, VtkCollection(series_file(series), std::move(entries))).first;
-      if (!error.empty()) continue;
-      try {
-        it->second.write();
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
+    const std::vector<std::string> columns = an.csv_columns();
+    sinks.front()->open(out_dir, columns);  // steps.csv
+    opened = true;
+    try {
+      for (std::size_t i = 1; i < sinks.size(); ++i) sinks[i]->open(out_dir, columns);
+    } catch (const std::exception& e) {
+      error = e.what();
+      return;
+    }
+    if (an.output_.vtk == AnalysisOutput::Vtk::kNone) return;
+    try {
+      std::vector<MeshOutput> tools = an.tool_meshes("rigid", an.settings_.t0, false);
+      for (MeshOutput& m : tools) m.series.clear();  // the tools at rest: no series
+      if (!tools.empty()) snapshot(an.settings_.t0, tools);
+    } catch (const std::exception& e) {
+      error = std::string("writing the rigid surface's ParaView file: ") + e.what();
     }
   }
 
-  // The ParaView files of (u, t); the series' time of a snapshot: t, or under arc length (t
-  // falls after a limit point and comes back: ParaView orders a series by its times) the step.
-  void vtk(const VectorXd& u, double t, const std::string& stem) {
+  void snapshot(double key, const std::vector<MeshOutput>& meshes) {
+    for (const std::unique_ptr<OutputSink>& sink : sinks) sink->snapshot(key, meshes);
+  }
+
+  // The field series' snapshot of (u, t); its key: t, or under arc length (t falls after a
+  // limit point and comes back: ParaView orders a series by its times) the step.
+  void fields(const VectorXd& u, double t, const std::string& stem) {
     const bool by_step = an.settings_.control == PathControl::arc_length;
-    const double key = by_step ? static_cast<double>(step_number()) : t;
-    for (const OutputFile& f : an.write_output(out_dir, stem, u, t)) {
-      if (f.series.empty()) continue;
-      auto it = pvd.find(f.series);
-      if (it == pvd.end()) it = pvd.emplace(f.series, VtkCollection(series_file(f.series))).first;
-      it->second.add(key, f.file);
-    }
+    snapshot(by_step ? static_cast<double>(step_number()) : t, an.output_meshes(stem, u, t));
+  }
+
+  // The sinks' summary of the run.
+  void close() {
+    if (!opened) return;
+    const Json summary = an.summary(res);
+    for (const std::unique_ptr<OutputSink>& sink : sinks) sink->close(summary);
   }
 
   // The restart file of the converged state (u, checkpoint): the run's and the bodies' state.
@@ -540,10 +509,8 @@ struct Analysis::RunContext {
     w.u = u;
     w.steps = step_number();
     w.sliding_steps = sliding_steps;
-    w.csv_rows = rs.csv_rows;
-    for (const auto& [series, c] : pvd) w.series.emplace_back(series, c.entries());
     StateArchive a = StateArchive::writer();
-    an.archive_run(a, w);
+    an.archive_run(a, w, sinks);
     a.save(restart_path);
     res.restart_file = restart_path;
     restart_step = w.steps;
@@ -559,13 +526,10 @@ struct Analysis::RunContext {
       res.steps.push_back(st);
       const int k = step_number();
       log_limit_point(t);
-      if (csv.is_open()) {
-        std::ostringstream row;
-        an.write_csv_row(row, k, st);
-        rs.csv_rows += row.str();
-        csv << row.str() << std::flush;  // a run that stops midway keeps its rows
-        if (an.output_.vtk == AnalysisOutput::Vtk::kAll) vtk(u, t, "step" + std::to_string(k));
-      }
+      const std::vector<double> row = an.step_values(k, st);
+      for (const std::unique_ptr<OutputSink>& sink : sinks) sink->row(row);
+      if (opened && an.output_.vtk == AnalysisOutput::Vtk::kAll)
+        fields(u, t, "step" + std::to_string(k));
       // The caller sees every converged step, the one that completes the plateau too.
       bool go_on = !user_callback || user_callback(u, t, st);
       if (go_on && an.plateau_complete(t, sliding_steps)) {
@@ -628,7 +592,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   const bool resumed = !restart_file.empty();
   if (resumed) {
     StateArchive a = StateArchive::reader(restart_file);
-    archive_run(a, run.rs);
+    archive_run(a, run.rs, run.sinks);
     a.finish();
     u = run.rs.u;
     run.sliding_steps = run.rs.sliding_steps;
@@ -657,7 +621,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   if (!out_dir.empty() && run.error.empty() && output_.vtk == AnalysisOutput::Vtk::kLast &&
       !res.steps.empty()) {
     try {
-      run.vtk(u, res.solver.t, "last");
+      run.fields(u, res.solver.t, "last");
     } catch (const std::exception& e) {
       run.error = std::string("writing the ParaView files of the last step: ") + e.what();
     }
@@ -671,7 +635,11 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
   run.restart_at_stop(u, res.steps.empty() ? run.rs.solver : solver.checkpoint(), resumed);
   if (log && !res.restart_file.empty())
     *log << "restart file: " << res.restart_file << " (step " << run.step_number() << ")\n";
-  if (!out_dir.empty()) write_summary(out_dir, res);
+  try {
+    run.close();
+  } catch (const std::exception& e) {  // the run's outcome stands; the summary is lost
+    if (log) *log << "warning: " << e.what() << "\n";
+  }
   return res;
 }
 

@@ -24,7 +24,7 @@
 #include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/core/body_system.hpp"
 #include "iga/core/state_archive.hpp"
-#include "iga/output/vtk_writer.hpp"
+#include "iga/output/output_sink.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
 namespace iga {
@@ -48,7 +48,10 @@ struct AnalysisReaction {
 /// Output requests of the "output" section.
 struct AnalysisOutput {
   enum class Vtk { kNone, kLast, kAll };
-  Vtk vtk = Vtk::kLast;                     ///< ParaView files: none, the last step, every step
+  Vtk vtk = Vtk::kLast;  ///< ParaView files: none, the last step, every step
+  /// The format of the field series (a registered output format, iga/output/output_sink.hpp):
+  /// "vtk_xml" (.vts/.vtu, the default) or "vtk" (legacy .vtk).
+  std::string field_format = "vtk_xml";
   std::vector<AnalysisReaction> reactions;  ///< control points whose reactions go to steps.csv
   std::vector<AnalysisMonitor> monitors;    ///< displacements that go to steps.csv
   /// Points per element (per direction for shells) in the VTK files; 0: each body's default
@@ -209,14 +212,19 @@ class Analysis {
   struct OutputFile {
     std::string series, file;
   };
-  /// ParaView files of the state (u, t), in this order: each body sampled with its fields and
-  /// its pairs' (Body::sample; <stem>_<type>.vtk for one body, <stem>_<name>.vtk for several:
-  /// a rod's centre line with axial force and curvature, a shell's surface with displacement,
-  /// normal, membrane forces and moments in a local Cartesian frame); then per contact pair
-  /// (suffix _<k> with several) its active points (<stem>_contact.vtk: rods N, T, B (68)-(70),
-  /// slip; shells N (34), gap, tangential force, slip), the same seen from the tool
-  /// (<stem>_tool_contact.vtk) and the contact fields on a grid of each bounded piece of the
-  /// tool (<stem>_tool.vtk, or _tool_<i> per piece). File names are relative to dir.
+  /// The meshes of the state (u, t) that the field series take, in this order: each body
+  /// sampled with its fields and its pairs' (Body::sample; <stem>_<type> for one body,
+  /// <stem>_<name> for several: a rod's centre line with axial force and curvature, a shell's
+  /// surface with displacement, normal, membrane forces and moments in a local Cartesian
+  /// frame); then per contact pair (suffix _<k> with several) its active points
+  /// (<stem>_contact: rods N, T, B (68)-(70), slip; shells N (34), gap, tangential force, slip),
+  /// the same seen from the tool (<stem>_tool_contact) and the contact fields on a grid of each
+  /// bounded piece of the tool (<stem>_tool, or _tool_<i> per piece); then each moving tool
+  /// where it is at t (<stem>_rigid...).
+  std::vector<MeshOutput> output_meshes(const std::string& stem, const VectorXd& u, double t);
+  /// output_meshes written into dir in the field format of the output section
+  /// (output().field_format: .vts/.vtu by default, .vtk for "vtk"). File names are relative to
+  /// dir.
   std::vector<OutputFile> write_output(const std::string& dir, const std::string& stem,
                                        const VectorXd& u, double t);
   /// The file names of write_output.
@@ -224,9 +232,9 @@ class Analysis {
                                      const VectorXd& u, double t);
 
   /// Each rigid tool (a rigid surface some pair names; pairs naming one tool share it) sampled
-  /// as quadrilaterals (<dir>/<stem>.vtk, or <stem>_<i>.vtk per piece, <stem>_<j>... per tool
-  /// with several, in the order the pairs name them; pieces with an unbounded domain are left
-  /// out); false (nothing written) without contact.
+  /// as quadrilaterals in the field format (<dir>/<stem>.vts, or <stem>_<i> per piece,
+  /// <stem>_<j>... per tool with several, in the order the pairs name them; pieces with an
+  /// unbounded domain are left out); false (nothing written) without contact.
   bool write_rigid_vtk(const std::string& dir, const std::string& stem) const;
 
   /// A rigid tool: a rigid surface named by pairs (the first of them given).
@@ -248,36 +256,29 @@ class Analysis {
   /// After a converged step at t: counts the consecutive steps of steady sliding past
   /// stop_at_full_slip_after (sliding_steps) and tells whether they complete the plateau.
   bool plateau_complete(double t, int& sliding_steps) const;
-  /// What a restart of run() needs besides the bodies' state.
+  /// What a restart of run() needs besides the bodies' state and the sinks' (their rows and
+  /// series so far).
   struct RunState {
     SolverCheckpoint solver;
     VectorXd u;             ///< the converged state
     int steps = 0;          ///< converged steps (rows of steps.csv)
     int sliding_steps = 0;  ///< consecutive steps of steady sliding (plateau_complete)
-    std::string csv_rows;   ///< steps.csv after its header
-    std::vector<std::pair<std::string, VtkCollection::Entries>> series;  ///< .pvd series
   };
   /// The output side of one run (analysis.cpp).
   struct RunContext;
-  /// Writes the run's state and the bodies' to a restart archive, or reads them back
-  /// (StateArchive; checks that the file is of this model).
-  void archive_run(StateArchive& a, RunState& s);
+  /// Writes the run's state, the sinks' and the bodies' to a restart archive, or reads them
+  /// back (StateArchive; checks that the file is of this model).
+  void archive_run(StateArchive& a, RunState& s,
+                   const std::vector<std::unique_ptr<OutputSink>>& sinks);
   /// The record of a converged step at (u, t): counts, reactions, monitored displacements.
   AnalysisStep record_step(const VectorXd& u, double t, int iterations);
-  /// Creates out_dir, opens steps.csv (csv) with its header (failure: std::runtime_error) and
-  /// writes the rigid surface's ParaView file; returns the error of that file, empty if none.
-  std::string open_output(const std::string& out_dir, std::ofstream& csv) const;
-  /// steps.csv: the header, and the row of the step with 1-based `index`.
-  void write_csv_header(std::ostream& csv) const;
   /// The load factor lambda of time t: (t - t0) / (t1 - t0) (steps.csv, summary.json).
   double load_factor(double t) const { return (t - settings_.t0) / (settings_.t1 - settings_.t0); }
-  void write_csv_row(std::ostream& csv, int index, const AnalysisStep& st) const;
-  /// summary.json of a run.
-  void write_summary(const std::string& out_dir, const AnalysisResult& res) const;
-  /// Each tool (moving_only: each moving tool) at its pose at t, as write_rigid_vtk; the files
+  /// The summary of a run (summary.json).
+  Json summary(const AnalysisResult& res) const;
+  /// Each tool (moving_only: each moving tool) at its pose at t, as write_rigid_vtk: the meshes
   /// and their series "rigid[_j][_i]".
-  std::vector<OutputFile> write_tools(const std::string& dir, const std::string& stem, double t,
-                                      bool moving_only) const;
+  std::vector<MeshOutput> tool_meshes(const std::string& stem, double t, bool moving_only) const;
   /// The pairs of the "contact" section in the file's order, with their names (after the bodies
   /// are built, each holding its own pairs).
   void collect_pairs(const JsonCursor& root);

@@ -153,25 +153,22 @@ std::pair<std::vector<Vector3d>, double> tool_grid(const Surface& S) {
 
 }  // namespace
 
-std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
-                                                         const std::string& stem, const VectorXd& u,
-                                                         double t) {
-  std::vector<OutputFile> files;
-  auto path = [&](const std::string& file) { return (fs::path(dir) / file).string(); };
+std::vector<MeshOutput> Analysis::output_meshes(const std::string& stem, const VectorXd& u,
+                                                double t) {
+  std::vector<MeshOutput> meshes;
   for (int b = 0; b < num_bodies(); ++b) {
     const Body& B = body(b);
     const std::string series = num_bodies() == 1 ? B.type() : body_name(b);
     const int n =
         output_.samples_per_element > 0 ? output_.samples_per_element : B.default_samples();
-    files.push_back({series, stem + "_" + series + ".vtk"});
-    iga::write_vtk(path(files.back().file), B.sample(system_->block(u, b), t, n),
-                   name_ + " " + (num_bodies() == 1 ? B.type() : body_name(b)) + ", t = " + fmt(t));
+    meshes.push_back({series, stem + "_" + series, name_ + " " + series + ", t = " + fmt(t),
+                      B.sample(system_->block(u, b), t, n)});
   }
   for (int k = 0; k < num_pairs(); ++k) {
     const ContactPair& P = pair(k);
     const std::string ps = index_suffix(k, num_pairs());
-    files.push_back({"contact" + ps, stem + "_contact" + ps + ".vtk"});
-    iga::write_vtk(path(files.back().file), P.points(), name_ + " contact points, t = " + fmt(t));
+    meshes.push_back({"contact" + ps, stem + "_contact" + ps,
+                      name_ + " contact points, t = " + fmt(t), P.points()});
     // The same contact seen from the rigid tool: its surface points (the feet) with the
     // pressure, the traction the body exerts on the tool, and the state (1 stick, 2 slip).
     const std::vector<ContactFoot> feet = P.feet();
@@ -186,9 +183,8 @@ std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
     }
     fm.fields.scalars = {{"contact_pressure", pressure}, {"contact_state", state}};
     fm.fields.vectors = {{"tangential_traction", traction}};
-    files.push_back({"", stem + "_tool_contact" + ps + ".vtk"});
-    iga::write_vtk(path(files.back().file), fm,
-                   name_ + " contact on the rigid tool, t = " + fmt(t));
+    meshes.push_back({"", stem + "_tool_contact" + ps,
+                      name_ + " contact on the rigid tool, t = " + fmt(t), std::move(fm)});
     // ... and as fields on a grid of each bounded piece of the tool (tool_fields).
     const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {
@@ -196,14 +192,27 @@ std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
       if (grid.empty()) continue;
       for (Vector3d& x : grid) x = P.pose().to_world(x);  // where the tool is (feet: world)
       const std::string series = "tool" + ps + index_suffix(i, rigid.num_patches());
-      files.push_back({series, stem + "_" + series + ".vtk"});
-      write_vtk_grid(path(files.back().file), grid, kToolGrid, kToolGrid,
-                     tool_fields(grid, spacing, feet),
-                     name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t));
+      SampledMesh gm;
+      gm.shape = SampledMesh::Shape::kGrid;
+      gm.nu = gm.nv = kToolGrid;
+      gm.fields = tool_fields(grid, spacing, feet);
+      gm.points = std::move(grid);
+      meshes.push_back({series, stem + "_" + series,
+                        name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t),
+                        std::move(gm)});
     }
   }
   // Moving tools where they are at t (a .pvd series per tool and piece).
-  for (OutputFile& f : write_tools(dir, stem + "_rigid", t, true)) files.push_back(std::move(f));
+  for (MeshOutput& m : tool_meshes(stem + "_rigid", t, true)) meshes.push_back(std::move(m));
+  return meshes;
+}
+
+std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
+                                                         const std::string& stem, const VectorXd& u,
+                                                         double t) {
+  std::vector<OutputFile> files;
+  for (OutputFileRef& f : write_meshes(output_.field_format, dir, output_meshes(stem, u, t)))
+    files.push_back({std::move(f.series), std::move(f.file)});
   return files;
 }
 
@@ -225,39 +234,38 @@ std::vector<Analysis::Tool> Analysis::tools() const {
   return tools;
 }
 
-std::vector<Analysis::OutputFile> Analysis::write_tools(const std::string& dir,
-                                                        const std::string& stem, double t,
-                                                        bool moving_only) const {
-  // One 41 x 41 grid per bounded piece: <stem>.vtk for a single piece, else <stem>_<i>.vtk;
-  // with several tools <stem>_<j> in place of <stem>; each at its pose at t.
+std::vector<MeshOutput> Analysis::tool_meshes(const std::string& stem, double t,
+                                              bool moving_only) const {
+  // One 41 x 41 grid per bounded piece: <stem> for a single piece, else <stem>_<i>; with
+  // several tools <stem>_<j> in place of <stem>; each at its pose at t.
   const std::vector<Tool> all = tools();
   const int n_tools = static_cast<int>(all.size());
-  std::vector<OutputFile> files;
+  std::vector<MeshOutput> meshes;
   for (int j = 0; j < n_tools; ++j) {
     const ContactPair& P = *all[static_cast<std::size_t>(j)].pair;
     if (moving_only && P.motion() == nullptr) continue;
     const RigidPose pose = P.pose(t);
     const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {
-      std::vector<Vector3d> pts = tool_grid(rigid.patch(i)).first;
-      if (pts.empty()) continue;
-      for (Vector3d& x : pts) x = pose.to_world(x);
-      constexpr int n = kToolGrid;
-      const std::string series =
-          "rigid" + index_suffix(j, n_tools) + index_suffix(i, rigid.num_patches());
-      files.push_back({series, stem + index_suffix(j, n_tools) +
-                                   index_suffix(i, rigid.num_patches()) + ".vtk"});
-      write_vtk_grid((fs::path(dir) / files.back().file).string(), pts, n, n, {},
-                     name_ + " rigid surface" +
-                         (n_tools > 1 ? " " + all[static_cast<std::size_t>(j)].name : "") +
-                         (P.motion() ? ", t = " + fmt(t) : std::string()));
+      SampledMesh m;
+      m.points = tool_grid(rigid.patch(i)).first;
+      if (m.points.empty()) continue;
+      for (Vector3d& x : m.points) x = pose.to_world(x);
+      m.shape = SampledMesh::Shape::kGrid;
+      m.nu = m.nv = kToolGrid;
+      const std::string suffix = index_suffix(j, n_tools) + index_suffix(i, rigid.num_patches());
+      meshes.push_back({"rigid" + suffix, stem + suffix,
+                        name_ + " rigid surface" +
+                            (n_tools > 1 ? " " + all[static_cast<std::size_t>(j)].name : "") +
+                            (P.motion() ? ", t = " + fmt(t) : std::string()),
+                        std::move(m)});
     }
   }
-  return files;
+  return meshes;
 }
 
 bool Analysis::write_rigid_vtk(const std::string& dir, const std::string& stem) const {
-  return !write_tools(dir, stem, settings_.t0, false).empty();
+  return !write_meshes(output_.field_format, dir, tool_meshes(stem, settings_.t0, false)).empty();
 }
 
 }  // namespace iga

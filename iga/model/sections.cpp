@@ -70,14 +70,20 @@ std::string column_name(const JsonCursor& c) {
   return name;
 }
 /// The value of `key` in `o`, which must be one of `names`.
-std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names) {
+std::string one_of(const JsonCursor& c, const std::vector<std::string>& names) {
   std::string s = c.as_string();
   std::string list;
-  for (const char* n : names) {
+  for (const std::string& n : names) {
     if (s == n) return s;
-    list += std::string(list.empty() ? "" : ", ") + "\"" + n + "\"";
+    list += list.empty() ? "\"" : ", \"";
+    list += n;
+    list += '"';
   }
   c.fail("expected one of " + list);
+}
+
+std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names) {
+  return one_of(c, std::vector<std::string>(names.begin(), names.end()));
 }
 /// The enforcement keys of a contact pair: "enforcement" "penalty" (default) or
 /// "augmented_lagrange" with "penetration_tol" (a length > 0, required) and
@@ -760,10 +766,29 @@ const Context& body_of_entry(const JsonCursor& e, const std::vector<Context>& bo
   return bodies.front();
 }
 
+namespace {
+/// "field_format": a registered output format that writes fields (iga/output/output_sink.hpp),
+/// not the steps table's or the summary's.
+std::string field_format(const JsonCursor& c) {
+  std::vector<std::string> fields;
+  for (const std::string& f : output_format_names())
+    if (f != "csv" && f != "summary") fields.push_back(f);
+  return one_of(c, fields);
+}
+/// "vtk": when the field series are written.
+AnalysisOutput::Vtk field_times(const JsonCursor& c) {
+  const std::string v = one_of(c, {"none", "last", "all"});
+  return v == "none"  ? AnalysisOutput::Vtk::kNone
+         : v == "all" ? AnalysisOutput::Vtk::kAll
+                      : AnalysisOutput::Vtk::kLast;
+}
+}  // namespace
+
 AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bodies) {
-  o.expect_object({"vtk", "reactions", "monitors", "samples_per_element", "plots", "restart_every",
-                   "description"});
+  o.expect_object({"vtk", "field_format", "reactions", "monitors", "samples_per_element", "plots",
+                   "restart_every", "description"});
   AnalysisOutput out;
+  if (o.has("field_format")) out.field_format = field_format(o["field_format"]);
   if (o.has("restart_every")) {
     const JsonCursor c = o["restart_every"];
     out.restart_every = c.as_int();
@@ -789,12 +814,7 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
       out.plots.push_back(plot);
     }
   }
-  if (o.has("vtk")) {
-    const std::string v = one_of(o["vtk"], {"none", "last", "all"});
-    out.vtk = v == "none"  ? AnalysisOutput::Vtk::kNone
-              : v == "all" ? AnalysisOutput::Vtk::kAll
-                           : AnalysisOutput::Vtk::kLast;
-  }
+  if (o.has("vtk")) out.vtk = field_times(o["vtk"]);
   if (o.has("reactions")) {
     const JsonCursor r = o["reactions"];
     r.expect_array();

@@ -43,6 +43,7 @@ std::string fmt(double v);
 double positive(const JsonCursor& c, bool allow_zero = false);
 /// The string at c, which must be one of `names`.
 std::string one_of(const JsonCursor& c, std::initializer_list<const char*> names);
+std::string one_of(const JsonCursor& c, const std::vector<std::string>& names);
 /// A load curve ("load_curves" entry).
 LoadCurve parse_load_curve(const JsonCursor& c);
 /// The load curve must stay finite over the solver's pseudo-time.

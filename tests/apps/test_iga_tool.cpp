@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "tests/support/files.hpp"
+#include "tests/support/vtk_xml_read.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
 namespace test_iga_tool {
@@ -289,7 +290,7 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   REQUIRE(r.status == 0);
   CHECK(r.out.find("full slip at t = ") != std::string::npos);
   for (const char* f : {"steps.csv", "summary.json", "model_used.json", "rod.pvd", "contact.pvd",
-                        "last_rod.vtk", "last_contact.vtk"})
+                        "last_rod.vtu", "last_contact.vtu"})
     CHECK(fs::exists(out / f));
   // The last row's reaction at the pulled end over T0 = 10 is the capstan ratio exp(0.2 pi).
   const auto rows = csv_rows(slurp(out / "steps.csv"));
@@ -305,20 +306,16 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   // Contact fields on the rod (per element, issue 12 item 6): the line pressure is finite, >= 0,
   // and peaks near the tight end at about T0 e^{mu phi} / rho (rho = 1.02; the last element is
   // partly in the lift-off zone, so a little below); the tool's side is written too.
-  CHECK(fs::exists(out / "last_tool_contact.vtk"));
-  const std::string vtk = slurp(out / "last_rod.vtk");
-  const auto at = vtk.find("SCALARS contact_pressure double 1\nLOOKUP_TABLE default\n");
-  REQUIRE(at != std::string::npos);
-  std::istringstream values(vtk.substr(vtk.find("default\n", at) + 8));
+  CHECK(fs::exists(out / "last_tool_contact.vtu"));
+  const iga::test::VtkXmlFile vtk = iga::test::read_vtk_xml(out / "last_rod.vtu");
+  const std::vector<double> pressure = vtk.field("contact_pressure");
   double largest = 0.0, smallest = 1e300;
-  int count = 0;
-  for (std::string v; count < 257 && values >> v; ++count) {
-    const double p = std::stod(v);
+  for (const double p : pressure) {
     REQUIRE(std::isfinite(p));
     largest = std::max(largest, p);
     smallest = std::min(smallest, p);
   }
-  CHECK(count == 257);
+  CHECK(pressure.size() == 257);
   CHECK(smallest >= 0.0);
   const double tight = 10.0 * std::exp(0.2 * M_PI) / 1.02;
   CHECK(largest <= 1.01 * tight);
@@ -326,8 +323,8 @@ TEST_CASE("iga run: the capstan model runs to full slip and writes its results",
   // The rod keeps its other contact fields, one value per sample, the state 0, 1 or 2 and some
   // of the arc sliding at full slip.
   for (const char* f : {"contact_traction_T", "contact_traction_B", "contact_state"})
-    CHECK(iga::test::vtk_array(vtk, "SCALARS", f).size() == 257);
-  const std::vector<double> state = iga::test::vtk_array(vtk, "SCALARS", "contact_state");
+    CHECK(vtk.field(f).size() == 257);
+  const std::vector<double> state = vtk.field("contact_state");
   CHECK(std::all_of(state.begin(), state.end(),
                     [](double s) { return s == 0.0 || s == 1.0 || s == 2.0; }));
   CHECK(std::count(state.begin(), state.end(), 2.0) > 0);
@@ -342,7 +339,7 @@ TEST_CASE("iga run: the Scordelis-Lo roof (a shell) writes its monitor and the s
   CHECK(r.out.find("shell of 256 elements (degree 3 x 3, 361 control points)") !=
         std::string::npos);
   for (const char* f :
-       {"steps.csv", "summary.json", "model_used.json", "shell.pvd", "last_shell.vtk"})
+       {"steps.csv", "summary.json", "model_used.json", "shell.pvd", "last_shell.vts"})
     CHECK(fs::exists(out / f));
   // The load is 1e-5 of the self weight (linear range): -1e5 u_z at the free edge's mid-point
   // is the Scordelis-Lo value, 0.3006 within 0.1 % on this mesh.

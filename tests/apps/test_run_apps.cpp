@@ -63,12 +63,12 @@ const std::string kModel = std::string(IGA_SOURCE_DIR) + "/data/";
 TEST_CASE("iga run: a failure while writing the results exits 2 with summary.json and the rows",
           "[apps][iga][run]") {
   const fs::path out = fresh("iga_vtk_fails");
-  fs::create_directories(out / "last_rod.vtk");  // a folder where the last VTK file goes
+  fs::create_directories(out / "last_rod.vtu");  // a folder where the last VTK file goes
   const Result r = run(IGA_EXE, "run \"" + kModel + "rollup.json\" --quiet --out \"" +
                                     out.string() + "\" --set /output/vtk='\"last\"'");
   INFO(r.out);
   CHECK(r.status == 2);
-  CHECK_THAT(r.out, Catch::Contains("last_rod.vtk"));
+  CHECK_THAT(r.out, Catch::Contains("last_rod.vtu"));
   const std::string summary = slurp(out / "summary.json");
   CHECK_THAT(summary, Catch::Contains("\"status\": \"failed\""));
   CHECK(csv_rows(slurp(out / "steps.csv")).size() >= 11);  // header and every converged step
@@ -95,12 +95,12 @@ TEST_CASE("iga run: the model's plots of steps.csv columns are drawn (ring betwe
           "[apps][iga][run][moving_tools]") {
   const fs::path out = fresh("iga_ring_plots");
   run_plotted("ring_between_plates.json", out, "/output/vtk='\"last\"'", "force_travel.png");
-  for (const char* f : {"diameters.png", "last_rod.vtk", "last_rigid.vtk", "rigid.pvd"})
+  for (const char* f : {"diameters.png", "last_rod.vtu", "last_rigid.vts", "rigid.pvd"})
     CHECK(fs::exists(out / f));
   // The ring's plot has no published points: no reference file.
   CHECK_FALSE(fs::exists(out / "force_travel_reference.json"));
   // The moving plate is written where it is: its last position 0.4 below the first.
-  CHECK(slurp(out / "last_rigid.vtk") != slurp(out / "rigid.vtk"));
+  CHECK(slurp(out / "last_rigid.vts") != slurp(out / "rigid.vts"));
 }
 
 TEST_CASE("iga run: a plot's published points go beside it and onto it (hinged roof)",

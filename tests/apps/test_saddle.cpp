@@ -75,8 +75,8 @@ TEST_CASE("saddle --quick: the plate settles on the saddle, the contact zone gro
   for (const char* f :
        {"saddle.csv", "saddle_summary.json", "model_used.json", "contact_mu0.csv",
         "contact_mu0.125.csv", "saddle_load_deflection.png", "saddle_contact_mu0.png",
-        "saddle_contact_mu0.125.png", "mu0/rigid.vtk", "mu0/t1000_shell.vtk",
-        "mu0/t1000_contact.vtk", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv",
+        "saddle_contact_mu0.125.png", "mu0/rigid.vts", "mu0/t1000_shell.vts",
+        "mu0/t1000_contact.vtu", "mu0.125/snapshots_shell.pvd", "mu0.125/steps.csv",
         "saddle_blocks.csv", "saddle_sticking_circle.png", "contact_mu0.125_epsT250.csv",
         "saddle_contact_mu0.125_epsT250.png"})
     CHECK(fs::exists(out / f));

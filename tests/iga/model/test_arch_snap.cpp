@@ -108,7 +108,7 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   // ParaView's series runs by step (t falls and rises along the path): step k at time k.
   const std::string pvd = test::slurp(dir + "/rod.pvd");
   CHECK(pvd.find("timestep=\"" + std::to_string(P.size()) + "\" part=\"0\" file=\"step" +
-                 std::to_string(P.size()) + "_rod.vtk\"") != std::string::npos);
+                 std::to_string(P.size()) + "_rod.vtu\"") != std::string::npos);
 
   // Load control: the run cannot pass the first limit point (a step jumps or fails there).
   Analysis b = Analysis::load(kModel);

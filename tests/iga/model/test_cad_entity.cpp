@@ -16,6 +16,7 @@
 #include "iga/model/model.hpp"
 #include "tests/iga/analysis_error.hpp"
 #include "tests/support/files.hpp"
+#include "tests/support/vtk_xml_read.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
 namespace test_cad_entity {
@@ -186,9 +187,9 @@ TEST_CASE("cad entity: a plate pressed onto a filleted die read from STEP (data/
   CHECK(d.at(2).z() == Approx(d.at(3).z()).epsilon(0.005));
   CHECK(d.at(1).z() < -0.03);  // bent down over the fillet
   // The pressure on the middle of the flat top is q.
-  const std::string vtk = test::slurp(dir + "/last_shell.vtk");
-  const std::vector<double> x = test::vtk_points(vtk);
-  const std::vector<double> p = test::vtk_array(vtk, "SCALARS", "contact_pressure");
+  const test::VtkXmlFile vtk = test::read_vtk_xml(dir + "/last_shell.vts");
+  const std::vector<double> x = vtk.points();
+  const std::vector<double> p = vtk.field("contact_pressure");
   REQUIRE(p.size() * 3 == x.size());
   int n = 0;
   for (std::size_t i = 0; i < p.size(); ++i)
@@ -248,9 +249,9 @@ TEST_CASE("cad entity: face seams leave no trace: the plate on the die split int
     Analysis a = Analysis::from_json(doc, kData + "plate_on_die.json");
     const AnalysisResult r = a.run(nullptr, dir);
     REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
-    const std::string vtk = test::slurp(dir + "/last_shell.vtk");
-    return std::make_tuple(r.steps.back().displacements, test::vtk_points(vtk),
-                           test::vtk_array(vtk, "SCALARS", "contact_pressure"));
+    const test::VtkXmlFile vtk = test::read_vtk_xml(dir + "/last_shell.vts");
+    return std::make_tuple(r.steps.back().displacements, vtk.points(),
+                           vtk.field("contact_pressure"));
   };
   const auto [u_whole, x_whole, p_whole] = run("cad/die_fillet.step", "die_whole");
   const auto [u_split, x_split, p_split] = run("cad/die_fillet_split.step", "die_split");

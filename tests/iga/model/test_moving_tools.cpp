@@ -101,7 +101,7 @@ TEST_CASE("moving tools: a belt on a driven drum carries T0 e^{+-mu phi} at its 
     CHECK(F.norm() == Approx((ratio + 1.0) * kT0).epsilon(2e-3));  // both spans along -y
     // The moving drum is written where it is, a series rigid.pvd (vtk "all" in the data file is
     // switched off here: the last step's files only).
-    CHECK(fs::exists(fs::path(dir) / "last_rigid.vtk"));
+    CHECK(fs::exists(fs::path(dir) / "last_rigid.vts"));
     CHECK(test::slurp(fs::path(dir) / "steps.csv").find("rope_on_drum_Mz") != std::string::npos);
   }
   // A small rotation first: part of the arc sticks and T_B lies between the two limits.

@@ -1,6 +1,7 @@
-// The VTK XML writer: files parsed back by a small reader of the format (the XML elements'
-// types, names, components and offsets; the raw appended blocks with their UInt64 byte counts)
-// give back the points, cells and fields written, bit for bit (no formatting in between).
+// The VTK XML writer: files parsed back by a small reader of the format
+// (tests/support/vtk_xml_read.hpp: the XML elements' types, names, components and offsets; the
+// raw appended blocks with their UInt64 byte counts) give back the points, cells and fields
+// written, bit for bit (no formatting in between).
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -14,6 +15,7 @@
 
 #include "iga/output/vtk_xml_writer.hpp"
 #include "tests/support/files.hpp"
+#include "tests/support/vtk_xml_read.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
 namespace test_vtk_xml_writer {
@@ -23,53 +25,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// One DataArray read back: its attributes and its values as doubles.
-struct Array {
-  std::string type;
-  int components = 1;
-  std::vector<double> values;
-};
-
-/// The DataArrays of a file by name ("Points" for the points), read through their offsets.
-std::map<std::string, Array> read_back(const fs::path& file, std::string& header) {
-  const std::string s = iga::test::slurp(file);
-  const std::size_t start = s.find("<AppendedData encoding=\"raw\">");
-  REQUIRE(start != std::string::npos);
-  const std::size_t data = s.find('_', start) + 1;
-  header = s.substr(0, start);
-  std::map<std::string, Array> out;
-  const std::regex element(
-      "<DataArray type=\"(\\w+)\"(?: Name=\"(\\w+)\")? NumberOfComponents=\"(\\d+)\" "
-      "format=\"appended\" offset=\"(\\d+)\"/>");
-  for (auto it = std::sregex_iterator(header.begin(), header.end(), element);
-       it != std::sregex_iterator(); ++it) {
-    Array a;
-    a.type = (*it)[1];
-    a.components = std::stoi((*it)[3]);
-    const std::size_t at = data + std::stoull((*it)[4]);
-    std::uint64_t bytes = 0;
-    REQUIRE(at + sizeof bytes <= s.size());
-    std::memcpy(&bytes, s.data() + at, sizeof bytes);
-    REQUIRE(at + sizeof bytes + bytes <= s.size());
-    const char* p = s.data() + at + sizeof bytes;
-    // (An empty block has no bytes to copy: memcpy must not get the null data() of an empty
-    // vector.)
-    if (a.type == "Float64") {
-      a.values.resize(bytes / 8);
-      if (bytes > 0) std::memcpy(a.values.data(), p, bytes);
-    } else if (a.type == "Int64") {
-      std::vector<std::int64_t> v(bytes / 8);
-      if (bytes > 0) std::memcpy(v.data(), p, bytes);
-      a.values.assign(v.begin(), v.end());
-    } else {
-      REQUIRE(a.type == "UInt8");
-      for (std::uint64_t k = 0; k < bytes; ++k)
-        a.values.push_back(static_cast<unsigned char>(p[k]));
-    }
-    out[(*it)[2].matched ? std::string((*it)[2]) : std::string()] = a;
-  }
-  CHECK_THAT(s, Catch::EndsWith("\n  </AppendedData>\n</VTKFile>\n"));
-  return out;
+/// The DataArrays of a file by name (tests/support/vtk_xml_read.hpp), its header, and its end.
+std::map<std::string, test::VtkXmlArray> read_back(const fs::path& file, std::string& header) {
+  const test::VtkXmlFile f = test::read_vtk_xml(file);
+  header = f.header;
+  CHECK(f.tail == "\n  </AppendedData>\n</VTKFile>\n");
+  return f.arrays;
 }
 
 fs::path temp_dir() {

@@ -1,0 +1,91 @@
+// Output sinks: where a run's results go, apart from any file format. The driver
+// (iga/model/analysis) hands every sink of a run the same things, through one interface: the
+// columns of the steps table, the row of each converged step, snapshots of sampled meshes (the
+// field series: bodies, contact points, tools) and the summary at the end. Each sink writes what
+// it keeps in its own format: the steps table as CSV (steps.csv), the summary as JSON
+// (summary.json), the field series as legacy VTK (.vtk) or VTK XML (.vts/.vtu), each series with
+// a ParaView collection (.pvd). Formats are registered by name (register_output_format), so a
+// new one is a new sink and a registration; the driver does not change.
+//
+// Notation: a row is one step's values in the table's columns; a snapshot is the meshes of one
+// state, each in a series (empty: a file outside any series) under a file stem; its key is its
+// place in the series (the pseudo-time t, or under arc length the step number).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "geometry/json_reader.hpp"
+#include "iga/core/sampled_mesh.hpp"
+#include "iga/core/state_archive.hpp"
+
+namespace iga {
+
+/// One mesh of a snapshot: its series (empty: not in a series), the file stem it is written
+/// under (relative to the output folder, no extension), a title (formats that keep one) and the
+/// mesh with its fields.
+struct MeshOutput {
+  std::string series, stem, title;
+  SampledMesh mesh;
+};
+
+/// A file a sink wrote (relative to the output folder) and its series (empty: none).
+struct OutputFileRef {
+  std::string series, file;
+};
+
+/// Where a run's results go. Every call has a default that ignores what the sink does not keep.
+/// A sink throws std::runtime_error naming the file when it cannot write; the driver ends the run
+/// with the error, keeping what was written before.
+class OutputSink {
+ public:
+  virtual ~OutputSink() = default;
+  /// The run starts writing into `dir` (which exists): the table's columns, in order. A
+  /// restarted run's sink has read back its earlier rows and series (archive) before.
+  virtual void open(const std::string& dir, const std::vector<std::string>& columns) {
+    (void)dir;
+    (void)columns;
+  }
+  /// The row of a converged step, in the columns' order (counts as whole numbers; any value may
+  /// be non-finite: no file may hold one).
+  virtual void row(const std::vector<double>& values) { (void)values; }
+  /// The meshes of one state, with their series' key; returns the files written, in the order of
+  /// the meshes (none: the sink keeps no fields).
+  virtual std::vector<OutputFileRef> snapshot(double key, const std::vector<MeshOutput>& meshes) {
+    (void)key;
+    (void)meshes;
+    return {};
+  }
+  /// The run's summary, at its end whatever the outcome.
+  virtual void close(const Json& summary) { (void)summary; }
+  /// The sink's part of a restart file, written or read back (StateArchive): what a restarted
+  /// run needs to go on with the same files (rows so far, series so far).
+  virtual void archive(StateArchive& a) { (void)a; }
+};
+
+/// Makes a sink of a format.
+using OutputSinkFactory = std::function<std::unique_ptr<OutputSink>()>;
+
+/// Registers a format under a name (replacing one of the name). Built in:
+///   "csv"      the steps table as steps.csv (12 significant digits; a non-finite value is an
+///              empty cell), one row written and flushed per converged step;
+///   "summary"  the summary as summary.json (indented; non-finite numbers are null);
+///   "vtk"      the field series as legacy ASCII VTK files (.vtk) and .pvd collections;
+///   "vtk_xml"  the field series as VTK XML files with raw binary appended data (.vts for
+///              grids, .vtu for points and polylines) and .pvd collections.
+void register_output_format(const std::string& name, OutputSinkFactory factory);
+
+/// A sink of the named format; std::invalid_argument naming the known formats if there is none.
+std::unique_ptr<OutputSink> make_output_sink(const std::string& name);
+
+/// The names of the registered formats, sorted.
+std::vector<std::string> output_format_names();
+
+/// Writes each mesh as one file of the field format `format` ("vtk", "vtk_xml", or a registered
+/// one) into dir, outside any series; returns the files in the meshes' order.
+std::vector<OutputFileRef> write_meshes(const std::string& format, const std::string& dir,
+                                        const std::vector<MeshOutput>& meshes);
+
+}  // namespace iga
