@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include "apps/common/app_common.hpp"
+#include "iga/contact_integrals/rod_contact_problem.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/output/output_format.hpp"
 
@@ -333,7 +334,7 @@ void run_case(const RopeOptions& o, const RopeModel& m, const Case& c, CaseRun& 
     run.friction_torque.clear();
     const Json& rope = d.at(m.ptr.phi_deg.parent_pointer());
     auto keep_pressure = [&](const VectorXd&, double t, const AnalysisStep&) {
-      const CurveContactPair* rc = a.rod_contact();
+      const CurveContactPair* rc = a.pair_as<CurveContactPair>();
       if (rc && o.torsion) {  // the friction's moment about the rope's axis, integrated
         double torque = 0.0;
         for (const CurveContactPoint& cp : rc->contact().points()) torque += cp.weight * cp.torque;

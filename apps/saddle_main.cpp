@@ -48,6 +48,7 @@
 
 #include "apps/common/app_common.hpp"
 #include "apps/common/resources.hpp"
+#include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/output/vtk_writer.hpp"
 
@@ -268,7 +269,7 @@ BlockResult run_block(const BlockModel& bm, double a, double mu, double eps_t,
                  {"knots", {{"u", {0, 0, 0, 1, 1, 1}}, {"v", {0, 0, 0, 1, 1, 1}}}},
                  {"control_points", pts}};
   Analysis an = Analysis::from_json(d, bm.file);
-  const SurfaceContactPair* contact = an.shell_contact();
+  const SurfaceContactPair* contact = an.pair_as<SurfaceContactPair>();
   if (contact == nullptr)
     throw std::invalid_argument(
         bm.file + ": the block check needs a shell body with a surface_to_rigid contact pair");
@@ -441,7 +442,7 @@ bool run_plate(const SaddleOptions& o, const Saddle& sd, const RunSpec& run, con
   d[sd.app.mu] = run.mu;
   d[sd.app.eps_t] = run.eps_t;
   Analysis an = Analysis::from_json(d, o.model_file);
-  SurfaceContactPair* contact = an.shell_contact();
+  SurfaceContactPair* contact = an.pair_as<SurfaceContactPair>();
   if (contact == nullptr)
     throw std::invalid_argument(
         o.model_file + ": the saddle app needs a shell body with a surface_to_rigid contact pair");

@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "geometry/constructions.hpp"
+#include "iga/model/body_types.hpp"
 #include "iga/model/model.hpp"
 #include "iga/model/sections.hpp"
 #include "iga/output/output_format.hpp"
@@ -93,15 +94,11 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
       root.has("materials") ? root["materials"] : JsonCursor(no_materials, file);
   if (!materials.json().is_object()) materials.fail_type("an object of named materials");
   for (const std::string& k : materials.keys()) {  // every entry is checked, used or not
-    const JsonCursor m = materials[k];
-    if (one_of(m["type"], {"rod", "rod_circular", "shell"}) == "shell")
-      parse_shell_material(m);
-    else
-      parse_rod_material(m);
+    check_material(materials[k]);
   }
 
-  // The bodies, rods and shells, each with the conditions, loads and contact pairs that name
-  // it; every such entry must name one of them.
+  // The bodies, each built by the reader of its type (body_types.hpp) with the conditions,
+  // loads and contact pairs that name it; every such entry must name one of them.
   const JsonCursor bodies = root["bodies"];
   if (!bodies.json().is_object() || bodies.size() == 0)
     bodies.fail_type("an object of named bodies (at least one)");
@@ -117,12 +114,8 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     bc.body_index = static_cast<int>(a.bodies_.size());
     const JsonCursor b = bodies[name];
     if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
-    bc.kind = one_of(b["type"], {"rod", "shell"}) == "rod" ? BodyKind::kRod : BodyKind::kShell;
-    std::unique_ptr<Body> body;
-    if (bc.kind == BodyKind::kRod)
-      body = build_rod(root, b, bc, a.geometry_, materials);
-    else
-      body = build_shell(root, b, bc, a.geometry_, materials);
+    std::unique_ptr<Body> body =
+        body_type(b["type"]).build(BodyInput{root, b, bc, a.geometry_, materials});
     a.body_names_.push_back(name);
     a.bodies_.push_back(std::move(body));
     a.system_->add(*a.bodies_.back());
@@ -195,31 +188,6 @@ std::pair<Vector3d, Vector3d> Analysis::tool_load(int k) const {
 
 Analysis Analysis::load(const std::string& path) {
   return from_json(read_json_file(path), path);
-}
-
-BodyKind Analysis::body_kind() const {
-  return dynamic_cast<const ShellProblem*>(&body(0)) ? BodyKind::kShell : BodyKind::kRod;
-}
-
-RodProblem& Analysis::rod_problem() {
-  auto* p = dynamic_cast<RodProblem*>(&body(0));
-  if (p == nullptr)
-    throw std::logic_error("Analysis::rod_problem: the body is not a torsion-free rod");
-  return *p;
-}
-
-ShellProblem& Analysis::shell_problem() {
-  auto* p = dynamic_cast<ShellProblem*>(&body(0));
-  if (p == nullptr) throw std::logic_error("Analysis::shell_problem: the body is a rod");
-  return *p;
-}
-
-CurveContactPair* Analysis::rod_contact() {
-  return pairs_.empty() ? nullptr : dynamic_cast<CurveContactPair*>(pairs_.front().pair);
-}
-
-SurfaceContactPair* Analysis::shell_contact() {
-  return pairs_.empty() ? nullptr : dynamic_cast<SurfaceContactPair*>(pairs_.front().pair);
 }
 
 std::string Analysis::describe() const {

@@ -15,21 +15,18 @@
 #include <functional>
 #include <iosfwd>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "geometry/geometry_io.hpp"
 #include "geometry/json_reader.hpp"
-#include "iga/contact_integrals/rod_contact_problem.hpp"
-#include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/core/body_system.hpp"
 #include "iga/core/state_archive.hpp"
 #include "iga/output/output_sink.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
 
 namespace iga {
-
-enum class BodyKind { kRod, kShell };
 
 /// A point of the body whose displacement is recorded per step ("output": "monitors").
 struct AnalysisMonitor {
@@ -145,16 +142,24 @@ class Analysis {
   /// All bodies as one problem (the solver's).
   BodySystem& problem() { return *system_; }
 
-  // ---- the first body, typed (for programs and tests that know their model) -----------------
-  /// The kind of the first body.
-  BodyKind body_kind() const;
-  /// The first body as a rod (shell) problem; std::logic_error if it is a shell (rod).
-  RodProblem& rod_problem();
-  ShellProblem& shell_problem();
-  /// The first contact pair as a rod's CTRS pair (a shell's STAS pair), or nullptr if it is not
-  /// one.
-  CurveContactPair* rod_contact();
-  SurfaceContactPair* shell_contact();
+  // ---- bodies and pairs as their types (for programs and tests that know their model) --------
+  /// Body b as the type T the model built (e.g. RodProblem, ShellProblem; the caller includes
+  /// its header); std::logic_error naming the body if it is not a T.
+  template <class T>
+  T& body_as(int b = 0) {
+    auto* p = dynamic_cast<T*>(&body(b));
+    if (p == nullptr)
+      throw std::logic_error("Analysis::body_as: body \"" + body_name(b) + "\" (type \"" +
+                             body(b).type() + "\") is not of the type asked for");
+    return *p;
+  }
+  /// Pair k as the type T (e.g. CurveContactPair, SurfaceContactPair), or nullptr if there is no
+  /// pair k or it is not a T.
+  template <class T>
+  T* pair_as(int k = 0) {
+    if (k < 0 || k >= num_pairs()) return nullptr;
+    return dynamic_cast<T*>(pairs_[static_cast<std::size_t>(k)].pair);
+  }
 
   bool has_contact() const { return !pairs_.empty(); }
   /// Contact point counts of the last assembly, summed over the pairs (zeros without contact).

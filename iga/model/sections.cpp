@@ -1,6 +1,8 @@
-// JSON parsing of the analysis sections (docs/model_format.md, "Analysis sections"): load
-// curves, materials, the rod and shell bodies with their boundary conditions, loads and contact
-// pair, the solver and output sections. Every error names the file, the JSON path and the value.
+// JSON parsing of the analysis sections (docs/model_format.md, "Analysis sections") that all body
+// types share: load curves, rigid motions, the parts of boundary conditions, loads and contact
+// pairs common to every body (points, vectors, curves, tools), the solver and output sections.
+// The body types' own readers: rod_body.cpp, shell_body.cpp (body_types.hpp). Every error names
+// the file, the JSON path and the value.
 #include "iga/model/sections.hpp"
 
 #include <algorithm>
@@ -23,7 +25,6 @@
 #include "iga/model/model.hpp"
 #include "iga/output/output_format.hpp"
 #include "iga/output/vtk_writer.hpp"
-#include "iga/rod/twisting_rod.hpp"
 
 namespace iga::model_detail {
 
@@ -51,13 +52,6 @@ int int_or(const JsonCursor& o, const char* key, int fallback, int lo, int hi, c
   const int n = c.as_int();
   if (n < lo || n > hi) c.fail(std::string("must be in ") + range);
   return n;
-}
-/// The penalty and friction keys of a contact pair: eps_N > 0, eps_T >= 0 (0), mu >= 0 (0).
-template <class Params>
-void penalty_and_friction(const JsonCursor& c, Params& p) {
-  p.eps_n = positive(c["eps_N"]);
-  p.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
-  p.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;
 }
 Vector3d vec3(const JsonCursor& c) {
   if (!c.json().is_array() || c.json().size() != 3) c.fail_type("3 components [x, y, z]");
@@ -195,39 +189,25 @@ void check_entry_bodies(const JsonCursor& root, const Context& ctx) {
   }
 }
 
-/// A control point: rod "start", "end" or an index; shell [i, j] (i along u) or an index
-/// i + n_u j.
 int point_index(const JsonCursor& c, const Context& ctx) {
-  if (ctx.kind == BodyKind::kRod && c.json().is_string()) {
-    const std::string s = one_of(c, {"start", "end"});
-    return s == "start" ? 0 : ctx.n_points - 1;
-  }
-  if (ctx.kind == BodyKind::kShell && c.json().is_array()) {
-    if (c.size() != 2) c.fail_type("a control point [i, j] or an index");
-    const int i = c[0].as_int(), j = c[1].as_int();
-    if (i < 0 || i >= ctx.nu) c[0].fail("i must be in 0.." + std::to_string(ctx.nu - 1));
-    if (j < 0 || j >= ctx.nv) c[1].fail("j must be in 0.." + std::to_string(ctx.nv - 1));
-    return i + ctx.nu * j;
-  }
+  const BodyShape& shape = ctx.shape;
+  if (shape.named_point)
+    if (const int i = shape.named_point(c); i >= 0) return i;
   const int i = c.as_int();
-  if (i < 0 || i >= ctx.n_points)
-    c.fail("control point index must be in 0.." + std::to_string(ctx.n_points - 1));
+  if (i < 0 || i >= shape.n_points)
+    c.fail("control point index must be in 0.." + std::to_string(shape.n_points - 1));
   return i;
 }
 
-/// "all", "corners" (shell: the four corner points; rod: both ends), one point or a list.
 std::vector<int> point_list(const JsonCursor& pc, const Context& ctx) {
+  const BodyShape& shape = ctx.shape;
   std::vector<int> points;
   if (pc.json().is_string() && (pc.as_string() == "all" || pc.as_string() == "corners")) {
-    if (pc.as_string() == "all") {
-      for (int i = 0; i < ctx.n_points; ++i) points.push_back(i);
-    } else if (ctx.kind == BodyKind::kShell) {
-      points = {0, ctx.nu - 1, ctx.nu * (ctx.nv - 1), ctx.nu * ctx.nv - 1};
-    } else {
-      points = {0, ctx.n_points - 1};
-    }
-  } else if (pc.json().is_array() &&
-             !(ctx.kind == BodyKind::kShell && pc.size() == 2 && pc[0].json().is_number())) {
+    if (pc.as_string() == "all")
+      for (int i = 0; i < shape.n_points; ++i) points.push_back(i);
+    else
+      points = shape.corners;
+  } else if (pc.json().is_array() && !(shape.array_is_point && shape.array_is_point(pc))) {
     pc.expect_array(1);
     for (std::size_t k = 0; k < pc.size(); ++k) points.push_back(point_index(pc[k], ctx));
   } else {
@@ -251,15 +231,6 @@ std::vector<int> components(const JsonCursor& o) {
   return comps;
 }
 
-/// Unit tangent pointing out of the curve at one of its ends.
-Vector3d outward_tangent(const NurbsCurve& C, bool at_end) {
-  const Interval D = C.domain();
-  const Vector3d d = C.derivs(at_end ? D.hi : D.lo, 1).d[1].normalized();
-  return at_end ? d : Vector3d(-d);
-}
-
-/// A vector given as [x, y, z] (key `vec_key`), or as "magnitude" along "direction", where the
-/// direction is [x, y, z] or "outward_tangent" (at the curve's start or end, `where`).
 Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& ctx, int where) {
   if (o.has(vec_key)) {
     if (o.has("magnitude") || o.has("direction"))
@@ -269,27 +240,12 @@ Vector3d vector_value(const JsonCursor& o, const char* vec_key, const Context& c
   }
   const double m = o["magnitude"].as_number();
   const JsonCursor d = o["direction"];
-  if (d.json().is_string() && ctx.kind == BodyKind::kRod) {
-    one_of(d, {"outward_tangent"});
-    if (where != 0 && where != 1)
-      d.fail("\"outward_tangent\" needs the point \"start\" or \"end\"");
-    return m * outward_tangent(*ctx.curve, where == 1);
-  }
+  if (d.json().is_string() && ctx.shape.named_direction)
+    return m * ctx.shape.named_direction(d, where);
   const Vector3d v = vec3(d);
   if (!(v.norm() > 0.0)) d.fail("must be a non-zero vector");
   return m * v.normalized();
 }
-/// "start", "end" or a parameter in the curve's domain.
-double curve_parameter(const JsonCursor& c, const NurbsCurve& C) {
-  const Interval D = C.domain();
-  if (c.json().is_string()) return one_of(c, {"start", "end"}) == "start" ? D.lo : D.hi;
-  const double xi = c.as_number();
-  if (xi < D.lo || xi > D.hi)
-    c.fail("parameter must lie in the curve's domain [" + std::to_string(D.lo) + ", " +
-           std::to_string(D.hi) + "]");
-  return xi;
-}
-
 /// 0 for "start", 1 for "end", -1 otherwise.
 int end_of(const JsonCursor& c) {
   if (!c.json().is_string()) return -1;
@@ -319,15 +275,6 @@ void prescribe_following(const JsonCursor& o, ControlPointProblem& p, int i, con
     });
 }
 
-/// A force that turns with a moving tool, F(t) = Q(t) F curve(t): three loads along the axes,
-/// each along its own curve; add(direction, curve) adds one.
-template <class Add>
-void turning_force(const Vector3d& F, const LoadCurve& curve,
-                   const std::shared_ptr<const RigidMotion>& m, Add add) {
-  for (int k = 0; k < 3; ++k)
-    add(Vector3d::Unit(k), [m, F, curve, k](double t) { return (m->pose(t).Q * F)[k] * curve(t); });
-}
-
 /// {"type": "fix", "points": ..., "components": [...]} (rods and shells).
 void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p) {
   o.expect_object({"type", "body", "points", "components", "description"});
@@ -335,100 +282,6 @@ void fix_points(const JsonCursor& o, const Context& ctx, ControlPointProblem& p)
   for (int i : point_list(o["points"], ctx))
     for (int c : comps)
       if (!p.constrained(i, c)) p.fix(i, c);
-}
-
-/// The knot of a rod with torsion at c: "start", "end" or a knot index.
-int twist_knot(const JsonCursor& c, const TwistingRodProblem& p) {
-  if (c.json().is_string())
-    return p.end_knot(one_of(c, {"start", "end"}) == "start" ? RodEnd::kStart : RodEnd::kEnd);
-  const int k = c.as_int();
-  if (k < 0 || k >= p.rod().num_knots())
-    c.fail("knot index must be in 0.." + std::to_string(p.rod().num_knots() - 1));
-  return k;
-}
-
-/// Boundary conditions of rods, with and without torsion (P: RodProblem, TwistingRodProblem).
-template <class P>
-void parse_rod_boundary_condition(const JsonCursor& o, const Context& ctx, P& p) {
-  constexpr bool kTwist = std::is_same_v<P, TwistingRodProblem>;
-  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type =
-      kTwist ? one_of(o["type"], {"fix", "clamp", "symmetry", "displacement", "twist"})
-             : one_of(o["type"], {"fix", "clamp", "symmetry", "displacement"});
-  check_body(o, ctx);
-  try {
-    if (type == "fix") {
-      fix_points(o, ctx, p);
-    } else if (type == "clamp") {
-      o.expect_object({"type", "body", "end", "description"});
-      const std::string e = one_of(o["end"], {"start", "end"});
-      p.clamp(e == "start" ? RodEnd::kStart : RodEnd::kEnd);
-    } else if (type == "twist") {  // the twist at a knot, fixed or along a load curve (radians)
-      if constexpr (kTwist) {
-        o.expect_object({"type", "body", "at", "angle", "curve", "description"});
-        const int k = twist_knot(o["at"], p);
-        const double angle = o.has("angle") ? o["angle"].as_number() : 0.0;
-        if (angle == 0.0 && !o.has("curve"))
-          p.fix_twist(k);
-        else
-          p.prescribe_twist(k, angle, curve_of(o, ctx));
-      }
-    } else if (type == "symmetry") {  // the end crosses a symmetry plane of normal n
-      o.expect_object({"type", "body", "end", "normal", "description"});
-      const std::string e = one_of(o["end"], {"start", "end"});
-      const Vector3d n = vec3(o["normal"]);
-      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
-      p.symmetry(e == "start" ? RodEnd::kStart : RodEnd::kEnd, n);
-    } else {
-      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
-                       "motion", "description"});
-      const int i = point_index(o["point"], ctx);
-      const Vector3d d = vector_value(o, "value", ctx, end_of(o["point"]));
-      if (const auto m = motion_of(o, ctx))
-        prescribe_following(o, p, i, d, curve_of(o, ctx), m);
-      else
-        p.prescribe(i, d, curve_of(o, ctx));
-    }
-  } catch (const RodError& e) {
-    o.fail_plain(e.what());
-  }
-}
-
-/// Loads of rods, with and without torsion (P: RodProblem, TwistingRodProblem).
-template <class P>
-void parse_rod_load(const JsonCursor& o, const Context& ctx, P& p) {
-  constexpr bool kTwist = std::is_same_v<P, TwistingRodProblem>;
-  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type = kTwist
-                               ? one_of(o["type"], {"point_force", "line_load", "moment", "torque"})
-                               : one_of(o["type"], {"point_force", "line_load", "moment"});
-  check_body(o, ctx);
-  auto at = [&](const JsonCursor& c) { return curve_parameter(c, *ctx.curve); };
-  if (type == "point_force") {
-    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
-                     "motion", "description"});
-    const double xi = at(o["at"]);
-    const Vector3d F = vector_value(o, "force", ctx, end_of(o["at"]));
-    if (const auto m = motion_of(o, ctx))
-      turning_force(F, curve_of(o, ctx), m,
-                    [&](const Vector3d& e, LoadCurve c) { p.add_point_load(xi, e, std::move(c)); });
-    else
-      p.add_point_load(xi, F, curve_of(o, ctx));
-  } else if (type == "line_load") {
-    o.expect_object({"type", "name", "body", "q", "curve", "description"});
-    p.add_line_load(vec3(o["q"]), curve_of(o, ctx));
-  } else if constexpr (kTwist) {
-    if (type == "torque") {
-      o.expect_object({"type", "name", "body", "at", "torque", "curve", "description"});
-      p.add_torque_at(at(o["at"]), o["torque"].as_number(), curve_of(o, ctx));
-    } else {
-      o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
-      p.add_moment_at(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
-    }
-  } else {
-    o.expect_object({"type", "name", "body", "at", "moment", "curve", "description"});
-    p.add_moment(at(o["at"]), vec3(o["moment"]), curve_of(o, ctx));
-  }
 }
 
 /// The rigid surface named at rc, shared by every pair that names it (ctx.rigids).
@@ -481,157 +334,6 @@ std::map<std::string, std::shared_ptr<const RigidMotion>> parse_rigid_motions(
     motions.emplace(name, std::move(motion));
   }
   return motions;
-}
-
-// ---- shell bodies -----------------------------------------------------------------------------
-
-SurfaceEdge parse_edge(const JsonCursor& c) {
-  const std::string e = one_of(c, {"u_min", "u_max", "v_min", "v_max"});
-  return e == "u_min"   ? SurfaceEdge::kUMin
-         : e == "u_max" ? SurfaceEdge::kUMax
-         : e == "v_min" ? SurfaceEdge::kVMin
-                        : SurfaceEdge::kVMax;
-}
-
-/// A parameter pair (u, v) inside the surface's domain.
-Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S) {
-  const std::vector<double> uv = c.as_numbers();
-  if (uv.size() != 2) c.fail_type("surface parameters [u, v]");
-  const Domain2 D = S.domain();
-  const Interval I[2] = {D.u, D.v};
-  for (int k = 0; k < 2; ++k)
-    if (uv[k] < I[k].lo || uv[k] > I[k].hi)
-      c[static_cast<std::size_t>(k)].fail("parameter must lie in the surface's domain [" +
-                                          std::to_string(I[k].lo) + ", " + std::to_string(I[k].hi) +
-                                          "]");
-  return {uv[0], uv[1]};
-}
-
-void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
-  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type =
-      one_of(o["type"], {"fix", "displacement", "simply_supported", "clamp", "symmetry", "spring"});
-  check_body(o, ctx);
-  try {
-    if (type == "fix") {
-      fix_points(o, ctx, p);
-    } else if (type == "displacement") {
-      o.expect_object({"type", "body", "point", "value", "magnitude", "direction", "curve",
-                       "motion", "description"});
-      const int i = point_index(o["point"], ctx);
-      const Vector3d d = vector_value(o, "value", ctx, -1);
-      if (const auto m = motion_of(o, ctx))
-        prescribe_following(o, p, i, d, curve_of(o, ctx), m);
-      else
-        p.prescribe(i, d, curve_of(o, ctx));
-    } else if (type == "simply_supported") {
-      o.expect_object({"type", "body", "edge", "components", "description"});
-      const std::vector<int> c = components(o);
-      const SurfaceEdge e = parse_edge(o["edge"]);
-      for (int k : c) p.simply_support(e, {k});
-    } else if (type == "clamp") {
-      o.expect_object({"type", "body", "edge", "description"});
-      p.clamp(parse_edge(o["edge"]));
-    } else if (type == "symmetry") {
-      o.expect_object({"type", "body", "edge", "normal", "description"});
-      const Vector3d n = vec3(o["normal"]);
-      if (!(n.norm() > 0.0)) o["normal"].fail("must be a non-zero vector");
-      p.symmetry(parse_edge(o["edge"]), n.normalized());
-    } else {
-      o.expect_object({"type", "body", "points", "stiffness", "curve", "direction", "description"});
-      const double k = positive(o["stiffness"]);
-      std::optional<Vector3d> d;
-      if (o.has("direction")) {
-        const Vector3d v = vec3(o["direction"]);
-        if (!(v.norm() > 0.0)) o["direction"].fail("must be a non-zero vector");
-        d = v.normalized();
-      }
-      // A spring's stiffness k curve(t); without a curve it is constant.
-      const LoadCurve curve = o.has("curve") ? curve_of(o, ctx) : constant_curve();
-      for (int i : point_list(o["points"], ctx)) p.add_spring(i, k, curve, d);
-    }
-  } catch (const ShellError& e) {
-    o.fail_plain(e.what());
-  }
-}
-
-void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
-  if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
-  const std::string type =
-      one_of(o["type"], {"surface_load", "pressure", "edge_load", "point_force"});
-  check_body(o, ctx);
-  if (type == "surface_load") {  // dead force per reference area
-    o.expect_object({"type", "name", "body", "q", "curve", "description"});
-    p.add_surface_load(vec3(o["q"]), curve_of(o, ctx));
-  } else if (type == "pressure") {  // follower, per current area, along +a_3
-    o.expect_object({"type", "name", "body", "p", "curve", "description"});
-    p.add_pressure(o["p"].as_number(), curve_of(o, ctx));
-  } else if (type == "edge_load") {  // dead force per reference length
-    o.expect_object({"type", "name", "body", "edge", "q", "curve", "description"});
-    p.add_edge_load(parse_edge(o["edge"]), vec3(o["q"]), curve_of(o, ctx));
-  } else {
-    o.expect_object({"type", "name", "body", "at", "force", "magnitude", "direction", "curve",
-                     "motion", "description"});
-    const Vector2d uv = surface_parameters(o["at"], *ctx.surface);
-    const Vector3d F = vector_value(o, "force", ctx, -1);
-    if (const auto m = motion_of(o, ctx))
-      turning_force(F, curve_of(o, ctx), m, [&](const Vector3d& e, LoadCurve c) {
-        p.add_point_load(uv[0], uv[1], e, std::move(c));
-      });
-    else
-      p.add_point_load(uv[0], uv[1], F, curve_of(o, ctx));
-  }
-}
-
-ShellMaterial parse_shell_material(const JsonCursor& m) {
-  m.expect_object({"type", "E", "nu", "thickness", "law", "thickness_points", "description"});
-  ShellMaterial s;
-  s.E = positive(m["E"]);
-  const JsonCursor n = m["nu"];
-  s.nu = n.as_number();
-  if (!(s.nu > -1.0 && s.nu < 0.5)) n.fail("must be in (-1, 0.5)");
-  s.thickness = positive(m["thickness"]);
-  if (m.has("law") && one_of(m["law"], {"saint_venant_kirchhoff", "neo_hookean"}) == "neo_hookean")
-    s.law = ShellLaw::kNeoHookean;
-  if (m.has("thickness_points")) {
-    const JsonCursor t = m["thickness_points"];
-    s.thickness_points = t.as_int();
-    if (s.thickness_points < 2 || s.thickness_points > kMaxGaussPoints)
-      t.fail("must be in [2, 20]");
-  }
-  return s;
-}
-
-RodSection parse_rod_material(const JsonCursor& m) {
-  const std::string type = one_of(m["type"], {"rod", "rod_circular"});
-  RodSection s;
-  if (type == "rod_circular") {
-    m.expect_object({"type", "E", "radius", "G", "nu", "description"});
-    const double E = positive(m["E"]), r = positive(m["radius"]);
-    s = RodSection::circular(E, r);
-    if (m.has("G") && m.has("nu")) m.fail_plain("give either \"G\" or \"nu\"");
-    double G = 0.0;
-    if (m.has("G")) G = positive(m["G"]);
-    if (m.has("nu")) {
-      const double nu = m["nu"].as_number();
-      if (!(nu > -1.0 && nu < 0.5)) m["nu"].fail("must be in (-1, 0.5)");
-      G = E / (2.0 * (1.0 + nu));
-    }
-    s.GJ = G * std::numbers::pi * r * r * r * r / 2.0;  // J: the polar moment of the circle
-    return s;
-  }
-  m.expect_object({"type", "EA", "EI", "EI1", "EI2", "GJ", "ref_direction", "description"});
-  if (m.has("GJ")) s.GJ = positive(m["GJ"]);
-  s.EA = positive(m["EA"]);
-  if (m.has("EI")) {
-    if (m.has("EI1") || m.has("EI2")) m.fail_plain("give either \"EI\" or \"EI1\" and \"EI2\"");
-    s.EI1 = s.EI2 = positive(m["EI"], true);
-  } else {
-    s.EI1 = positive(m["EI1"], true);
-    s.EI2 = positive(m["EI2"], true);
-  }
-  if (m.has("ref_direction")) s.ref_direction = vec3(m["ref_direction"]);
-  return s;
 }
 
 namespace {
@@ -839,13 +541,9 @@ AnalysisOutput parse_output(const JsonCursor& o, const std::vector<Context>& bod
       AnalysisMonitor mon;
       mon.body = ctx.body_index;
       mon.name = column_name(m["name"]);
-      if (ctx.kind == BodyKind::kShell) {
-        const Vector2d uv = surface_parameters(m["at"], *ctx.surface);
-        mon.u = uv[0];
-        mon.v = uv[1];
-      } else {
-        mon.u = curve_parameter(m["at"], *ctx.curve);
-      }
+      const Vector2d uv = ctx.shape.parameters(m["at"]);
+      mon.u = uv[0];
+      mon.v = uv[1];
       out.monitors.push_back(mon);
     }
   }
@@ -899,188 +597,22 @@ void check_plot_columns(const JsonCursor& o, const AnalysisOutput& out,
     }
 }
 
-/// Calls f on every entry of the array root[key] (if present) that belongs to the body
-/// ctx.body (check_entry_bodies has checked that each names a body).
-template <class F>
-void for_each_entry(const JsonCursor& root, const char* key, const Context& ctx, F f) {
-  if (!root.has(key)) return;
-  const JsonCursor list = root[key];
-  list.expect_array();
-  for (std::size_t k = 0; k < list.size(); ++k)
-    if (list[k]["body"].as_string() == ctx.body) f(list[k]);
-}
-
-/// A rod's contact pairs, boundary conditions and loads (P: RodProblem, TwistingRodProblem; the
-/// contact acts on the centre line's control points alone).
-template <class P>
-void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryModel& geometry,
-                        P& problem) {
-  for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
-    // The type first: a shell's contact keys would otherwise be reported as unknown keys.
-    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "curve_to_rigid")
-      c["type"].fail("a rod's contact is \"curve_to_rigid\"");
-    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "radius",
-                     "points_per_element", "enforcement", "penetration_tol", "max_augmentations",
-                     "slip_tol", "moment_about", "search_distance", "per_face", "description"});
-    check_body(c, ctx);
-    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
-    ContactParameters cp;
-    penalty_and_friction(c, cp);
-    cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
-    const ContactEnforcement enforcement = parse_enforcement(c);
-    const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
-    // per_face: a pair per piece (face) of the tool, so that a contact point touches several
-    // faces at once, each with its own gap, normal and friction history (issue 15, item 4).
-    const bool per_face = c.has("per_face") && c["per_face"].as_bool();
-    const int n_tools = per_face ? rigid->num_patches() : 1;
-    std::vector<std::shared_ptr<const RigidSurface>> tools;
-    tools.reserve(static_cast<std::size_t>(n_tools));
-    for (int i = 0; i < n_tools; ++i)
-      tools.push_back(per_face ? std::make_shared<const RigidSurface>(rigid->piece(i)) : rigid);
-    for (const std::shared_ptr<const RigidSurface>& tool : tools) {
-      auto pair = std::make_unique<CurveContactPair>(problem.rod().reference(), tool, cp, ppe);
-      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-      if (c.has("search_distance"))  // default: rope radius + the longest element chord
-        pair->contact().set_search_distance(positive(c["search_distance"]));
-      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
-        pair->set_motion(m->second);
-      if constexpr (std::is_same_v<P, TwistingRodProblem>)
-        pair->contact().set_twisting_rod(&problem.rod());
-      problem.attach(std::move(pair));
-    }
-  });
-  for_each_entry(root, "boundary_conditions", ctx,
-                 [&](const JsonCursor& o) { parse_rod_boundary_condition(o, ctx, problem); });
-  for_each_entry(root, "loads", ctx, [&](const JsonCursor& o) { parse_rod_load(o, ctx, problem); });
-}
-
-/// The rod body, its contact pair, boundary conditions and loads.
-std::unique_ptr<Body> build_rod(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                const GeometryModel& geometry, const JsonCursor& materials) {
-  b.expect_object({"type", "curve", "material", "quadrature_points", "bending", "stress_free",
-                   "torsion", "description"});
-  const JsonCursor cc = b["curve"];
-  ctx.curve = geometry.curve(cc.as_string());
-  if (ctx.curve == nullptr) cc.fail("names no curve of the geometry section");
-  // The size bound of constructed curves holds for explicit ones too (docs/model_format.md).
-  if (const long n = static_cast<long>(ctx.curve->knots().breaks().size()) - 1;
-      n > kMaxCurveElements)
-    cc.fail("the curve has " + std::to_string(n) + " elements, above the limit of " +
-            std::to_string(kMaxCurveElements) + " of a rod body");
+JsonCursor body_material(const JsonCursor& b, const JsonCursor& materials,
+                         const std::vector<std::string>& types, const std::string& body_type) {
   const JsonCursor mc = b["material"];
   if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
-  const JsonCursor mat = materials[mc.as_string()];
-  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) == "shell")
-    mc.fail("names a shell material; a rod needs type \"rod\" or \"rod_circular\"");
-  const RodSection section = parse_rod_material(mat);
-  const bool torsion = b.has("torsion") && b["torsion"].as_bool();
-  if (torsion && !(section.GJ > 0.0))
-    mc.fail(
-        "a rod with \"torsion\": true needs a torsional stiffness: \"GJ\" (type \"rod\") or "
-        "\"G\" or \"nu\" (type \"rod_circular\")");
-  if (torsion && b.has("bending"))
-    b["bending"].fail("a rod with torsion has its section frame: no \"bending\" measure to choose");
-  RodOptions opt;
-  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
-  if (b.has("bending"))
-    opt.bending =
-        one_of(b["bending"], {"transported_frame", "curvature_magnitude"}) == "transported_frame"
-            ? BendingMeasure::kTransportedFrame
-            : BendingMeasure::kCurvatureMagnitude;
-  if (b.has("stress_free"))
-    opt.straight_stress_free = one_of(b["stress_free"], {"reference", "straight"}) == "straight";
-  try {
-    if (torsion) {
-      auto problem = std::make_unique<TwistingRodProblem>(TwistingRod(*ctx.curve, section, opt));
-      ctx.n_points = problem->rod().num_control_points();
-      attach_rod_entries(root, ctx, geometry, *problem);
-      return problem;
+  JsonCursor mat = materials[mc.as_string()];
+  const std::string type = mat["type"].as_string();
+  if (std::find(types.begin(), types.end(), type) == types.end()) {
+    std::string list;
+    for (const std::string& t : types) {
+      list += list.empty() ? "\"" : " or \"";
+      list += t;
+      list += '"';
     }
-    auto problem = std::make_unique<RodProblem>(KirchhoffRod(*ctx.curve, section, opt));
-    ctx.n_points = problem->rod().num_control_points();
-    attach_rod_entries(root, ctx, geometry, *problem);
-    return problem;
-  } catch (const RodError& e) {
-    b.fail_plain(e.what());
+    mc.fail("names a material of type \"" + type + "\"; a " + body_type + " needs type " + list);
   }
-}
-
-/// The shell body, its contact pair, boundary conditions, springs and loads.
-std::unique_ptr<ShellProblem> build_shell(const JsonCursor& root, const JsonCursor& b, Context& ctx,
-                                          const GeometryModel& geometry,
-                                          const JsonCursor& materials) {
-  b.expect_object({"type", "surface", "material", "quadrature_points", "description"});
-  const JsonCursor sc = b["surface"];
-  ctx.surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
-  if (ctx.surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
-  // A shell costs about 50 KB per control point to set up (its element matrices): the bound
-  // of constructed surfaces holds for explicit ones too (docs/model_format.md).
-  if (const long n = static_cast<long>(ctx.surface->num_u()) * ctx.surface->num_v();
-      n > kMaxSurfaceControlPoints)
-    sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
-            std::to_string(kMaxSurfaceControlPoints) + " of a shell body");
-  const JsonCursor mc = b["material"];
-  if (!materials.has(mc.as_string())) mc.fail("names no entry of \"materials\"");
-  const JsonCursor mat = materials[mc.as_string()];
-  if (one_of(mat["type"], {"rod", "rod_circular", "shell"}) != "shell")
-    mc.fail("names a rod material; a shell needs type \"shell\"");
-  ShellOptions opt;
-  opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
-  std::optional<KirchhoffLoveShell> shell;
-  try {
-    shell.emplace(*ctx.surface, parse_shell_material(mat), opt);
-  } catch (const std::invalid_argument& e) {
-    sc.fail(e.what());
-  }
-  ctx.nu = ctx.surface->num_u();
-  ctx.nv = ctx.surface->num_v();
-  ctx.n_points = ctx.nu * ctx.nv;
-
-  auto problem = std::make_unique<ShellProblem>(std::move(*shell));
-  for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
-    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
-      c["type"].fail("a shell's contact is \"surface_to_rigid\"");
-    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
-                     "points_per_direction", "search_distance", "enforcement", "penetration_tol",
-                     "slip_tol", "max_augmentations", "moment_about", "description"});
-    check_body(c, ctx);
-    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
-    for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
-      if (piece == ctx.surface)
-        c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
-                        "\"; the rigid surface must be another surface");
-    SurfaceContactParameters cp;
-    penalty_and_friction(c, cp);
-    if (c.has("strategy"))
-      cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
-                        ? SurfaceContactStrategy::kRigidMaster
-                        : SurfaceContactStrategy::kRigidSlave;
-    if (c.has("face")) {
-      const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
-      cp.face = f == "lower"   ? ShellFace::kLower
-                : f == "upper" ? ShellFace::kUpper
-                               : ShellFace::kMid;
-    }
-    cp.points_per_direction =
-        int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
-    if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
-    const ContactEnforcement enforcement = parse_enforcement(c);
-    cp.thickness = problem->shell().material().thickness;
-    try {
-      auto pair = std::make_unique<SurfaceContactPair>(problem->shell().reference(), rigid, cp);
-      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
-        pair->set_motion(m->second);
-      problem->attach(std::move(pair));
-    } catch (const std::invalid_argument& e) {
-      c.fail_plain(e.what());
-    }
-  });
-  for_each_entry(root, "boundary_conditions", ctx,
-                 [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
-  for_each_entry(root, "loads", ctx,
-                 [&](const JsonCursor& o) { parse_shell_load(o, ctx, *problem); });
-  return problem;
+  return mat;
 }
 
 }  // namespace iga::model_detail

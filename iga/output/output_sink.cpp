@@ -130,8 +130,12 @@ class FieldSeriesSink final : public OutputSink {
 void write_legacy(const std::string& path, const MeshOutput& m) {
   write_vtk(path, m.mesh, m.title.empty() ? "iga" : m.title);
 }
-const char* legacy_extension(const SampledMesh& /*mesh*/) { return ".vtk"; }
-void write_xml(const std::string& path, const MeshOutput& m) { write_vtk_xml(path, m.mesh); }
+const char* legacy_extension(const SampledMesh& /*mesh*/) {
+  return ".vtk";
+}
+void write_xml(const std::string& path, const MeshOutput& m) {
+  write_vtk_xml(path, m.mesh);
+}
 
 struct Registry {
   std::mutex mutex;

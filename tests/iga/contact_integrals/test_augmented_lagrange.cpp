@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "iga/contact_integrals/rod_contact_problem.hpp"
+#include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/solvers/roundoff_probe.hpp"
 #include "tests/iga/analysis_error.hpp"
@@ -169,7 +171,7 @@ TEST_CASE(
       const AnalysisResult r = a.run();
       INFO(strategy << ", " << enforcement << ": " << r.solver.message);
       REQUIRE(r.solver.converged());
-      const SurfaceContact& c = a.shell_contact()->contact();
+      const SurfaceContact& c = a.pair_as<SurfaceContactPair>()->contact();
       double force = 0.0, deepest = 0.0;
       int active = 0;
       for (const SurfaceContactPoint& cp : c.points()) {
@@ -301,7 +303,7 @@ TEST_CASE(
                   << " augmentations): " << ra.solver.message);
   REQUIRE(ra.solver.converged());
   double worst = 0.0;
-  for (const SurfaceContactPoint& cp : al.shell_contact()->contact().points())
+  for (const SurfaceContactPoint& cp : al.pair_as<SurfaceContactPair>()->contact().points())
     if (cp.active) worst = std::max(worst, std::abs(cp.gap));
   CHECK(worst <= 3e-5);
   // Per converged step (see per_step): round-off may cut a step back in one run only.
@@ -335,8 +337,8 @@ TEST_CASE(
       Analysis a = Analysis::from_json(doc, "saddle.json");
       const AnalysisResult r = a.run();
       REQUIRE(r.solver.converged());
-      ShellProblem& p = a.shell_problem();  // with the contact pair attached
-      const SurfaceContact& contact = a.shell_contact()->contact();
+      ShellProblem& p = a.body_as<ShellProblem>();  // with the contact pair attached
+      const SurfaceContact& contact = a.pair_as<SurfaceContactPair>()->contact();
       int with_multiplier = 0;
       for (const SurfaceContactPoint& cp : contact.points())
         if (cp.lambda_n < 0.0) ++with_multiplier;

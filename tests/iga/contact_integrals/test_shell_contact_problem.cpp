@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "iga/contact_integrals/shell_contact_problem.hpp"
 #include "iga/model/analysis.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
@@ -70,8 +71,8 @@ TEST_CASE(
       Analysis a = Analysis::from_json(doc, kSaddle);
       const AnalysisResult r = a.run();
       REQUIRE(r.solver.converged());
-      ShellProblem& p = a.shell_problem();  // with the contact pair attached
-      const SurfaceContact& contact = a.shell_contact()->contact();
+      ShellProblem& p = a.body_as<ShellProblem>();  // with the contact pair attached
+      const SurfaceContact& contact = a.pair_as<SurfaceContactPair>()->contact();
       CHECK(p.symmetric() == (mu == 0.0 && std::string(strategy) == "master"));
       // A state off the converged one: the friction increments are non-zero, so that points
       // sit on one side of the stick-slip kink.

@@ -110,10 +110,10 @@ TEST_CASE("analysis: data/helix.json reproduces the C++ model with a pitch and (
 TEST_CASE("analysis: data/rollup.json (clamp, end moment, no contact) closes the circle",
           "[iga][analysis]") {
   Analysis a = Analysis::load(kData + "rollup.json");
-  CHECK(a.rod_contact() == nullptr);
+  CHECK(a.pair_as<CurveContactPair>() == nullptr);
   const AnalysisResult r = a.run();
   REQUIRE(r.solver.converged());
-  RodProblem& p = a.rod_problem();
+  RodProblem& p = a.body_as<RodProblem>();
   const std::vector<Vector3d> x = p.current_points(r.u, r.solver.t);
   const Interval D = p.rod().reference().domain();
   // Intermediate step t: tip at (L sin(2 pi t)/(2 pi t), L (1 - cos(2 pi t))/(2 pi t)); at t = 1
@@ -136,7 +136,7 @@ TEST_CASE("analysis: data/helix_couple.json (a rod with torsion) winds into the 
   doc["geometry"]["rod"]["elements"] = 16;
   doc["output"]["vtk"] = "none";
   Analysis a = Analysis::from_json(doc, "helix_couple.json");
-  REQUIRE(a.body_kind() == BodyKind::kRod);
+  REQUIRE(a.body(0).type() == "twisting_rod");
   const AnalysisResult r = a.run();
   REQUIRE(r.solver.converged());
   const double L = 10.0, M = 3 * std::numbers::pi / L, th = std::numbers::pi / 3;

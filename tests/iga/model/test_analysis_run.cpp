@@ -257,7 +257,7 @@ TEST_CASE(
     d["output"]["vtk"] = "none";
     Analysis a = Analysis::from_json(d, "rollup.json");
     const AnalysisResult r = a.run();
-    const Interval D = a.rod_problem().rod().reference().domain();
+    const Interval D = a.body_as<RodProblem>().rod().reference().domain();
     tip = a.displacement({"tip", D.hi, 0.0}, r.u, r.solver.t);
     return r;
   };

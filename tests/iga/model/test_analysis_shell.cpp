@@ -59,8 +59,8 @@ void check_linear_benchmark(const std::string& file, ShellBenchmark b, double to
   const double scale =
       doc.contains("load_curves") ? doc["load_curves"]["load_factor"]["scale"].get<double>() : 1.0;
   Analysis a = Analysis::from_json(doc, file);
-  REQUIRE(a.body_kind() == BodyKind::kShell);
-  ShellProblem& p = a.shell_problem();
+  REQUIRE(a.body(0).type() == "shell");
+  ShellProblem& p = a.body_as<ShellProblem>();
   const double R = b.problem.shell().reference().control_points().front().norm();
   CHECK(net_distance(p.shell().reference(), b.problem.shell().reference()) <= 1e-13 * R);
   REQUIRE(p.num_dofs() == b.problem.num_dofs());
@@ -138,9 +138,9 @@ TEST_CASE(
   // on the solver's order of operations (the banded LDL^T that replaced the dense solve):
   // 1e-12 R_o, R_o = 10 the outer radius. Never bit for bit: see net_distance.
   const double R_outer = 10.0;
-  CHECK(net_distance(a.shell_problem().shell().reference(), b.problem.shell().reference()) <=
-        1e-12 * R_outer);
-  REQUIRE(a.shell_problem().num_dofs() == b.problem.num_dofs());
+  CHECK(net_distance(a.body_as<ShellProblem>().shell().reference(),
+                     b.problem.shell().reference()) <= 1e-12 * R_outer);
+  REQUIRE(a.body_as<ShellProblem>().num_dofs() == b.problem.num_dofs());
   REQUIRE(a.output().monitors.size() == 2);
   struct Ref {
     double lam, WA, WB;
@@ -211,8 +211,9 @@ TEST_CASE("analysis: bad shell input names the file, the JSON path and the value
                d["materials"]["wire"] = {{"type", "rod"}, {"EA", 1.0}, {"EI", 1.0}};
                d["bodies"]["roof"]["material"] = "wire";
              }),
-             Catch::Contains("m.json: /bodies/roof/material: names a rod material; a shell needs "
-                             "type \"shell\", got \"wire\""));
+             Catch::Contains(
+                 "m.json: /bodies/roof/material: names a material of type \"rod\"; a shell needs "
+                 "type \"shell\", got \"wire\""));
   CHECK_THAT(
       error([](Json& d) {
         d["geometry"]["floor"] = {{"type", "plane"}, {"center", {0, 0, -1}}, {"axis", {0, 0, 1}}};

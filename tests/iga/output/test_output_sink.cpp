@@ -52,9 +52,10 @@ TEST_CASE("output sinks: the built-in formats are registered and an unknown one 
                   std::invalid_argument);
 }
 
-TEST_CASE("output sinks: steps.csv has the header, one row per step, empty cells for non-finite "
-          "values, and goes on after a restart",
-          "[iga][output]") {
+TEST_CASE(
+    "output sinks: steps.csv has the header, one row per step, empty cells for non-finite "
+    "values, and goes on after a restart",
+    "[iga][output]") {
   const std::string dir = out_dir("csv");
   auto csv = make_output_sink("csv");
   csv->open(dir, {"step", "t", "F"});
@@ -76,9 +77,10 @@ TEST_CASE("output sinks: steps.csv has the header, one row per step, empty cells
         "step,t,F\n1,0.5,2.25\n2,1,\n3,1.5,-0.333333333333\n");
 }
 
-TEST_CASE("output sinks: a field series writes each snapshot's files and its .pvd, in either VTK "
-          "format",
-          "[iga][output]") {
+TEST_CASE(
+    "output sinks: a field series writes each snapshot's files and its .pvd, in either VTK "
+    "format",
+    "[iga][output]") {
   for (const std::string format : {"vtk", "vtk_xml"}) {
     INFO(format);
     const std::string dir = out_dir("series_" + format);

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "iga/model/analysis.hpp"
+#include "iga/rod/kirchhoff_rod.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -18,7 +19,7 @@ int main(int argc, char** argv) {
     std::cerr << "not converged: " << r.solver.message << "\n";
     return 1;
   }
-  const iga::RodProblem& rod = a.rod_problem();
+  const iga::RodProblem& rod = a.body_as<iga::RodProblem>();
   const std::vector<iga::Vector3d> x = rod.current_points(r.u, r.solver.t);
   const iga::Interval D = rod.rod().reference().domain();
   const iga::Vector3d tip = rod.rod().point(D.hi, x), root = rod.rod().point(D.lo, x);
