@@ -88,4 +88,20 @@ SurfaceDerivs NurbsSurface::derivs(double u, double v, int order) const {
   return detail::tensor_derivs(Nu, Nv, p, q, order, net, num_u());
 }
 
+std::vector<int> edge_points(const NurbsSurface& S, SurfaceEdge edge, int row) {
+  const int nu = S.num_u(), nv = S.num_v();
+  const bool u_edge = edge == SurfaceEdge::kUMin || edge == SurfaceEdge::kUMax;
+  if (row < 0 || row >= (u_edge ? nu : nv))
+    throw GeometryError("edge_points: row " + std::to_string(row) + " is outside the control net");
+  std::vector<int> pts;
+  if (u_edge) {
+    const int i = edge == SurfaceEdge::kUMin ? row : nu - 1 - row;
+    for (int j = 0; j < nv; ++j) pts.push_back(S.index(i, j));
+  } else {
+    const int j = edge == SurfaceEdge::kVMin ? row : nv - 1 - row;
+    for (int i = 0; i < nu; ++i) pts.push_back(S.index(i, j));
+  }
+  return pts;
+}
+
 }  // namespace iga

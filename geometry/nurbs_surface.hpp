@@ -57,4 +57,12 @@ class NurbsSurface : public Surface {
   bool closed_u_ = false, closed_v_ = false;
 };
 
+/// The four edges of a patch's parameter rectangle.
+enum class SurfaceEdge { kUMin, kUMax, kVMin, kVMax };
+
+/// The control points of a row along an edge (row 0: on the edge, 1: the next inward, ...), in
+/// the order of the edge's parameter; indices i + n_u j. GeometryError if the row is outside the
+/// net.
+std::vector<int> edge_points(const NurbsSurface& S, SurfaceEdge edge, int row = 0);
+
 }  // namespace iga

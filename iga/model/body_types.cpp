@@ -9,6 +9,10 @@
 
 namespace iga::model_detail {
 
+// The built-in body types, each defined in its reader's file (<type>_body.cpp).
+BodyType rod_body_type();
+BodyType shell_body_type();
+
 namespace {
 
 struct Registry {
@@ -43,7 +47,8 @@ std::vector<std::string> material_type_names() {
   Registry& r = registry();
   const std::lock_guard<std::mutex> lock(r.mutex);
   std::set<std::string> names;
-  for (const auto& [name, t] : r.types) names.insert(t.material_types.begin(), t.material_types.end());
+  for (const auto& [name, t] : r.types)
+    names.insert(t.material_types.begin(), t.material_types.end());
   return {names.begin(), names.end()};
 }
 

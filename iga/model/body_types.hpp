@@ -1,7 +1,7 @@
 // The body types of the model file, keyed by a body's "type" (docs/model_format.md, "bodies"):
 // each registers its reader (the body with its conditions, loads and contact pairs, and its
 // shape for the shared parsers of monitors and reactions) and its material types. The loader
-// (analysis.cpp) names no body type: it looks the type up here. Built in: "rod"
+// (analysis.cpp) names no body type: it looks the type up here. Built in (body_types.cpp): "rod"
 // (rod_body.cpp) and "shell" (shell_body.cpp).
 //
 // Notation: a reader gets the model's root, the body's entry b, the context of the body being
@@ -14,15 +14,16 @@
 #include <string>
 #include <vector>
 
+#include "geometry/nurbs_surface.hpp"
 #include "iga/model/sections.hpp"
 
 namespace iga::model_detail {
 
 /// Everything a body type's reader gets.
 struct BodyInput {
-  const JsonCursor& root;       ///< the model
-  const JsonCursor& b;          ///< the body's entry ("bodies"/<name>)
-  Context& ctx;                 ///< the reader sets ctx.shape
+  const JsonCursor& root;  ///< the model
+  const JsonCursor& b;     ///< the body's entry ("bodies"/<name>)
+  Context& ctx;            ///< the reader sets ctx.shape
   const GeometryModel& geometry;
   const JsonCursor& materials;  ///< the "materials" section (possibly empty)
 };
@@ -50,8 +51,20 @@ std::vector<std::string> material_type_names();
 /// listing the known material types, or at the key at fault).
 void check_material(const JsonCursor& m);
 
-/// The built-in body types (their files).
-BodyType rod_body_type();
-BodyType shell_body_type();
+// ---- shared by the readers of bodies on NURBS surfaces (shell_body.cpp) ---------------------
+/// "u_min", "u_max", "v_min" or "v_max".
+SurfaceEdge parse_edge(const JsonCursor& c);
+/// A parameter pair (u, v) inside the surface's domain.
+Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S);
+/// What the shared parsers need of a body on the surface S: [i, j] names a control point (i
+/// along u), [u, v] a point of the surface.
+BodyShape surface_shape(const NurbsSurface& S);
+/// The STAS contact pairs ("surface_to_rigid", [KS15] Sects. 2-3) of the body being read
+/// (in.ctx.body), on the surface of its control points, attached to `problem` in the file's
+/// order; `thickness` places the contact faces ("face": lower, upper, mid), `body_type` names
+/// the body in messages.
+void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
+                          const NurbsSurface& surface, const std::string& body_type,
+                          double thickness);
 
 }  // namespace iga::model_detail

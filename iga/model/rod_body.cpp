@@ -24,7 +24,6 @@ Vector3d outward_tangent(const NurbsCurve& C, bool at_end) {
   return at_end ? d : Vector3d(-d);
 }
 
-
 /// "start", "end" or a parameter in the curve's domain.
 double curve_parameter(const JsonCursor& c, const NurbsCurve& C) {
   const Interval D = C.domain();
@@ -35,7 +34,6 @@ double curve_parameter(const JsonCursor& c, const NurbsCurve& C) {
            std::to_string(D.hi) + "]");
   return xi;
 }
-
 
 /// The knot of a rod with torsion at c: "start", "end" or a knot index.
 int twist_knot(const JsonCursor& c, const TwistingRodProblem& p) {
@@ -131,7 +129,6 @@ void parse_rod_load(const JsonCursor& o, const Context& ctx, P& p) {
   }
 }
 
-
 /// A rod material ("rod": EA, EI or EI1 and EI2, GJ; "rod_circular": E, radius, G or nu).
 RodSection parse_rod_material(const JsonCursor& m) {
   const std::string type = one_of(m["type"], {"rod", "rod_circular"});
@@ -164,7 +161,6 @@ RodSection parse_rod_material(const JsonCursor& m) {
   if (m.has("ref_direction")) s.ref_direction = vec3(m["ref_direction"]);
   return s;
 }
-
 
 /// A rod's contact pairs, boundary conditions and loads (P: RodProblem, TwistingRodProblem; the
 /// contact acts on the centre line's control points alone).
@@ -220,9 +216,7 @@ BodyShape rod_shape(const NurbsCurve& curve, int n) {
     if (!c.json().is_string()) return -1;
     return one_of(c, {"start", "end"}) == "start" ? 0 : n - 1;
   };
-  s.parameters = [&curve](const JsonCursor& c) {
-    return Vector2d(curve_parameter(c, curve), 0.0);
-  };
+  s.parameters = [&curve](const JsonCursor& c) { return Vector2d(curve_parameter(c, curve), 0.0); };
   s.named_direction = [&curve](const JsonCursor& d, int where) {
     one_of(d, {"outward_tangent"});
     if (where != 0 && where != 1)

@@ -10,7 +10,7 @@
 
 namespace iga::model_detail {
 
-namespace {
+// ---- shared by the readers of bodies on NURBS surfaces (body_types.hpp) ----------------------
 
 SurfaceEdge parse_edge(const JsonCursor& c) {
   const std::string e = one_of(c, {"u_min", "u_max", "v_min", "v_max"});
@@ -33,6 +33,74 @@ Vector2d surface_parameters(const JsonCursor& c, const NurbsSurface& S) {
                                           "]");
   return {uv[0], uv[1]};
 }
+
+/// What the shared parsers need of a body on the surface S: [i, j] names a control point
+/// (i along u), [u, v] a point of the surface.
+BodyShape surface_shape(const NurbsSurface& S) {
+  const int nu = S.num_u(), nv = S.num_v();
+  BodyShape s;
+  s.n_points = nu * nv;
+  s.corners = {0, nu - 1, nu * (nv - 1), nu * nv - 1};
+  s.named_point = [nu, nv](const JsonCursor& c) {
+    if (!c.json().is_array()) return -1;
+    if (c.size() != 2) c.fail_type("a control point [i, j] or an index");
+    const int i = c[0].as_int(), j = c[1].as_int();
+    if (i < 0 || i >= nu) c[0].fail("i must be in 0.." + std::to_string(nu - 1));
+    if (j < 0 || j >= nv) c[1].fail("j must be in 0.." + std::to_string(nv - 1));
+    return i + nu * j;
+  };
+  s.array_is_point = [](const JsonCursor& c) { return c.size() == 2 && c[0].json().is_number(); };
+  s.parameters = [&S](const JsonCursor& c) { return surface_parameters(c, S); };
+  return s;
+}
+
+void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
+                          const NurbsSurface& surface, const std::string& body_type,
+                          double thickness) {
+  const Context& ctx = in.ctx;
+  for_each_entry(in.root, "contact", ctx, [&](const JsonCursor& c) {
+    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
+      c["type"].fail("a " + body_type + "'s contact is \"surface_to_rigid\"");
+    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
+                     "points_per_direction", "search_distance", "enforcement", "penetration_tol",
+                     "slip_tol", "max_augmentations", "moment_about", "description"});
+    check_body(c, ctx);
+    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], in.geometry, ctx);
+    for (const Surface* piece : in.geometry.surfaces_of(c["rigid"].as_string()))
+      if (piece == &surface)
+        c["rigid"].fail("is (or holds) the " + body_type + "'s own surface \"" +
+                        in.b["surface"].as_string() +
+                        "\"; the rigid surface must be another surface");
+    SurfaceContactParameters cp;
+    penalty_and_friction(c, cp);
+    if (c.has("strategy"))
+      cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
+                        ? SurfaceContactStrategy::kRigidMaster
+                        : SurfaceContactStrategy::kRigidSlave;
+    if (c.has("face")) {
+      const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
+      cp.face = f == "lower"   ? ShellFace::kLower
+                : f == "upper" ? ShellFace::kUpper
+                               : ShellFace::kMid;
+    }
+    cp.points_per_direction =
+        int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
+    if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
+    const ContactEnforcement enforcement = parse_enforcement(c);
+    cp.thickness = thickness;
+    try {
+      auto pair = std::make_unique<SurfaceContactPair>(surface, rigid, cp);
+      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
+      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
+        pair->set_motion(m->second);
+      problem.attach(std::move(pair));
+    } catch (const std::invalid_argument& e) {
+      c.fail_plain(e.what());
+    }
+  });
+}
+
+namespace {
 
 void parse_shell_boundary_condition(const JsonCursor& o, const Context& ctx, ShellProblem& p) {
   if (!o.json().is_object()) o.fail_type("an object with a \"type\" key");
@@ -110,7 +178,6 @@ void parse_shell_load(const JsonCursor& o, const Context& ctx, ShellProblem& p) 
   }
 }
 
-
 /// A shell material: E, nu, thickness, the law and the points through the thickness.
 ShellMaterial parse_shell_material(const JsonCursor& m) {
   m.expect_object({"type", "E", "nu", "thickness", "law", "thickness_points", "description"});
@@ -128,27 +195,6 @@ ShellMaterial parse_shell_material(const JsonCursor& m) {
     if (s.thickness_points < 2 || s.thickness_points > kMaxGaussPoints)
       t.fail("must be in [2, 20]");
   }
-  return s;
-}
-
-
-/// What the shared parsers need of a body on the surface S: [i, j] names a control point
-/// (i along u), [u, v] a point of the surface.
-BodyShape surface_shape(const NurbsSurface& S) {
-  const int nu = S.num_u(), nv = S.num_v();
-  BodyShape s;
-  s.n_points = nu * nv;
-  s.corners = {0, nu - 1, nu * (nv - 1), nu * nv - 1};
-  s.named_point = [nu, nv](const JsonCursor& c) {
-    if (!c.json().is_array()) return -1;
-    if (c.size() != 2) c.fail_type("a control point [i, j] or an index");
-    const int i = c[0].as_int(), j = c[1].as_int();
-    if (i < 0 || i >= nu) c[0].fail("i must be in 0.." + std::to_string(nu - 1));
-    if (j < 0 || j >= nv) c[1].fail("j must be in 0.." + std::to_string(nv - 1));
-    return i + nu * j;
-  };
-  s.array_is_point = [](const JsonCursor& c) { return c.size() == 2 && c[0].json().is_number(); };
-  s.parameters = [&S](const JsonCursor& c) { return surface_parameters(c, S); };
   return s;
 }
 
@@ -180,45 +226,7 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   ctx.shape = surface_shape(*surface);
 
   auto problem = std::make_unique<ShellProblem>(std::move(*shell));
-  for_each_entry(root, "contact", ctx, [&](const JsonCursor& c) {
-    if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
-      c["type"].fail("a shell's contact is \"surface_to_rigid\"");
-    c.expect_object({"name", "type", "body", "rigid", "eps_N", "eps_T", "mu", "strategy", "face",
-                     "points_per_direction", "search_distance", "enforcement", "penetration_tol",
-                     "slip_tol", "max_augmentations", "moment_about", "description"});
-    check_body(c, ctx);
-    const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
-    for (const Surface* piece : geometry.surfaces_of(c["rigid"].as_string()))
-      if (piece == surface)
-        c["rigid"].fail("is (or holds) the shell's own surface \"" + sc.as_string() +
-                        "\"; the rigid surface must be another surface");
-    SurfaceContactParameters cp;
-    penalty_and_friction(c, cp);
-    if (c.has("strategy"))
-      cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
-                        ? SurfaceContactStrategy::kRigidMaster
-                        : SurfaceContactStrategy::kRigidSlave;
-    if (c.has("face")) {
-      const std::string f = one_of(c["face"], {"lower", "upper", "mid"});
-      cp.face = f == "lower"   ? ShellFace::kLower
-                : f == "upper" ? ShellFace::kUpper
-                               : ShellFace::kMid;
-    }
-    cp.points_per_direction =
-        int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
-    if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
-    const ContactEnforcement enforcement = parse_enforcement(c);
-    cp.thickness = problem->shell().material().thickness;
-    try {
-      auto pair = std::make_unique<SurfaceContactPair>(problem->shell().reference(), rigid, cp);
-      pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
-      if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
-        pair->set_motion(m->second);
-      problem->attach(std::move(pair));
-    } catch (const std::invalid_argument& e) {
-      c.fail_plain(e.what());
-    }
-  });
+  attach_surface_pairs(in, *problem, *surface, "shell", problem->shell().material().thickness);
   for_each_entry(root, "boundary_conditions", ctx,
                  [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
   for_each_entry(root, "loads", ctx,

@@ -37,24 +37,8 @@ ShellProblem::ShellProblem(KirchhoffLoveShell shell)
       shell_(std::move(shell)) {}
 
 std::vector<int> ShellProblem::edge_points(SurfaceEdge edge, int row) const {
-  const int nu = shell_.reference().num_u(), nv = shell_.reference().num_v();
   if (row < 0 || row > 1) shell_fail("ShellProblem::edge_points: row must be 0 or 1");
-  std::vector<int> pts;
-  switch (edge) {
-    case SurfaceEdge::kUMin:
-    case SurfaceEdge::kUMax: {
-      const int i = edge == SurfaceEdge::kUMin ? row : nu - 1 - row;
-      for (int j = 0; j < nv; ++j) pts.push_back(point_index(i, j));
-      break;
-    }
-    case SurfaceEdge::kVMin:
-    case SurfaceEdge::kVMax: {
-      const int j = edge == SurfaceEdge::kVMin ? row : nv - 1 - row;
-      for (int i = 0; i < nu; ++i) pts.push_back(point_index(i, j));
-      break;
-    }
-  }
-  return pts;
+  return iga::edge_points(shell_.reference(), edge, row);
 }
 
 std::vector<Vector3d> ShellProblem::edge_normals(SurfaceEdge edge) const {

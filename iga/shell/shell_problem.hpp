@@ -58,8 +58,6 @@
 
 namespace iga {
 
-enum class SurfaceEdge { kUMin, kUMax, kVMin, kVMax };
-
 class ShellProblem : public ControlPointProblem {
  public:
   explicit ShellProblem(KirchhoffLoveShell shell);
