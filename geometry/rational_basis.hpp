@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 
 #include "geometry/bspline_basis.hpp"
 #include "geometry/nurbs_curve.hpp"
@@ -54,5 +55,15 @@ struct SurfaceBasis {
 /// (u, v) is clamped to the domain. Throws GeometryError for a degree above
 /// kMaxSurfaceBasisDegree.
 void rational_basis(const NurbsSurface& s, double u, double v, SurfaceBasis& B);
+
+/// sum_k dR[k] x_k over the basis functions of B (x: the patch's control points, global
+/// indices): with dR = B.d1 or B.d2 the base vector a_1 or a_2 of the surface of points x.
+inline Vector3d combine(const SurfaceBasis& B, const std::array<double, kMaxSurfaceBasisPoints>& dR,
+                        std::span<const Vector3d> x) {
+  Vector3d r = Vector3d::Zero();
+  for (int k = 0; k < B.count(); ++k)
+    r.noalias() += dR[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(B.global_index(k))];
+  return r;
+}
 
 }  // namespace iga

@@ -63,4 +63,20 @@ struct SampledMesh {
   PointFields fields;
 };
 
+/// Parameters of a grid over element spans (the breaks of a knot vector): `samples` intervals
+/// per span, the spans' shared ends once.
+inline std::vector<double> span_samples(const std::vector<double>& breaks, int samples) {
+  std::vector<double> s;
+  for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
+    for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
+      s.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / samples);
+  return s;
+}
+
+/// The element span of grid sample i of span_samples(.., samples): the first sample belongs to
+/// span 0, a span's end to that span.
+inline int span_of_sample(std::size_t i, int samples) {
+  return i == 0 ? 0 : static_cast<int>((i - 1) / static_cast<std::size_t>(samples));
+}
+
 }  // namespace iga

@@ -7,19 +7,6 @@
 
 namespace iga {
 
-namespace {
-
-/// Parameters of a grid over the element spans: `samples` intervals per span.
-std::vector<double> span_samples(const std::vector<double>& breaks, int samples) {
-  std::vector<double> s;
-  for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
-    for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
-      s.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / samples);
-  return s;
-}
-
-}  // namespace
-
 std::string ShellProblem::describe() const {
   const NurbsSurface& S = shell_.reference();
   return "shell of " + std::to_string(shell_.num_elements()) + " elements (degree " +
@@ -48,8 +35,7 @@ SampledMesh ShellProblem::sample_model(const VectorXd& u, double t, int samples)
       const double pu = us[i], pv = vs[j];
       // The element of the sample: span i / samples (the first sample of a span belongs to the
       // span before it, as the grid is built).
-      const int eu = i == 0 ? 0 : static_cast<int>((i - 1) / static_cast<std::size_t>(samples));
-      const int ev = j == 0 ? 0 : static_cast<int>((j - 1) / static_cast<std::size_t>(samples));
+      const int eu = span_of_sample(i, samples), ev = span_of_sample(j, samples);
       const Vector3d p = shell_.point(pu, pv, x);
       m.points.push_back(p);
       m.params.push_back({pu, pv});

@@ -21,15 +21,6 @@ bool along_u(SurfaceEdge e) {  // the edge runs in u (v fixed)
   return e == SurfaceEdge::kVMin || e == SurfaceEdge::kVMax;
 }
 
-/// Surface derivatives sum_k dR[k] x_k over the basis functions of B.
-Vector3d combine(const SurfaceBasis& B, const std::array<double, kMaxShellElementPoints>& dR,
-                 std::span<const Vector3d> x) {
-  Vector3d r = Vector3d::Zero();
-  for (int k = 0; k < B.count(); ++k)
-    r.noalias() += dR[static_cast<std::size_t>(k)] * x[static_cast<std::size_t>(B.global_index(k))];
-  return r;
-}
-
 }  // namespace
 
 ShellProblem::ShellProblem(KirchhoffLoveShell shell)

@@ -466,7 +466,7 @@ TEST_CASE("PatchProjector: the certified search finds the global minimum where s
 }
 
 TEST_CASE("PatchProjector: certified cold and warm projections on random points are global",
-          "[contact][closest][certified]") {
+          "[contact][closest][certified][heavy]") {
   // The three point sets of bench_projection (near band, around the box, far), on the
   // polynomial free-form patch and the rational torus, and on both raised to degrees 7 and 8
   // (the nets of degrees above 5: HighNet; CAD files have such faces), against a dense

@@ -319,7 +319,7 @@ TEST_CASE(
 TEST_CASE(
     "augmented Lagrange: ShellContactProblem tangent = central differences with non-zero "
     "multipliers (saddle, master and slave, with and without friction)",
-    "[iga][shell][contact][tangent][augmented]") {
+    "[iga][shell][contact][tangent][augmented][heavy]") {
   // The slave strategy's augmented force f = eps_N xi3 n - lambda_N sigma n and its derivative
   // are written in iga/contact_integrals/surface_contact.cpp (the master strategy uses the CTRS
   // law, checked in tests/contact/test_contact_law.cpp); checked here on the whole problem.
