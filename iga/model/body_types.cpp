@@ -12,12 +12,14 @@ namespace iga::model_detail {
 // The built-in body types, each defined in its reader's file (<type>_body.cpp).
 BodyType rod_body_type();
 BodyType shell_body_type();
+BodyType membrane_body_type();
 
 namespace {
 
 struct Registry {
   std::mutex mutex;
-  std::map<std::string, BodyType> types{{"rod", rod_body_type()}, {"shell", shell_body_type()}};
+  std::map<std::string, BodyType> types{
+      {"rod", rod_body_type()}, {"shell", shell_body_type()}, {"membrane", membrane_body_type()}};
 };
 
 Registry& registry() {
