@@ -307,7 +307,9 @@ class Result:
         return self._a.contact_points(pair)
 
     def write_output(self, folder, stem="state"):
-        """Writes the ParaView files of the last converged state; returns their names."""
+        """Writes the ParaView files of the last converged state in the model's field format
+        ("output": {"field_format": "vtk_xml"} by default: .vts grids and .vtu lines and points;
+        "vtk": legacy .vtk files); returns their names, relative to `folder`."""
         os.makedirs(folder, exist_ok=True)
         return self._a.write_output(os.fspath(folder), stem)
 

@@ -55,6 +55,18 @@ def test_results_as_arrays(source):
     assert all(len(v) == s["points"].shape[0] for v in s["fields"].values())
 
 
+def test_write_output_in_the_models_field_format(source, tmp_path):
+    model = rci.Model.load(source / "data/balloon.json").set("/solver/t_end", 0.4)
+    model.set("/solver/hit_times", [0.2])
+    files = model.run().write_output(tmp_path / "xml", "final")
+    assert "final_membrane.vts" in files
+    head = (tmp_path / "xml" / "final_membrane.vts").read_bytes()[:200]
+    assert head.startswith(b"<?xml") and b'type="StructuredGrid"' in head
+    files = model.set("/output/field_format", "vtk").run().write_output(tmp_path / "legacy")
+    assert files == ["state_membrane.vtk"]
+    assert (tmp_path / "legacy" / "state_membrane.vtk").read_text().startswith("# vtk DataFile")
+
+
 def test_on_step_sees_each_step_and_can_stop(source, tmp_path):
     seen = []
 
