@@ -211,7 +211,8 @@ void MembraneProblem::assemble_model(std::span<const Vector3d> x, double t, Vect
       for (int k = 0; k < np; ++k) {
         const Eigen::Matrix<double, 3, 3> BtD =
             pt.wJ * BI[static_cast<std::size_t>(k)].transpose() * r.D;
-        const double rk1 = B.d1[static_cast<std::size_t>(k)], rk2 = B.d2[static_cast<std::size_t>(k)];
+        const double rk1 = B.d1[static_cast<std::size_t>(k)],
+                     rk2 = B.d2[static_cast<std::size_t>(k)];
         for (int l = 0; l < np; ++l) {
           const double rl1 = B.d1[static_cast<std::size_t>(l)],
                        rl2 = B.d2[static_cast<std::size_t>(l)];
@@ -250,8 +251,8 @@ void MembraneProblem::add_pressure_terms(std::span<const Vector3d> x, double t, 
     // g_k = -R_k f: dg_k/dx_l = -R_k w (R_l,2 [a_1]x - R_l,1 [a_2]x).
     const Matrix3d S1 = skew(a1), S2 = skew(a2);
     for (int l = 0; l < np; ++l) {
-      const Matrix3d Dl = w * (B.d2[static_cast<std::size_t>(l)] * S1 -
-                               B.d1[static_cast<std::size_t>(l)] * S2);
+      const Matrix3d Dl =
+          w * (B.d2[static_cast<std::size_t>(l)] * S1 - B.d1[static_cast<std::size_t>(l)] * S2);
       for (int k = 0; k < np; ++k) {
         const Matrix3d Kkl = -B.R[static_cast<std::size_t>(k)] * Dl;
         for (int a = 0; a < 3; ++a)
@@ -268,8 +269,7 @@ NurbsSurface MembraneProblem::current_surface(const VectorXd& u, double t) const
                       current_points(u, t), S.weights());
 }
 
-Vector3d MembraneProblem::displacement(double u, double v, const VectorXd& state,
-                                       double t) const {
+Vector3d MembraneProblem::displacement(double u, double v, const VectorXd& state, double t) const {
   return current_surface(state, t).point(u, v) - reference_.point(u, v);
 }
 

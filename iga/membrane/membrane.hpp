@@ -24,7 +24,8 @@
 //   n_0                            isotropic prestress, S^ab += n_0 A^ab  prestress
 //   t, E, nu, mu                   thickness, Young's modulus, Poisson's ratio, shear modulus
 //   dA = |A_1 x A_2| du dv         reference area element               wJ (Gauss weight incl.)
-//   B_I                            dE/dx_I (Voigt rows): [R_I,1 a_1; R_I,2 a_2; R_I,1 a_2 + R_I,2 a_1]
+//   B_I                            dE/dx_I (Voigt rows): [R_I,1 a_1; R_I,2 a_2; R_I,1 a_2 + R_I,2
+//   a_1]
 //
 // Weak form: f_I = int B_I^T S dA, K_IJ = int (B_I^T D B_J + (S^ab R_I,a R_J,b) 1) dA
 // (symmetric). St. Venant-Kirchhoff: S = D E with C^abcd = t E/(1 - nu^2) [nu A^ab A^cd +
@@ -73,8 +74,7 @@ struct MembraneResponse {
   Eigen::Vector3d S = Eigen::Vector3d::Zero();
   Eigen::Matrix3d D = Eigen::Matrix3d::Zero();
 };
-MembraneResponse membrane_response(const MembraneMaterial& m, const Matrix2d& A,
-                                   const Matrix2d& a);
+MembraneResponse membrane_response(const MembraneMaterial& m, const Matrix2d& A, const Matrix2d& a);
 
 class MembraneProblem : public ControlPointProblem {
  public:

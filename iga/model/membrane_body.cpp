@@ -19,8 +19,9 @@ MembraneMaterial parse_membrane_material(const JsonCursor& m) {
     mm.law = MembraneLaw::kNeoHookean;
   if (mm.law == MembraneLaw::kNeoHookean) {
     if (m.has("E") || m.has("nu"))
-      m.fail_plain("a neo-Hookean membrane (incompressible) takes the shear modulus \"mu\", "
-                   "not \"E\" or \"nu\"");
+      m.fail_plain(
+          "a neo-Hookean membrane (incompressible) takes the shear modulus \"mu\", "
+          "not \"E\" or \"nu\"");
     mm.mu = positive(m["mu"]);
   } else {
     if (m.has("mu")) m["mu"].fail("belongs to \"law\": \"neo_hookean\"; give \"E\" and \"nu\"");
@@ -98,9 +99,8 @@ std::unique_ptr<Body> build_membrane(const BodyInput& in) {
   }
   in.ctx.shape = surface_shape(*surface);
   attach_surface_pairs(in, *problem, *surface, "membrane", material.thickness);
-  for_each_entry(in.root, "boundary_conditions", in.ctx, [&](const JsonCursor& o) {
-    parse_membrane_condition(o, in.ctx, *problem);
-  });
+  for_each_entry(in.root, "boundary_conditions", in.ctx,
+                 [&](const JsonCursor& o) { parse_membrane_condition(o, in.ctx, *problem); });
   for_each_entry(in.root, "loads", in.ctx,
                  [&](const JsonCursor& o) { parse_membrane_load(o, in.ctx, *problem); });
   return problem;

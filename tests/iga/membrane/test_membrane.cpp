@@ -56,9 +56,8 @@ double tangent_error(MembraneProblem& p, const Eigen::VectorXd& u, double h) {
     Eigen::VectorXd up = u, um = u;
     up[j] += h;
     um[j] -= h;
-    err = std::max(err, ((residual(p, up) - residual(p, um)) / (2.0 * h) - Kd.col(j))
-                            .cwiseAbs()
-                            .maxCoeff());
+    err = std::max(
+        err, ((residual(p, up) - residual(p, um)) / (2.0 * h) - Kd.col(j)).cwiseAbs().maxCoeff());
   }
   return err / Kd.cwiseAbs().maxCoeff();
 }
@@ -104,9 +103,10 @@ TEST_CASE("membrane: the internal forces are the derivative of the energy (both 
   }
 }
 
-TEST_CASE("membrane: the tangent is the derivative of the residual (both laws, prestress, "
-          "follower pressure)",
-          "[iga][membrane]") {
+TEST_CASE(
+    "membrane: the tangent is the derivative of the residual (both laws, prestress, "
+    "follower pressure)",
+    "[iga][membrane]") {
   for (MembraneMaterial m : {svk(), neo_hookean()}) {
     INFO("law " << static_cast<int>(m.law));
     m.prestress = 0.05;

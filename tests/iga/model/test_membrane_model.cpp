@@ -100,8 +100,8 @@ double hencky_coefficient(double nu) {
 /// degree arc, corners at 45 degrees), subdivided n x n, as a model's "nurbs_surface" entry.
 Json disc(int n) {
   const double r = std::sqrt(0.5), w = std::sqrt(0.5);
-  std::vector<Vector3d> P{{-r, -r, 0}, {0, -2 * r, 0}, {r, -r, 0}, {-2 * r, 0, 0}, {0, 0, 0},
-                          {2 * r, 0, 0}, {-r, r, 0},   {0, 2 * r, 0}, {r, r, 0}};
+  std::vector<Vector3d> P{{-r, -r, 0},   {0, -2 * r, 0}, {r, -r, 0},    {-2 * r, 0, 0}, {0, 0, 0},
+                          {2 * r, 0, 0}, {-r, r, 0},     {0, 2 * r, 0}, {r, r, 0}};
   const std::vector<double> W{1, w, 1, w, 1, w, 1, w, 1};
   const NurbsSurface s =
       subdivide(NurbsSurface(2, {0, 0, 0, 1, 1, 1}, 2, {0, 0, 0, 1, 1, 1}, P, W), n, n);
@@ -109,20 +109,27 @@ Json disc(int n) {
   for (const Vector3d& x : s.control_points()) pts.push_back({x.x(), x.y(), x.z()});
   const std::vector<double> ku(s.knots_u().span().begin(), s.knots_u().span().end());
   const std::vector<double> kv(s.knots_v().span().begin(), s.knots_v().span().end());
-  return {{"type", "nurbs_surface"},  {"degree", {2, 2}},         {"knots", {{"u", ku}, {"v", kv}}},
-          {"control_points", pts}, {"weights", s.weights()}};
+  return {{"type", "nurbs_surface"},
+          {"degree", {2, 2}},
+          {"knots", {{"u", ku}, {"v", kv}}},
+          {"control_points", pts},
+          {"weights", s.weights()}};
 }
 
 }  // namespace
 
-TEST_CASE("membrane model: a cylindrical balloon inflated by a follower pressure keeps the "
-          "closed-form stretch (St. Venant-Kirchhoff and neo-Hookean)",
-          "[iga][membrane][model]") {
+TEST_CASE(
+    "membrane model: a cylindrical balloon inflated by a follower pressure keeps the "
+    "closed-form stretch (St. Venant-Kirchhoff and neo-Hookean)",
+    "[iga][membrane][model]") {
   const double n0 = 1e-6;  // the prestress (a flat or unstressed membrane has no normal stiffness)
   SECTION("neo-Hookean: p R = mu t (1 - lambda^-4) + n_0") {
     const double mu_t = 1.0, p = 0.5;
-    const Json mat = {{"type", "membrane"}, {"law", "neo_hookean"}, {"mu", 50.0},
-                      {"thickness", 0.02},  {"prestress", n0}};
+    const Json mat = {{"type", "membrane"},
+                      {"law", "neo_hookean"},
+                      {"mu", 50.0},
+                      {"thickness", 0.02},
+                      {"prestress", n0}};
     const double lambda = std::pow(1.0 - (p - n0) / mu_t, -0.25);
     const double l = hoop_stretch(balloon(mat, p));
     INFO("lambda " << l << ", closed form " << lambda);
@@ -133,8 +140,8 @@ TEST_CASE("membrane model: a cylindrical balloon inflated by a follower pressure
   }
   SECTION("St. Venant-Kirchhoff: p R = t E / (1 - nu^2) (lambda^2 - 1) / 2 + n_0") {
     const double E = 500.0, t = 0.02, nu = 0.3, p = 1.0;
-    const Json mat = {{"type", "membrane"}, {"E", E},          {"nu", nu},
-                      {"thickness", t},     {"prestress", n0}};
+    const Json mat = {
+        {"type", "membrane"}, {"E", E}, {"nu", nu}, {"thickness", t}, {"prestress", n0}};
     const double lambda = std::sqrt(1.0 + 2.0 * (1.0 - nu * nu) * (p - n0) / (t * E));
     const double l = hoop_stretch(balloon(mat, p));
     INFO("lambda " << l << ", closed form " << lambda);
@@ -143,9 +150,10 @@ TEST_CASE("membrane model: a cylindrical balloon inflated by a follower pressure
   }
 }
 
-TEST_CASE("membrane model: a clamped circular membrane under a uniform load deflects as "
-          "Hencky's solution",
-          "[iga][membrane][model]") {
+TEST_CASE(
+    "membrane model: a clamped circular membrane under a uniform load deflects as "
+    "Hencky's solution",
+    "[iga][membrane][model]") {
   // w_0 / a about 0.02: the Foeppl equations (moderate rotations) and the finite-strain
   // membrane agree to O((w_0/a)^2) = 4e-4; the prestress n_0 = 1e-8 E t is 3e-5 of the centre
   // force. Measured: 7e-6 of Hencky's w_0 at 16 x 16 elements (the issue's bound: 0.5 %).
@@ -178,9 +186,10 @@ TEST_CASE("membrane model: a clamped circular membrane under a uniform load defl
   CHECK(std::abs(w0 / hencky - 1.0) < 5e-3);
 }
 
-TEST_CASE("membrane model: a membrane pressed onto a rigid plane (STAS) sinks by q / eps_N and "
-          "puts the whole load on the tool",
-          "[iga][membrane][model][contact]") {
+TEST_CASE(
+    "membrane model: a membrane pressed onto a rigid plane (STAS) sinks by q / eps_N and "
+    "puts the whole load on the tool",
+    "[iga][membrane][model][contact]") {
   // A unit square membrane, its lower face (thickness 0.1) on the plane z = 0, held in its
   // plane, pressed by q: the penalty law gives the pressure q at the gap -q / eps_N everywhere,
   // the membrane stays flat, and the tool carries q times the area.
@@ -217,8 +226,8 @@ TEST_CASE("membrane model: a membrane pressed onto a rigid plane (STAS) sinks by
 
 TEST_CASE("membrane model: bad membrane input names the file, the JSON path and the value",
           "[iga][membrane][model]") {
-  const Json base = balloon({{"type", "membrane"}, {"E", 1.0}, {"nu", 0.3}, {"thickness", 0.1}},
-                            0.1);
+  const Json base =
+      balloon({{"type", "membrane"}, {"E", 1.0}, {"nu", 0.3}, {"thickness", 0.1}}, 0.1);
   using test::analysis_error;
   CHECK_THAT(analysis_error(base, [](Json& d) { d["materials"]["skin"]["nu"] = 0.7; }),
              Catch::Contains("m.json: /materials/skin/nu: must be in (-1, 0.5], got 0.7"));
@@ -235,11 +244,15 @@ TEST_CASE("membrane model: bad membrane input names the file, the JSON path and 
   CHECK_THAT(analysis_error(base, [](Json& d) { d["boundary_conditions"][0]["type"] = "clamp"; }),
              Catch::Contains("/boundary_conditions/0/type: expected one of"));
   CHECK_THAT(
-      analysis_error(base, [](Json& d) { d["materials"]["skin"] = {{"type", "rod"}, {"EA", 1}, {"EI", 1}}; }),
+      analysis_error(base,
+                     [](Json& d) {
+                       d["materials"]["skin"] = {{"type", "rod"}, {"EA", 1}, {"EI", 1}};
+                     }),
       Catch::Contains("/bodies/tube/material: names a material of type \"rod\"; a membrane needs "
                       "type \"membrane\""));
-  CHECK_THAT(analysis_error(base, [](Json& d) { d["bodies"]["tube"]["type"] = "balloon"; }),
-             Catch::Contains("/bodies/tube/type: expected one of \"membrane\", \"rod\", \"shell\""));
+  CHECK_THAT(
+      analysis_error(base, [](Json& d) { d["bodies"]["tube"]["type"] = "balloon"; }),
+      Catch::Contains("/bodies/tube/type: expected one of \"membrane\", \"rod\", \"shell\""));
 }
 
 }  // namespace test_membrane_model
