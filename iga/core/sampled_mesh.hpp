@@ -63,20 +63,31 @@ struct SampledMesh {
   PointFields fields;
 };
 
-/// Parameters of a grid over element spans (the breaks of a knot vector): `samples` intervals
-/// per span, the spans' shared ends once.
-inline std::vector<double> span_samples(const std::vector<double>& breaks, int samples) {
-  std::vector<double> s;
-  for (std::size_t k = 0; k + 1 < breaks.size(); ++k)
-    for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
-      s.push_back(breaks[k] + (breaks[k + 1] - breaks[k]) * i / samples);
-  return s;
-}
-
-/// The element span of grid sample i of span_samples(.., samples): the first sample belongs to
-/// span 0, a span's end to that span.
-inline int span_of_sample(std::size_t i, int samples) {
-  return i == 0 ? 0 : static_cast<int>((i - 1) / static_cast<std::size_t>(samples));
+/// A grid over a patch's element spans, `samples` intervals per span and direction (kGrid;
+/// bu, bv: the breaks of the knot vectors in u and v), without points or fields yet: its size,
+/// and each sample's parameters and element (u fastest; elements eu + n_u ev, a span's end
+/// belonging to that span, the first sample to span 0).
+inline SampledMesh element_grid(const std::vector<double>& bu, const std::vector<double>& bv,
+                                int samples) {
+  const auto along = [samples](const std::vector<double>& br) {
+    std::vector<std::pair<double, int>> s;  // (parameter, span)
+    for (std::size_t k = 0; k + 1 < br.size(); ++k)
+      for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
+        s.emplace_back(br[k] + (br[k + 1] - br[k]) * i / samples, static_cast<int>(k));
+    return s;
+  };
+  const auto us = along(bu), vs = along(bv);
+  const int ne_u = static_cast<int>(bu.size()) - 1;
+  SampledMesh m;
+  m.shape = SampledMesh::Shape::kGrid;
+  m.nu = static_cast<int>(us.size());
+  m.nv = static_cast<int>(vs.size());
+  for (const auto& [v, ev] : vs)
+    for (const auto& [u, eu] : us) {
+      m.params.push_back({u, v});
+      m.elements.push_back(eu + ne_u * ev);
+    }
+  return m;
 }
 
 }  // namespace iga

@@ -284,40 +284,29 @@ std::string MembraneProblem::describe() const {
 SampledMesh MembraneProblem::sample_model(const VectorXd& u, double t, int samples) const {
   const NurbsSurface current = current_surface(u, t);
   const NurbsSurface& S = reference_;
-  const std::vector<double> bu = S.knots_u().breaks(), bv = S.knots_v().breaks();
-  const std::vector<double> us = span_samples(bu, samples), vs = span_samples(bv, samples);
-  SampledMesh m;
-  m.shape = SampledMesh::Shape::kGrid;
-  m.nu = static_cast<int>(us.size());
-  m.nv = static_cast<int>(vs.size());
-  const int ne_u = static_cast<int>(bu.size()) - 1;
+  SampledMesh m = element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples);
   m.fields.name({"stretch_1", "stretch_2", "singular"},
                 {"displacement", "normal", "membrane_force_N11_N22_N12"});
-  for (std::size_t j = 0; j < vs.size(); ++j)
-    for (std::size_t i = 0; i < us.size(); ++i) {
-      const double pu = us[i], pv = vs[j];
-      const int eu = span_of_sample(i, samples), ev = span_of_sample(j, samples);
-      const SurfaceDerivs R = S.derivs(pu, pv, 1), C = current.derivs(pu, pv, 1);
-      m.points.push_back(C.S);
-      m.params.push_back({pu, pv});
-      m.elements.push_back(eu + ne_u * ev);
-      const Vector3d A1 = R.Su, A2 = R.Sv, a1 = C.Su, a2 = C.Sv;
-      const Matrix2d A = metric(A1, A2), a = metric(a1, a2);
-      const MembraneResponse r = membrane_response(material_, A, a);
-      // Principal stretches: the square roots of the eigenvalues of A^-1 a; forces S^ab A_a A_b
-      // in the frame e_1 = A_1/|A_1|, e_2 = A_3 x e_1.
-      const Matrix2d M = A.inverse() * a;  // eigenvalues: the squared principal stretches
-      const double tr = M.trace(), disc = std::sqrt(std::max(0.0, tr * tr - 4.0 * M.determinant()));
-      const Vector3d e1 = A1.normalized(), e2 = A1.cross(A2).normalized().cross(e1);
-      const Matrix3d sigma = r.S[0] * A1 * A1.transpose() + r.S[1] * A2 * A2.transpose() +
-                             r.S[2] * (A1 * A2.transpose() + A2 * A1.transpose());
-      const Vector3d n = a1.cross(a2).normalized();
-      const Vector3d N(e1.dot(sigma * e1), e2.dot(sigma * e2), e1.dot(sigma * e2));
-      const double s1 = std::sqrt(0.5 * (tr + disc)), s2 = std::sqrt(0.5 * (tr - disc));
-      const bool ok = n.allFinite() && N.allFinite() && std::isfinite(s1) && std::isfinite(s2);
-      m.fields.append({ok ? s1 : 0.0, ok ? s2 : 0.0, ok ? 0.0 : 1.0},
-                      {C.S - R.S, ok ? n : Vector3d::Zero(), ok ? N : Vector3d::Zero()});
-    }
+  for (const auto& [pu, pv] : m.params) {
+    const SurfaceDerivs R = S.derivs(pu, pv, 1), C = current.derivs(pu, pv, 1);
+    m.points.push_back(C.S);
+    const Vector3d A1 = R.Su, A2 = R.Sv, a1 = C.Su, a2 = C.Sv;
+    const Matrix2d A = metric(A1, A2), a = metric(a1, a2);
+    const MembraneResponse r = membrane_response(material_, A, a);
+    // Principal stretches: the square roots of the eigenvalues of A^-1 a; forces S^ab A_a A_b
+    // in the frame e_1 = A_1/|A_1|, e_2 = A_3 x e_1.
+    const Matrix2d M = A.inverse() * a;  // eigenvalues: the squared principal stretches
+    const double tr = M.trace(), disc = std::sqrt(std::max(0.0, tr * tr - 4.0 * M.determinant()));
+    const Vector3d e1 = A1.normalized(), e2 = A1.cross(A2).normalized().cross(e1);
+    const Matrix3d sigma = r.S[0] * A1 * A1.transpose() + r.S[1] * A2 * A2.transpose() +
+                           r.S[2] * (A1 * A2.transpose() + A2 * A1.transpose());
+    const Vector3d n = a1.cross(a2).normalized();
+    const Vector3d N(e1.dot(sigma * e1), e2.dot(sigma * e2), e1.dot(sigma * e2));
+    const double s1 = std::sqrt(0.5 * (tr + disc)), s2 = std::sqrt(0.5 * (tr - disc));
+    const bool ok = n.allFinite() && N.allFinite() && std::isfinite(s1) && std::isfinite(s2);
+    m.fields.append({ok ? s1 : 0.0, ok ? s2 : 0.0, ok ? 0.0 : 1.0},
+                    {C.S - R.S, ok ? n : Vector3d::Zero(), ok ? N : Vector3d::Zero()});
+  }
   return m;
 }
 

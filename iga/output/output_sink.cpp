@@ -189,14 +189,15 @@ std::unique_ptr<OutputSink> make_output_sink(const std::string& name) {
 }
 
 std::vector<OutputFileRef> write_meshes(const std::string& format, const std::string& dir,
-                                        const std::vector<MeshOutput>& meshes) {
+                                        std::vector<MeshOutput> meshes) {
   const std::unique_ptr<OutputSink> sink = make_output_sink(format);
   sink->open(dir, {});
-  std::vector<MeshOutput> loose = meshes;  // outside any series: no .pvd is touched
-  for (MeshOutput& m : loose) m.series.clear();
-  std::vector<OutputFileRef> files = sink->snapshot(0.0, loose);
-  for (std::size_t i = 0; i < files.size() && i < meshes.size(); ++i)
-    files[i].series = meshes[i].series;
+  std::vector<std::string> series;  // each mesh's, reported; written outside any (no .pvd)
+  series.reserve(meshes.size());
+  for (MeshOutput& m : meshes) series.push_back(std::exchange(m.series, {}));
+  std::vector<OutputFileRef> files = sink->snapshot(0.0, meshes);
+  for (std::size_t i = 0; i < files.size() && i < series.size(); ++i)
+    files[i].series = std::move(series[i]);
   return files;
 }
 

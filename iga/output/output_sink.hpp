@@ -84,8 +84,9 @@ std::unique_ptr<OutputSink> make_output_sink(const std::string& name);
 std::vector<std::string> output_format_names();
 
 /// Writes each mesh as one file of the field format `format` ("vtk", "vtk_xml", or a registered
-/// one) into dir, outside any series; returns the files in the meshes' order.
+/// one) into dir, outside any series; returns the files in the meshes' order, each with its
+/// mesh's series. (By value: callers hand over the meshes they made, nothing is copied.)
 std::vector<OutputFileRef> write_meshes(const std::string& format, const std::string& dir,
-                                        const std::vector<MeshOutput>& meshes);
+                                        std::vector<MeshOutput> meshes);
 
 }  // namespace iga

@@ -21,46 +21,33 @@ std::string ShellProblem::describe() const {
 SampledMesh ShellProblem::sample_model(const VectorXd& u, double t, int samples) const {
   const std::vector<Vector3d> x = current_points(u, t);
   const NurbsSurface& S = shell_.reference();
-  const std::vector<double> bu = S.knots_u().breaks(), bv = S.knots_v().breaks();
-  const std::vector<double> us = span_samples(bu, samples), vs = span_samples(bv, samples);
-  SampledMesh m;
-  m.shape = SampledMesh::Shape::kGrid;
-  m.nu = static_cast<int>(us.size());
-  m.nv = static_cast<int>(vs.size());
-  const int ne_u = static_cast<int>(bu.size()) - 1;
+  SampledMesh m = element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples);
   std::vector<Vector3d> disp, normal, nloc, mloc;
   std::vector<double> von_mises, singular;
-  for (std::size_t j = 0; j < vs.size(); ++j)
-    for (std::size_t i = 0; i < us.size(); ++i) {
-      const double pu = us[i], pv = vs[j];
-      // The element of the sample: span i / samples (the first sample of a span belongs to the
-      // span before it, as the grid is built).
-      const int eu = span_of_sample(i, samples), ev = span_of_sample(j, samples);
-      const Vector3d p = shell_.point(pu, pv, x);
-      m.points.push_back(p);
-      m.params.push_back({pu, pv});
-      m.elements.push_back(eu + ne_u * ev);
-      disp.push_back(p - S.point(pu, pv));
-      Vector3d nrm = Vector3d::Zero(), nl = Vector3d::Zero(), ml = Vector3d::Zero();
-      double vm = 0.0;
-      bool ok = true;
-      try {
-        nrm = shell_.normal(pu, pv, x);
-        const ShellStresses st = shell_.stresses(pu, pv, x);
-        nl = st.membrane_force_local;
-        ml = st.moment_local;
-        vm = st.von_mises;
-        ok = nrm.allFinite() && nrm.norm() > 0.5 && nl.allFinite() && ml.allFinite() &&
-             std::isfinite(vm);
-      } catch (const std::exception&) {
-        ok = false;
-      }
-      normal.push_back(ok ? nrm : Vector3d::Zero());
-      nloc.push_back(ok ? nl : Vector3d::Zero());
-      mloc.push_back(ok ? ml : Vector3d::Zero());
-      von_mises.push_back(ok ? vm : 0.0);
-      singular.push_back(ok ? 0.0 : 1.0);
+  for (const auto& [pu, pv] : m.params) {
+    const Vector3d p = shell_.point(pu, pv, x);
+    m.points.push_back(p);
+    disp.push_back(p - S.point(pu, pv));
+    Vector3d nrm = Vector3d::Zero(), nl = Vector3d::Zero(), ml = Vector3d::Zero();
+    double vm = 0.0;
+    bool ok = true;
+    try {
+      nrm = shell_.normal(pu, pv, x);
+      const ShellStresses st = shell_.stresses(pu, pv, x);
+      nl = st.membrane_force_local;
+      ml = st.moment_local;
+      vm = st.von_mises;
+      ok = nrm.allFinite() && nrm.norm() > 0.5 && nl.allFinite() && ml.allFinite() &&
+           std::isfinite(vm);
+    } catch (const std::exception&) {
+      ok = false;
     }
+    normal.push_back(ok ? nrm : Vector3d::Zero());
+    nloc.push_back(ok ? nl : Vector3d::Zero());
+    mloc.push_back(ok ? ml : Vector3d::Zero());
+    von_mises.push_back(ok ? vm : 0.0);
+    singular.push_back(ok ? 0.0 : 1.0);
+  }
   m.fields.scalars = {{"von_mises", von_mises}, {"singular", singular}};
   m.fields.vectors = {{"displacement", disp},
                       {"normal", normal},
