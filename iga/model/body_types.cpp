@@ -1,4 +1,4 @@
-// The registry of body types (body_types.hpp), with the built-in rod and shell.
+// The registry of body types (body_types.hpp), with the built-in rod, shell and membrane.
 #include "iga/model/body_types.hpp"
 
 #include <algorithm>

@@ -2,7 +2,7 @@
 // each registers its reader (the body with its conditions, loads and contact pairs, and its
 // shape for the shared parsers of monitors and reactions) and its material types. The loader
 // (analysis.cpp) names no body type: it looks the type up here. Built in (body_types.cpp): "rod"
-// (rod_body.cpp) and "shell" (shell_body.cpp).
+// (rod_body.cpp), "shell" (shell_body.cpp) and "membrane" (membrane_body.cpp).
 //
 // Notation: a reader gets the model's root, the body's entry b, the context of the body being
 // read (its name, index, the load curves, tools and motions read before), the geometry and the
@@ -51,7 +51,7 @@ std::vector<std::string> material_type_names();
 /// listing the known material types, or at the key at fault).
 void check_material(const JsonCursor& m);
 
-// ---- shared by the readers of bodies on NURBS surfaces (shell_body.cpp) ---------------------
+// ---- shared by the readers of bodies on NURBS surfaces (defined in shell_body.cpp) ---------
 /// "u_min", "u_max", "v_min" or "v_max".
 SurfaceEdge parse_edge(const JsonCursor& c);
 /// A parameter pair (u, v) inside the surface's domain.

@@ -1,8 +1,8 @@
 // JSON parsing of the analysis sections (docs/model_format.md, "Analysis sections") that all body
 // types share: load curves, rigid motions, the parts of boundary conditions, loads and contact
 // pairs common to every body (points, vectors, curves, tools), the solver and output sections.
-// The body types' own readers: rod_body.cpp, shell_body.cpp (body_types.hpp). Every error names
-// the file, the JSON path and the value.
+// The body types' own readers: rod_body.cpp, shell_body.cpp, membrane_body.cpp (body_types.hpp).
+// Every error names the file, the JSON path and the value.
 #include "iga/model/sections.hpp"
 
 #include <algorithm>
