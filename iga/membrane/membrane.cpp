@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include "iga/core/follower_pressure.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -41,12 +42,6 @@ Matrix2d metric(const Vector3d& a1, const Vector3d& a2) {
   Matrix2d a;
   a << a1.dot(a1), a1.dot(a2), a1.dot(a2), a2.dot(a2);
   return a;
-}
-
-Matrix3d skew(const Vector3d& v) {
-  Matrix3d S;
-  S << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return S;
 }
 
 void check_material(const MembraneMaterial& m) {
@@ -239,28 +234,7 @@ void MembraneProblem::add_pressure_terms(std::span<const Vector3d> x, double t, 
   double p = 0.0;
   for (const Pressure& pr : pressures_) p += pr.p * pr.curve(t);
   if (p == 0.0) return;
-  for (const Point& pt : points_) {
-    const SurfaceBasis& B = pt.basis;
-    const auto [a1, a2] = base(B, x);
-    const double w = p * pt.w_param;
-    const Vector3d normal_force = w * a1.cross(a2);  // p (a_1 x a_2) du dv
-    const int np = B.count();
-    for (int k = 0; k < np; ++k)
-      g.segment<3>(3 * B.global_index(k)) -= B.R[static_cast<std::size_t>(k)] * normal_force;
-    if (!K) continue;
-    // g_k = -R_k f: dg_k/dx_l = -R_k w (R_l,2 [a_1]x - R_l,1 [a_2]x).
-    const Matrix3d S1 = skew(a1), S2 = skew(a2);
-    for (int l = 0; l < np; ++l) {
-      const Matrix3d Dl =
-          w * (B.d2[static_cast<std::size_t>(l)] * S1 - B.d1[static_cast<std::size_t>(l)] * S2);
-      for (int k = 0; k < np; ++k) {
-        const Matrix3d Kkl = -B.R[static_cast<std::size_t>(k)] * Dl;
-        for (int a = 0; a < 3; ++a)
-          for (int b = 0; b < 3; ++b)
-            K->emplace_back(3 * B.global_index(k) + a, 3 * B.global_index(l) + b, Kkl(a, b));
-      }
-    }
-  }
+  for (const Point& pt : points_) add_follower_pressure(pt.basis, p * pt.w_param, x, g, K);
 }
 
 NurbsSurface MembraneProblem::current_surface(const VectorXd& u, double t) const {

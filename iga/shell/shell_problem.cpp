@@ -7,6 +7,7 @@
 #include <string>
 
 #include "geometry/differential_geometry.hpp"
+#include "iga/core/follower_pressure.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -181,27 +182,7 @@ void ShellProblem::add_pressure_terms(std::span<const Vector3d> x, double t, Vec
   for (int e = 0; e < shell_.num_elements(); ++e)
     for (int q = 0; q < shell_.num_quadrature_points(e); ++q) {
       const KirchhoffLoveShell::QuadraturePoint& qp = shell_.quadrature_point(e, q);
-      const SurfaceBasis& B = qp.basis;
-      const Vector3d a1 = combine(B, B.d1, x), a2 = combine(B, B.d2, x);
-      const double w = p * qp.w_param;
-      const Vector3d f = w * a1.cross(a2);  // p a_3 da = p (a_1 x a_2) du dv
-      const int np = B.count();
-      for (int k = 0; k < np; ++k)
-        g.segment<3>(3 * B.global_index(k)) -= B.R[static_cast<std::size_t>(k)] * f;
-      if (!K) continue;
-      const Matrix3d S1 = w * skew(a1), S2 = w * skew(a2);
-      for (int l = 0; l < np; ++l) {
-        // d f / d x_l = R_l,2 [a1]x - R_l,1 [a2]x (times w); tangent of g is minus R_k times it.
-        const Matrix3d Dl =
-            B.d2[static_cast<std::size_t>(l)] * S1 - B.d1[static_cast<std::size_t>(l)] * S2;
-        const int cl = 3 * B.global_index(l);
-        for (int k = 0; k < np; ++k) {
-          const double Rk = B.R[static_cast<std::size_t>(k)];
-          const int rk = 3 * B.global_index(k);
-          for (int b = 0; b < 3; ++b)
-            for (int a = 0; a < 3; ++a) K->emplace_back(rk + a, cl + b, -Rk * Dl(a, b));
-        }
-      }
+      add_follower_pressure(qp.basis, p * qp.w_param, x, g, K);
     }
 }
 
