@@ -119,13 +119,13 @@ void BM_SurfaceContactPairMoving(benchmark::State& state) {
   }
   Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
   std::vector<Eigen::Triplet<double>> K;
-  pair.add(x, 1.0, R, nullptr);
+  pair.add(BodyState{x, {}, nullptr}, 1.0, R, nullptr);
   pair.commit();
   std::vector<Eigen::Triplet<double>>* Kp = state.range(1) ? &K : nullptr;
   for (auto _ : state) {
     K.clear();
     R.setZero();
-    pair.add(x, 1.0, R, Kp);
+    pair.add(BodyState{x, {}, nullptr}, 1.0, R, Kp);
     benchmark::DoNotOptimize(R.data());
   }
   state.counters["active"] = pair.counts().active;

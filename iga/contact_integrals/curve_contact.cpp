@@ -57,7 +57,7 @@ void CurveContact::set_enforcement(const ContactEnforcement& e) {
 namespace {
 
 // Current position r_s = sum_j R_j x_j (77) of a contact point.
-void set_position(const RationalBasis& basis, int p, const std::vector<Vector3d>& x,
+void set_position(const RationalBasis& basis, int p, std::span<const Vector3d> x,
                   CurveContactPoint& cp) {
   const BasisValues& Rb = basis.N;
   const int first = basis.first;
@@ -96,7 +96,7 @@ bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_para
   return true;
 }
 
-// The rolling displacement of a rod with torsion at a point (CurveContact::set_twisting_rod):
+// The rolling displacement of a rope that rolls at a point (CurveContact::set_rolling):
 // s(dphi) = -R dphi b_c, b_c = t_c x n_c, and its first two derivatives in dphi.
 struct Roll {
   Vector3d s, s1, s2;
@@ -109,14 +109,12 @@ Roll roll_of(const CurveContactPoint& cp, double R) {
 // A rod with torsion: the section's spin at the point since the commit (sp; the first
 // assembly takes the frame at rest as the committed one) and the rolling displacement. x: the
 // rod's points in world orientation; Q: the tool's turn.
-Roll spin_and_roll(const TwistingRod& rod, std::span<const Vector3d> x,
+Roll spin_and_roll(const SectionFrames& rod, std::span<const Vector3d> x,
                    std::span<const double> alpha, double radius, const Matrix3d& Q,
-                   CurveContactPoint& cp, TwistingRod::Spin& sp) {
+                   CurveContactPoint& cp, SectionSpin& sp) {
   if (cp.frame_t_c.isZero()) {
-    const TwistStrains st = rod.strains(cp.eta, x, alpha);
-    cp.frame_t_c = st.t;
-    cp.frame_d1_c = st.d1;
-    cp.tangent_c = Q.transpose() * st.t;
+    rod.frame(cp.eta, x, alpha, cp.frame_t_c, cp.frame_d1_c);
+    cp.tangent_c = Q.transpose() * cp.frame_t_c;
     if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
   }
   sp = rod.spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x, alpha);
@@ -128,13 +126,12 @@ Roll spin_and_roll(const TwistingRod& rod, std::span<const Vector3d> x,
 
 // The twist part of an active point: the friction's work T.s_phi d(dphi) on the DOFs of the rod
 // element holding it (sp: the spin and its derivatives there), and the coupling blocks of the
-// tangent (see CurveContact::set_twisting_rod): with f = w T.s_phi,
+// tangent (see CurveContact::set_rolling): with f = w T.s_phi,
 //   R_j -= f g_j (g = d dphi / dq),
 //   K_(a r) k -= w R_a (dT/ds s_phi)_r g_k,   K_j (b c) -= w g_j (s_phi^T dT/dr)_c R_b,
 //   K_jk -= w [(s_phi^T dT/ds s_phi + T.s_phi2) g_j g_k + T.s_phi H_jk].
 void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, int p,
-                     const TwistingRod& rod, const TwistingRod::Spin& sp, const Roll& roll,
-                     const Matrix3d& Q, Eigen::VectorXd& R,
+                     const SectionSpin& sp, const Roll& roll, const Matrix3d& Q, Eigen::VectorXd& R,
                      std::vector<Eigen::Triplet<double>>* K) {
   // With a moving tool (Q its turn) the law's vectors are in the tool's frame and the spin's
   // derivatives are with respect to world positions: the residual's position entries are
@@ -142,12 +139,12 @@ void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, in
   const Vector3d& T = cp.law.T_vector;
   const double w = cp.weight, f = T.dot(roll.s1);
   const auto ne = static_cast<int>(sp.gradient.size());
-  const int n_pos = 3 * (rod.degree() + 1);
-  for (int j = 0; j < n_pos; j += 3) {
+  const auto dof = [&](int j) { return sp.dofs[static_cast<std::size_t>(j)]; };
+  for (int j = 0; j < sp.positions; j += 3) {
     const Vector3d gt = Q.transpose() * Vector3d(sp.gradient.segment<3>(j));
-    for (int c = 0; c < 3; ++c) R[rod.global_dof(sp.element, j + c)] -= w * f * gt[c];
+    for (int c = 0; c < 3; ++c) R[dof(j + c)] -= w * f * gt[c];
   }
-  for (int j = n_pos; j < ne; ++j) R[rod.global_dof(sp.element, j)] -= w * f * sp.gradient[j];
+  for (int j = sp.positions; j < ne; ++j) R[dof(j)] -= w * f * sp.gradient[j];
   if (!K) return;
   const Vector3d ks_tool = cp.law.stiffness_roll * roll.s1;  // dT/ds s_phi
   const Vector3d ks = Q * ks_tool;                           // in the world
@@ -158,7 +155,7 @@ void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, in
     const double Ra = basis.N[a];
     const int A = basis.first + a;
     for (int k = 0; k < ne; ++k) {
-      const int gk = rod.global_dof(sp.element, k);
+      const int gk = dof(k);
       for (int r = 0; r < 3; ++r) {
         K->emplace_back(3 * A + r, gk, -w * Ra * ks[r] * sp.gradient[k]);
         K->emplace_back(gk, 3 * A + r, -w * sp.gradient[k] * sk[r] * Ra);
@@ -168,8 +165,7 @@ void add_twist_terms(const CurveContactPoint& cp, const RationalBasis& basis, in
   for (int j = 0; j < ne; ++j)
     for (int k = 0; k < ne; ++k) {
       const double v = kss * sp.gradient[j] * sp.gradient[k] + f * sp.hessian(j, k);
-      if (v != 0.0)
-        K->emplace_back(rod.global_dof(sp.element, j), rod.global_dof(sp.element, k), -w * v);
+      if (v != 0.0) K->emplace_back(dof(j), dof(k), -w * v);
     }
 }
 
@@ -201,7 +197,7 @@ void add_point_tangent(const CurveContactPoint& cp, const RationalBasis& basis, 
 }
 
 // Output: the curve's frame tau (tangent), e = -n, g = tau x e (41)-(42); (68)-(70).
-void set_frame_forces(const RationalBasis& basis, int p, const std::vector<Vector3d>& x,
+void set_frame_forces(const RationalBasis& basis, int p, std::span<const Vector3d> x,
                       CurveContactPoint& cp) {
   Vector3d tangent = Vector3d::Zero();  // r' = sum R_j' x_j, normalized
   for (int j = 0; j <= p; ++j)
@@ -235,15 +231,7 @@ void add_near_stiffness(const CurveContactPoint& cp, const RationalBasis& basis,
 
 }  // namespace
 
-void CurveContact::set_twisting_rod(const TwistingRod* rod) {
-  if (rod &&
-      (rod->num_control_points() != ref_.num_control_points() || rod->degree() != ref_.degree()))
-    throw std::invalid_argument(
-        "CurveContact::set_twisting_rod: the rod's curve is not the contact's reference");
-  twist_ = rod;
-}
-
-void CurveContact::locate(const std::vector<Vector3d>& x, bool parallel, std::vector<char>& warm) {
+void CurveContact::locate(std::span<const Vector3d> x, bool parallel, std::vector<char>& warm) {
   const int p = ref_.degree();
   const auto n_points = static_cast<std::ptrdiff_t>(points_.size());
   // Current positions (77); the points without a warm start go through the broad phase.
@@ -264,21 +252,23 @@ void CurveContact::locate(const std::vector<Vector3d>& x, bool parallel, std::ve
   if (!cold_.empty()) project_cold(*rigid_, cold_, cold_x_, search_distance_, points_);
 }
 
-void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+void CurveContact::assemble(const BodyState& state, Eigen::VectorXd& R,
                             std::vector<Eigen::Triplet<double>>* K) {
   const int p = ref_.degree();
-  // A rod with torsion: its knot twists follow the control points in x; its frames are world
-  // frames, from the points turned back to the world's orientation (xw).
-  thread_local std::vector<double> alpha;
+  const std::span<const Vector3d> x = state.x;
+  const std::size_t n = static_cast<std::size_t>(ref_.num_control_points());
+  if (x.size() != n)
+    throw std::invalid_argument("CurveContact: " + std::to_string(x.size()) +
+                                " control points for a curve of " + std::to_string(n));
+  if (rolling_ && !state.frames)
+    throw std::invalid_argument("CurveContact: a rope that rolls needs its body's section frames");
+  const SectionFrames* frames = rolling_ ? state.frames : nullptr;
+  // A rope that rolls: its frames are world frames, from the points turned back to the world's
+  // orientation (xw); its scalars (twists) are not turned.
   thread_local std::vector<Vector3d> xw;
-  if (twist_) {
-    const std::size_t n = static_cast<std::size_t>(ref_.num_control_points());
-    if (x.size() != n + static_cast<std::size_t>(twist_->num_knots()))
-      throw std::invalid_argument("CurveContact: a rod with torsion needs its points and twists");
+  if (frames) {
     xw.resize(n);
     for (std::size_t i = 0; i < n; ++i) xw[i] = turn_ * x[i];
-    alpha.resize(static_cast<std::size_t>(twist_->num_knots()));
-    for (std::size_t k = 0; k < alpha.size(); ++k) alpha[k] = x[n + k][0];
   }
   // The points in parallel (OpenMP) where they are many: their positions, projections and
   // laws touch only the point itself; the residual and tangent are then summed over the points
@@ -298,10 +288,10 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
   law_params.eps_t *= augmentation_.eps_t_scale;
   // Each point's law: the closest point warm-started from its last foot (cold ones: done
   // above), the section's spin and roll of a rod with torsion, the law, the frame forces.
-  // (xw and alpha are this thread's: passed by reference into the parallel loop.)
+  // (xw is this thread's: passed by reference into the parallel loop.)
   const std::vector<Vector3d>& x_world = xw;
-  const std::vector<double>& twists = alpha;
-  std::vector<TwistingRod::Spin> spins(twist_ ? points_.size() : 0);
+  const std::span<const double> twists = state.s;
+  std::vector<SectionSpin> spins(frames ? points_.size() : 0);
   std::vector<Roll> rolls(points_.size(),
                           Roll{Vector3d::Zero(), Vector3d::Zero(), Vector3d::Zero()});
   std::vector<char> evaluated(points_.size(), 0);
@@ -310,15 +300,15 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     const auto i = static_cast<std::size_t>(ii);
     CurveContactPoint& cp = points_[i];
     if (warm[i] != 0) cp.foot = rigid_->closest_point(cp.x, cp.foot);
-    if (twist_)
-      rolls[i] = spin_and_roll(*twist_, x_world, twists, params_.radius, turn_, cp, spins[i]);
+    if (frames)
+      rolls[i] = spin_and_roll(*frames, x_world, twists, params_.radius, turn_, cp, spins[i]);
     cp.torque = 0.0;
     evaluated[i] = evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
-                                  twist_ ? &rolls[i].s : nullptr, cp)
+                                  frames ? &rolls[i].s : nullptr, cp)
                        ? 1
                        : 0;
     if (evaluated[i] == 0 || !cp.law.active) continue;
-    if (twist_) cp.torque = cp.law.T_vector.dot(rolls[i].s1);
+    if (frames) cp.torque = cp.law.T_vector.dot(rolls[i].s1);
     set_frame_forces(basis_[i], p, x, cp);
   }
   near_.clear();
@@ -334,7 +324,7 @@ void CurveContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
     // R_a -= int R_a f ds; K_ab -= int R_a R_b df/dr ds
     add_point_residual(cp, basis_[i], p, R);
     if (K) add_point_tangent(cp, basis_[i], p, turn_, *K);
-    if (twist_) add_twist_terms(cp, basis_[i], p, *twist_, spins[i], rolls[i], turn_, R, K);
+    if (frames) add_twist_terms(cp, basis_[i], p, spins[i], rolls[i], turn_, R, K);
   }
   // No point in contact, some a hair above the surface: the tangent gets their normal penalty
   // stiffness eps_N n n^T (no force, so the residual and the converged state are unchanged).
@@ -351,7 +341,7 @@ void CurveContact::commit() {
   for (CurveContactPoint& cp : points_) {
     cp.history = found(cp.foot.status) ? commit_contact(cp.law, cp.foot.patch) : ContactHistory{};
     cp.x_committed = cp.x;
-    if (twist_) {  // the rolling displacement starts again from here
+    if (rolling_) {  // the rolling displacement starts again from here
       cp.frame_t_c = cp.frame_t;
       cp.frame_d1_c = cp.frame_d1;
       cp.tangent_c = turn_.transpose() * cp.frame_t;  // the turn of the last assembly

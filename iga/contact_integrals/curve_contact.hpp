@@ -20,8 +20,8 @@
 #include "geometry/nurbs_curve.hpp"
 #include "geometry/rational_basis.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
+#include "iga/core/contact_pair.hpp"
 #include "iga/core/state_archive.hpp"
-#include "iga/rod/twisting_rod.hpp"
 
 namespace iga {
 
@@ -35,7 +35,7 @@ struct CurveContactPoint : ContactMultipliers {
   ContactHistory history;                   ///< committed state of the last converged step
   Vector3d x_committed = Vector3d::Zero();  ///< x at the last commit (passed_through)
   double N = 0.0, T = 0.0, B = 0.0;         ///< normal (68), pulling (69) and dragging (70) forces
-  // A rod with torsion (CurveContact::set_twisting_rod):
+  // A rope that rolls (CurveContact::set_rolling):
   Vector3d frame_t = Vector3d::Zero(), frame_d1 = Vector3d::Zero();      ///< section frame now
   Vector3d frame_t_c = Vector3d::Zero(), frame_d1_c = Vector3d::Zero();  ///< and at the commit
   Vector3d normal_c = Vector3d::Zero();   ///< the tool's normal at the commit (n_c)
@@ -82,31 +82,37 @@ class CurveContact {
   CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
                const ContactParameters& params, int points_per_element);
 
-  /// A rod with torsion (iga/rod/twisting_rod.hpp) on the same reference curve: the contact
-  /// point sits on the rope's surface, at -R n from the centre line ((52)), and the section
-  /// turns under it: since the commit the rope's surface there has moved by
+  /// A rope that rolls: a rod whose sections turn about its centre line (a rod with torsion,
+  /// iga/rod/twisting_rod.hpp) on the same reference curve, which hands its section frames
+  /// (SectionFrames) with its state at every assembly. The contact point sits on the rope's
+  /// surface, at -R n from the centre line ((52)), and the section turns under it: since the
+  /// commit the rope's surface there has moved by
   ///   s = -R dphi (t_c x n_c)
   /// relative to the centre line (dphi the section's spin about t since the commit,
-  /// TwistingRod::spin_since; t_c, n_c the tangent and the tool's normal then: the contact
+  /// SectionFrames::spin_since; t_c, n_c the tangent and the tool's normal then: the contact
   /// stays on the line of the normal, as in rolling, rather than following one material
   /// point, which would lift off by R (1 - cos dphi)), which enters the slip
   /// (evaluate_contact's roll): a rope that rolls without slipping sticks. The
-  /// friction force T then does the work T.ds = (T.s_phi) d(dphi) on the twist unknowns: the
-  /// moment ((-R n) x T).t of the friction about the centre line (the friction's moment
-  /// normal to t, on the bending, is not taken). x then holds the rod's control points and
-  /// its knot twists as the rod's problem numbers them (TwistingRodProblem), R and K likewise.
-  /// Null: a rod without torsion. With a moving tool (set_turn) the rod's frames are world
-  /// frames, computed from the points turned back by Q (translations do not change them), and
-  /// the slip and its moment in the tool's frame.
-  void set_twisting_rod(const TwistingRod* rod);
-  const TwistingRod* twisting_rod() const { return twist_; }
-  /// Control points of the body (without the twist entries of a rod with torsion).
+  /// friction force T then does the work T.ds = (T.s_phi) d(dphi) on the DOFs of the spin (the
+  /// rod's twists, the body's scalar unknowns): the moment ((-R n) x T).t of the friction about
+  /// the centre line (the friction's moment normal to t, on the bending, is not taken). With a
+  /// moving tool (set_turn) the rod's frames are world frames, computed from the points turned
+  /// back by Q (translations do not change them), and the slip and its moment in the tool's
+  /// frame. False (default): a rod without torsion; its frames, if given, are not used.
+  void set_rolling(bool rolling) { rolling_ = rolling; }
+  bool rolling() const { return rolling_; }
+  /// Control points of the body.
   int num_body_points() const { return ref_.num_control_points(); }
 
-  /// Adds the contact contributions at the current control points x (3 unknowns per control
-  /// point, dof 3 a + k) to R and, if K is not null, to the triplets of the tangent.
-  void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
-                std::vector<Eigen::Triplet<double>>* K);
+  /// Adds the contact contributions in the body's state (3 unknowns per control point, dof
+  /// 3 a + k, then the scalars) to R and, if K is not null, to the triplets of the tangent. A
+  /// rope that rolls needs the state's section frames (throws std::invalid_argument without).
+  void assemble(const BodyState& state, Eigen::VectorXd& R, std::vector<Eigen::Triplet<double>>* K);
+  /// The same at the control points x of a rod without torsion.
+  void assemble(std::span<const Vector3d> x, Eigen::VectorXd& R,
+                std::vector<Eigen::Triplet<double>>* K) {
+    assemble(BodyState{x, {}, nullptr}, R, K);
+  }
   /// Stores the current state of every point as history (after a converged step), with the
   /// multipliers.
   void commit();
@@ -176,13 +182,13 @@ class CurveContact {
   Matrix3d turn_ = Matrix3d::Identity();
   int broad_phase_points_ = 0;
   bool anchored_start_ = false;  ///< the first assembly anchored the points at rest
-  const TwistingRod* twist_ = nullptr;
+  bool rolling_ = false;
   std::vector<int> cold_;  ///< work: points without a warm start
   std::vector<Vector3d> cold_x_;
   std::vector<int> near_;  ///< work: points near contact (see near_distance)
   /// assemble's first pass: the points' positions at x, the feet of those without a warm start
   /// (warm[i] = 0) from the broad phase.
-  void locate(const std::vector<Vector3d>& x, bool parallel, std::vector<char>& warm);
+  void locate(std::span<const Vector3d> x, bool parallel, std::vector<char>& warm);
 };
 
 }  // namespace iga

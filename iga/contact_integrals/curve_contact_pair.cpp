@@ -78,7 +78,7 @@ void CurveContactPair::add_tool_fields(SampledMesh& body) const {
     }
   }
   // A rod with torsion: also the friction torque about the centre line per length.
-  const bool twist = contact().twisting_rod() != nullptr;
+  const bool twist = contact().rolling();
   PointFields c;
   if (twist)
     c.name({"contact_pressure", "contact_traction_T", "contact_traction_B", "contact_state",
@@ -100,7 +100,7 @@ void CurveContactPair::add_tool_fields(SampledMesh& body) const {
 
 SampledMesh CurveContactPair::tool_points() const {
   SampledMesh m;
-  const bool twist = contact().twisting_rod() != nullptr;  // then also the friction torque
+  const bool twist = contact().rolling();  // then also the friction torque
   if (twist)
     m.fields.name({"N", "T", "B", "slip", "torque"}, {"normal"});
   else

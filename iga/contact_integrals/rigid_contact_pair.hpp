@@ -4,8 +4,8 @@
 // exact enforcement by augmentation, the status line; a moving tool (the integral evaluated in
 // the tool's frame, turned forward).
 //
-// Notation: x the body's control points, g its Cartesian residual (3 n, g = f_int - f_ext), K
-// the triplets of dg/dx; t the pseudo-time.
+// Notation: x the body's control points, g its Cartesian residual (3 n + m with m scalar
+// unknowns, g = f_int - f_ext), K the triplets of dg/d(x, s); t the pseudo-time.
 #pragma once
 
 #include <chrono>
@@ -20,7 +20,7 @@
 
 namespace iga {
 
-/// Integral: the contact integral (CurveContact, SurfaceContact) with assemble(x, g, K*),
+/// Integral: the contact integral (CurveContact, SurfaceContact) with assemble(BodyState, g, K*),
 /// commit(), predict(t), augment(), restore(), roundoff(), enforcement(), augmentation() and
 /// counts() (active, stick, slip); copyable.
 template <class Integral>
@@ -35,31 +35,31 @@ class RigidContactPair : public ContactPair {
   /// Q g_a and Q K_ab Q^T (the map's derivative dX/dx = Q^T is constant at fixed t; the
   /// integral turns the blocks as it emits them, set_turn). The friction history the integral
   /// keeps is thus in the tool's frame and moves with it.
-  void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) override {
+  void add(const BodyState& state, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
     pose_ = pose(t);
-    // Entries past the body's control points (a rod's twists) are no points: not mapped, and
-    // their residual is not turned nor a force on the tool.
-    const auto body_points = static_cast<std::size_t>(contact_.num_body_points());
+    const std::span<const Vector3d> x = state.x;
     x_.resize(x.size());  // no reallocation after the first call
-    for (std::size_t a = 0; a < x.size(); ++a) x_[a] = a < body_points ? pose_.to_tool(x[a]) : x[a];
+    for (std::size_t a = 0; a < x.size(); ++a) x_[a] = pose_.to_tool(x[a]);
     g_.setZero(g.size());
     const bool turn = pose_.turns();
-    contact_.set_turn(pose_.Q);    // the tangent's blocks emitted turned forward, Q K_ab Q^T
-    contact_.predict(t);           // augmented Lagrange: the step's first multipliers
-    contact_.assemble(x_, g_, K);  // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
+    contact_.set_turn(pose_.Q);  // the tangent's blocks emitted turned forward, Q K_ab Q^T
+    contact_.predict(t);         // augmented Lagrange: the step's first multipliers
+    // g_a -= int (dx/dX_a)^T f, K_ab -= its derivative
+    contact_.assemble(BodyState{x_, state.s, state.frames}, g_, K);
     force_.setZero();
     moment_.setZero();
     for (std::size_t a = 0; a < x.size(); ++a) {
       const auto i = static_cast<Eigen::Index>(3 * a);
-      const bool point = a < body_points;
-      const Vector3d ga =
-          turn && point ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
+      const Vector3d ga = turn ? Vector3d(pose_.Q * g_.segment<3>(i)) : Vector3d(g_.segment<3>(i));
       g.segment<3>(i) += ga;
-      if (!point) continue;
       force_ += ga;  // g_a = -f_a: the force on the tool
       moment_ += x[a].cross(ga);
     }
+    // The scalars' entries (a rod's twists: moments about its centre line) are no forces on
+    // the tool and are not turned.
+    const auto n3 = static_cast<Eigen::Index>(3 * x.size());
+    g.tail(g.size() - n3) += g_.tail(g.size() - n3);
     time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   void commit() override { contact_.commit(); }

@@ -43,8 +43,8 @@ struct PointGeometry {
   Matrix39 Ng;              // dn/dG = [0, dn/da1, dn/da2]
 };
 
-void point_geometry(const double* B, int nen, const int* cps, const std::vector<Vector3d>& x,
-                    double c, PointGeometry& g) {
+void point_geometry(const double* B, int nen, const int* cps, std::span<const Vector3d> x, double c,
+                    PointGeometry& g) {
   g.rho.setZero();
   g.a1.setZero();
   g.a2.setZero();
@@ -508,7 +508,7 @@ void SurfaceContact::cold_project() {
   }
 }
 
-void SurfaceContact::assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+void SurfaceContact::assemble(std::span<const Vector3d> x, Eigen::VectorXd& R,
                               std::vector<Eigen::Triplet<double>>* K) {
   const int n_cp = ref_.num_u() * ref_.num_v();
   if (static_cast<int>(x.size()) != n_cp || R.size() != 3 * static_cast<Eigen::Index>(x.size()))
@@ -534,7 +534,7 @@ SurfaceContact::Layout SurfaceContact::layout() const {
 // each writing only its own points, its residual slot and its thread's triplet list; the
 // residuals are added and the lists joined in element order by one thread, so R and K are the
 // same, bit for bit, for any number of threads (K's triplets in the serial order).
-void SurfaceContact::locate(const std::vector<Vector3d>& x, double c) {
+void SurfaceContact::locate(std::span<const Vector3d> x, double c) {
   const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
   const bool master = lay.master, parallel = lay.parallel;
   const int per_element = lay.per_element, n_el = lay.n_el;
@@ -582,7 +582,7 @@ void SurfaceContact::locate(const std::vector<Vector3d>& x, double c) {
   anchored_start_ = true;
 }
 
-void SurfaceContact::evaluate(const std::vector<Vector3d>& x, double c, Eigen::VectorXd& R,
+void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::VectorXd& R,
                               std::vector<Eigen::Triplet<double>>* K) {
   const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
   const bool master = lay.master, parallel = lay.parallel;

@@ -103,6 +103,7 @@
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_surface.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
+#include "iga/core/contact_pair.hpp"
 #include "iga/core/state_archive.hpp"
 
 namespace iga {
@@ -175,8 +176,14 @@ class SurfaceContact {
   /// Adds the contact contributions at the current control points x (3 unknowns per control
   /// point, dof 3 a + k, a = reference.index(i, j)) to R and, if K is not null, appends the
   /// tangent's triplets. R must have size 3 x.size().
-  void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
+  void assemble(std::span<const Vector3d> x, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K);
+  /// The same in the body's state (RigidContactPair); a surface body has no scalar unknowns
+  /// (R has 3 n entries).
+  void assemble(const BodyState& state, Eigen::VectorXd& R,
+                std::vector<Eigen::Triplet<double>>* K) {
+    assemble(state.x, R, K);
+  }
   /// History and multipliers, as CurveContact: commit() after a converged step, augment() the
   /// Uzawa update, predict(t) the step's first multipliers, restore() after a cut-back.
   void commit();
@@ -235,8 +242,8 @@ class SurfaceContact {
   Layout layout() const;
   /// assemble's two passes: the contact points at x and their feet (warm, else cold_project),
   /// c the face's offset; then the laws, the residual and the element tangents.
-  void locate(const std::vector<Vector3d>& x, double c);
-  void evaluate(const std::vector<Vector3d>& x, double c, Eigen::VectorXd& R,
+  void locate(std::span<const Vector3d> x, double c);
+  void evaluate(std::span<const Vector3d> x, double c, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K);
   void check(const SurfaceContactParameters& p) const;
 

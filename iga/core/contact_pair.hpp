@@ -7,9 +7,10 @@
 // works in the tool's own frame and turns its results forward (RigidContactPair::add); the
 // output (points, feet, fields) is in the world frame at the pose of the last assembly.
 //
-// Notation: x the body's current control points; g the Cartesian residual (3 n, DOF 3 a + c,
-// g = f_int - f_ext), K its tangent dg/dx as triplets; t the pseudo-time; x = c + Q (X - c0)
-// the tool's pose (RigidPose).
+// Notation: x the body's current control points, s its scalar unknowns (a rod's twists; none
+// for most bodies); g the Cartesian residual (3 n + m: DOF 3 a + c for the points, 3 n + k for
+// scalar k; g = f_int - f_ext), K its tangent dg/d(x, s) as triplets; t the pseudo-time;
+// x = c + Q (X - c0) the tool's pose (RigidPose).
 #pragma once
 
 #include <memory>
@@ -22,8 +23,18 @@
 #include "iga/core/dof_map.hpp"
 #include "iga/core/nonlinear_problem.hpp"
 #include "iga/core/sampled_mesh.hpp"
+#include "iga/core/section_frames.hpp"
 
 namespace iga {
+
+/// What a body hands its contact pairs at an assembly: its current control points, its scalar
+/// unknowns (their residual entries follow the points') and, for a rod whose sections turn,
+/// its section frames (null otherwise). Views: valid during the call only.
+struct BodyState {
+  std::span<const Vector3d> x;
+  std::span<const double> s;
+  const SectionFrames* frames = nullptr;
+};
 
 /// Contact point counts of a pair at its last assembly.
 struct ContactCounts {
@@ -45,8 +56,9 @@ class ContactPair {
   /// A copy with the same state (a body's copy gets copies of its pairs).
   virtual std::unique_ptr<ContactPair> clone() const = 0;
 
-  /// g -= contact forces at x, t; K (if not null) gets the triplets of their derivative.
-  virtual void add(std::span<const Vector3d> x, double t, VectorXd& g, std::vector<Triplet>* K) = 0;
+  /// g -= contact forces in the body's state at t; K (if not null) gets the triplets of their
+  /// derivative.
+  virtual void add(const BodyState& state, double t, VectorXd& g, std::vector<Triplet>* K) = 0;
   /// Commits the history of the last assembly (a converged step).
   virtual void commit() = 0;
   /// Exact enforcement: checks the constraints at the last assembly, updates the multipliers

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
 #include "iga/core/state_archive.hpp"
@@ -11,8 +12,8 @@
 namespace iga {
 
 ControlPointProblem::ControlPointProblem(std::vector<Vector3d> X, std::string owner,
-                                         DofMap::FailFn fail)
-    : dofs_(static_cast<int>(X.size()), std::move(owner), fail), X_(std::move(X)) {}
+                                         DofMap::FailFn fail, int num_scalars)
+    : dofs_(static_cast<int>(X.size()), std::move(owner), fail, num_scalars), X_(std::move(X)) {}
 
 ControlPointProblem::ControlPointProblem(const ControlPointProblem& o)
     : Body(o), dofs_(o.dofs_), X_(o.X_), dead_loads_(o.dead_loads_) {
@@ -102,20 +103,32 @@ SampledMesh ControlPointProblem::sample(const VectorXd& u, double t, int samples
   return m;
 }
 
-std::vector<Vector3d> ControlPointProblem::reactions(const VectorXd& u, double t) {
+VectorXd ControlPointProblem::residual_keeping_pairs(const VectorXd& u, double t) {
   // The residual is evaluated with copies of the pairs; the pairs themselves stay untouched.
   std::vector<std::unique_ptr<ContactPair>> copies;
   for (const auto& p : pairs_) copies.push_back(p->clone());
   std::swap(pairs_, copies);
-  std::vector<Vector3d> r;
   try {
-    r = dofs_.constraint_forces(nodal_residual(u, t));
+    assemble_cartesian(u, t, false);
   } catch (...) {
     std::swap(pairs_, copies);
     throw;
   }
   std::swap(pairs_, copies);
-  return r;
+  return g_;
+}
+
+std::vector<Vector3d> ControlPointProblem::reactions(const VectorXd& u, double t) {
+  const VectorXd g = residual_keeping_pairs(u, t);
+  std::vector<Vector3d> r(X_.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = g.segment<3>(3 * static_cast<Eigen::Index>(i));
+  return dofs_.constraint_forces(r);
+}
+
+std::vector<double> ControlPointProblem::scalar_reactions(const VectorXd& u, double t) {
+  const VectorXd g = residual_keeping_pairs(u, t);
+  const auto n3 = 3 * static_cast<Eigen::Index>(X_.size());
+  return {g.data() + n3, g.data() + g.size()};
 }
 
 void ControlPointProblem::add_nodal_load(std::vector<std::pair<int, Vector3d>> forces,
@@ -141,6 +154,12 @@ std::vector<Vector3d> ControlPointProblem::current_points(const VectorXd& u, dou
   return x;
 }
 
+std::vector<double> ControlPointProblem::current_scalars(const VectorXd& u, double t) const {
+  std::vector<double> s;
+  dofs_.current_scalars(u, t, s);
+  return s;
+}
+
 std::vector<Vector3d> ControlPointProblem::control_point_displacements(const VectorXd& u,
                                                                        double t) const {
   std::vector<Vector3d> x = current_points(u, t);
@@ -149,7 +168,7 @@ std::vector<Vector3d> ControlPointProblem::control_point_displacements(const Vec
 }
 
 VectorXd ControlPointProblem::dead_load(double t) const {
-  VectorXd f = VectorXd::Zero(3 * static_cast<Eigen::Index>(X_.size()));
+  VectorXd f = VectorXd::Zero(dofs_.num_cartesian());
   for (const NodalLoad& L : dead_loads_) {
     const double lam = L.curve(t);
     for (const auto& [i, F] : L.forces) f.segment<3>(3 * i) += lam * F;
@@ -159,14 +178,19 @@ VectorXd ControlPointProblem::dead_load(double t) const {
 
 void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
   current_points(u, t, x_);
+  dofs_.current_scalars(u, t, s_);
   cart_triplets_.clear();
   std::vector<Triplet>* K = tangent ? &cart_triplets_ : nullptr;
-  assemble_model(x_, t, g_, K);  // g = f_int (- configuration-dependent loads)
+  assemble_model(x_, s_, t, g_, K);  // g = f_int (- configuration-dependent loads)
+  if (g_.size() != dofs_.num_cartesian())
+    throw std::logic_error(describe() + ": the model's residual has " + std::to_string(g_.size()) +
+                           " entries, expected " + std::to_string(dofs_.num_cartesian()));
   for (const NodalLoad& L : dead_loads_) {
     const double lam = L.curve(t);
     for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
   }
-  for (const auto& p : pairs_) p->add(x_, t, g_, K);
+  const BodyState state{x_, s_, section_frames()};
+  for (const auto& p : pairs_) p->add(state, t, g_, K);
 }
 
 void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {

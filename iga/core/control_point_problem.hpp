@@ -1,7 +1,9 @@
-// The common part of rotation-free bodies (RodProblem, ShellProblem; the Body interface): the
-// unknowns are control point displacements (DofMap: local bases, fixed / prescribed / tied
-// components), dead nodal loads along load curves, the Cartesian residual g = f_int - f_ext
-// (DOF 3 i + c) with the contact pairs' part and its reduction to the free unknowns, the pairs'
+// The common part of bodies whose unknowns are control point displacements (RodProblem,
+// ShellProblem, MembraneProblem, TwistingRodProblem; the Body interface), with, for a body that
+// has them, scalar unknowns beside the points (a rod's twists): DofMap's local bases, fixed /
+// prescribed / tied components and fixed / prescribed scalars, dead nodal loads along load
+// curves, the Cartesian residual g = f_int - f_ext (DOF 3 i + c for the points, 3 n + k for
+// scalar k) with the contact pairs' part and its reduction to the free unknowns, the pairs'
 // history, status and symmetry, reactions.
 #pragma once
 
@@ -26,6 +28,8 @@ class ControlPointProblem : public Body {
   ~ControlPointProblem() override = default;
 
   int num_control_points() const override { return dofs_.num_points(); }
+  /// Scalar unknowns beside the points (0 but for a rod's twists).
+  int num_scalars() const { return dofs_.num_scalars(); }
 
   // ---- constraints (components along the point's local basis) -----------------------------
   /// Sets the local basis of `point` (orthonormal columns); throws the model's error type if
@@ -87,21 +91,33 @@ class ControlPointProblem : public Body {
   /// x_i - X_i.
   std::vector<Vector3d> control_point_displacements(const VectorXd& u, double t) const override;
   void current_points(const VectorXd& u, double t, std::vector<Vector3d>& x) const;
+  /// The scalar unknowns s_k(u, t).
+  std::vector<double> current_scalars(const VectorXd& u, double t) const;
+  /// The generalized forces the scalars' constraints carry (the entries 3 n + k of the
+  /// Cartesian residual; a twist's: the torque about the tangent), ~0 at free scalars of an
+  /// equilibrium state; the pairs' state kept, as reactions().
+  std::vector<double> scalar_reactions(const VectorXd& u, double t);
   /// f_int - f_ext (+ contributions) per control point, Cartesian: the reactions at the
   /// constrained points of an equilibrium state, ~0 at free components.
   std::vector<Vector3d> nodal_residual(const VectorXd& u, double t);
-  /// External work-conjugate force of the dead loads at t (3 n, Cartesian), for tests.
+  /// External work-conjugate force of the dead loads at t (3 n + m, Cartesian), for tests.
   VectorXd dead_load(double t) const;
 
  protected:
-  /// `owner` and `fail` as for DofMap; X the reference control points.
-  ControlPointProblem(std::vector<Vector3d> X, std::string owner, DofMap::FailFn fail);
+  /// `owner` and `fail` as for DofMap; X the reference control points; `num_scalars` scalar
+  /// unknowns beside them.
+  ControlPointProblem(std::vector<Vector3d> X, std::string owner, DofMap::FailFn fail,
+                      int num_scalars = 0);
 
-  /// The model's part of the Cartesian residual g (3 n; on entry g is empty): internal forces
-  /// (g = f_int, resized), configuration-dependent loads (g -= f_ext); tangent triplets d g / d x
-  /// appended to *K if K != nullptr. Dead nodal loads are subtracted afterwards by the base.
-  virtual void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
-                              std::vector<Triplet>* K) = 0;
+  /// The model's part of the Cartesian residual g (3 n + m; on entry g is empty) at the
+  /// control points x and scalars s: internal forces (g = f_int, resized), configuration-
+  /// dependent loads (g -= f_ext); tangent triplets d g / d(x, s) appended to *K if
+  /// K != nullptr. Dead nodal loads are subtracted afterwards by the base.
+  virtual void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t,
+                              VectorXd& g, std::vector<Triplet>* K) = 0;
+  /// The body's section frames, handed to its contact pairs with its state (a rod whose
+  /// sections turn, BodyState); null by default.
+  virtual const SectionFrames* section_frames() const { return nullptr; }
   /// Whether the model's own tangent (without the pairs) is symmetric.
   virtual bool model_symmetric() const { return true; }
   /// The body sampled with its own fields, params and elements set (Body::sample).
@@ -126,12 +142,15 @@ class ControlPointProblem : public Body {
   };
   /// Cartesian residual g and (optionally) Cartesian triplets at x.
   void assemble_cartesian(const VectorXd& u, double t, bool tangent);
+  /// The Cartesian residual at (u, t) evaluated with copies of the pairs (their state kept).
+  VectorXd residual_keeping_pairs(const VectorXd& u, double t);
 
   std::vector<Vector3d> X_;
   std::vector<NodalLoad> dead_loads_;
   std::vector<std::unique_ptr<ContactPair>> pairs_;
   // Work storage reused between assemble() calls.
   std::vector<Vector3d> x_;
+  std::vector<double> s_;
   VectorXd g_;
   std::vector<Triplet> cart_triplets_, free_triplets_;
   PatternAssembler assembler_;  // K from free_triplets_, its pattern kept

@@ -9,9 +9,10 @@
 
 namespace iga {
 
-DofMap::DofMap(int num_points, std::string owner, FailFn fail)
+DofMap::DofMap(int num_points, std::string owner, FailFn fail, int num_scalars)
     : owner_(std::move(owner)), fail_(fail) {
   points_.resize(static_cast<std::size_t>(std::max(0, num_points)));
+  scalars_.resize(static_cast<std::size_t>(std::max(0, num_scalars)));
   renumber();
 }
 
@@ -21,6 +22,15 @@ void DofMap::check_point(int point, const char* what) const {
                             " out of range [0, " + std::to_string(num_points() - 1) + "]";
     fail_(msg);
     throw std::invalid_argument(msg);  // fail_ is expected to throw
+  }
+}
+
+void DofMap::check_scalar(int k, const char* what) const {
+  if (k < 0 || k >= num_scalars()) {
+    const std::string msg = owner_ + "::" + what + ": scalar unknown " + std::to_string(k) +
+                            " out of range [0, " + std::to_string(num_scalars() - 1) + "]";
+    fail_(msg);
+    throw std::invalid_argument(msg);
   }
 }
 
@@ -43,6 +53,11 @@ void DofMap::renumber() const {
       c.sign = 1.0;
       if (c.prescribed < 0 && c.tie_point < 0) c.free = num_free_++;
     }
+  for (const Component& c : scalars_) {  // after the points
+    c.resolved = c.prescribed;
+    c.sign = 1.0;
+    c.free = c.prescribed < 0 ? num_free_++ : -1;
+  }
   // Ties: follow the chain to a component with its own constraint or its own unknown (tie()
   // rejects cycles, so the chain ends).
   for (const PointDofs& P : points_)
@@ -98,12 +113,16 @@ std::vector<Vector3d> DofMap::constraint_forces(const std::vector<Vector3d>& g) 
 void DofMap::constrain(int point, int component, Prescribed p) {
   check_point(point, "constrain");
   check_component(component);
-  int& idx =
-      points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].prescribed;
-  if (idx >= 0) {
-    prescribed_[static_cast<std::size_t>(idx)] = std::move(p);
+  set_prescribed(
+      points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].prescribed,
+      std::move(p));
+}
+
+void DofMap::set_prescribed(int& index, Prescribed p) {
+  if (index >= 0) {
+    prescribed_[static_cast<std::size_t>(index)] = std::move(p);
   } else {
-    idx = static_cast<int>(prescribed_.size());
+    index = static_cast<int>(prescribed_.size());
     prescribed_.push_back(std::move(p));
   }
   stale_ = true;
@@ -222,6 +241,45 @@ int DofMap::dof(int point, int component) const {
   return points_[static_cast<std::size_t>(point)].c[static_cast<std::size_t>(component)].free;
 }
 
+void DofMap::fix_scalar(int k) {
+  check_scalar(k, "fix_scalar");
+  prescribe_scalar(k, 0.0, LoadCurve{});
+}
+
+void DofMap::prescribe_scalar(int k, double value, LoadCurve curve) {
+  check_scalar(k, "prescribe_scalar");
+  set_prescribed(scalars_[static_cast<std::size_t>(k)].prescribed,
+                 Prescribed{curve ? value : 0.0, std::move(curve)});
+}
+
+bool DofMap::scalar_constrained(int k) const {
+  check_scalar(k, "scalar_constrained");
+  return scalars_[static_cast<std::size_t>(k)].prescribed >= 0;
+}
+
+int DofMap::scalar_dof(int k) const {
+  refresh();
+  check_scalar(k, "scalar_dof");
+  return scalars_[static_cast<std::size_t>(k)].free;
+}
+
+void DofMap::current_scalars(const VectorXd& u, double t, std::vector<double>& s) const {
+  refresh();
+  if (u.size() != num_free_)
+    throw std::invalid_argument(owner_ + ": state has " + std::to_string(u.size()) +
+                                " entries, expected " + std::to_string(num_free_));
+  s.resize(scalars_.size());
+  for (std::size_t k = 0; k < scalars_.size(); ++k) {
+    const Component& c = scalars_[k];
+    if (c.free >= 0) {
+      s[k] = u[c.free];
+    } else {
+      const Prescribed& pr = prescribed_[static_cast<std::size_t>(c.resolved)];
+      s[k] = pr.curve ? pr.value * pr.curve(t) : 0.0;
+    }
+  }
+}
+
 void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
                             std::vector<Vector3d>& x) const {
   refresh();
@@ -248,7 +306,13 @@ void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, doub
 
 void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
   refresh();
+  if (g.size() != num_cartesian())
+    throw std::invalid_argument(owner_ + ": residual has " + std::to_string(g.size()) +
+                                " entries, expected " + std::to_string(num_cartesian()));
   R.setZero(num_free_);
+  const auto n3 = 3 * static_cast<Eigen::Index>(points_.size());
+  for (std::size_t k = 0; k < scalars_.size(); ++k)
+    if (scalars_[k].free >= 0) R[scalars_[k].free] += g[n3 + static_cast<Eigen::Index>(k)];
   for (std::size_t i = 0; i < points_.size(); ++i) {
     const PointDofs& P = points_[i];
     const Vector3d gi = g.segment<3>(3 * static_cast<Eigen::Index>(i));
@@ -262,7 +326,12 @@ void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
 void DofMap::reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const {
   refresh();
   free.reserve(free.size() + cart.size());
+  const int n3 = 3 * num_points();
   for (const Triplet& tr : cart) {
+    if (tr.row() >= n3 || tr.col() >= n3) {  // a scalar's row or column
+      reduce_scalar_triplet(tr, free);
+      continue;
+    }
     const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
     const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
     const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
@@ -286,6 +355,36 @@ void DofMap::reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free
       }
     }
   }
+}
+
+void DofMap::reduce_scalar_triplet(const Triplet& tr, std::vector<Triplet>& free) const {
+  // One side at least is a scalar (a unit column of P); the other may be a point's component,
+  // spread over its local axes as in reduce(). Each side as (free DOF, weight) pairs.
+  const int n3 = 3 * num_points();
+  std::array<std::pair<int, double>, 3> rows{}, cols{};
+  const auto side = [&](int cart_index, std::array<std::pair<int, double>, 3>& out) {
+    int count = 0;
+    if (cart_index >= n3) {
+      const Component& c = scalars_.at(static_cast<std::size_t>(cart_index - n3));
+      if (c.free >= 0) out[count++] = {c.free, 1.0};
+      return count;
+    }
+    const PointDofs& P = points_[static_cast<std::size_t>(cart_index / 3)];
+    const int a = cart_index % 3;
+    for (int k = 0; k < 3; ++k) {
+      const Component& c = P.c[static_cast<std::size_t>(k)];
+      const double q = c.free >= 0 ? c.sign * axis(P, a, k) : 0.0;
+      if (q != 0.0) out[count++] = {c.free, q};
+    }
+    return count;
+  };
+  const int nr = side(tr.row(), rows), nc = side(tr.col(), cols);
+  for (int r = 0; r < nr; ++r)
+    for (int c = 0; c < nc; ++c)
+      free.emplace_back(rows[static_cast<std::size_t>(r)].first,
+                        cols[static_cast<std::size_t>(c)].first,
+                        rows[static_cast<std::size_t>(r)].second * tr.value() *
+                            cols[static_cast<std::size_t>(c)].second);
 }
 
 }  // namespace iga

@@ -1,11 +1,15 @@
-// The map between control point displacements and the free unknowns of a rotation-free model
-// (rods, shells): local bases per control point, fixed and prescribed components along load
-// curves, tied components (one unknown shared by two points), the reduction of Cartesian
-// residuals and tangent triplets to the free unknowns. Shared by RodProblem and ShellProblem.
+// The map between a body's unknowns and its free unknowns: the displacements of its control
+// points and, for a body that has them, scalar unknowns beside the points (a rod's twist
+// angles). Local bases per control point, fixed and prescribed components along load curves,
+// tied components (one unknown shared by two points), fixed and prescribed scalars, the
+// reduction of Cartesian residuals and tangent triplets to the free unknowns. Shared by every
+// ControlPointProblem (rods, shells, membranes).
 //
 // Notation: d_i displacement of control point i in its local basis Q_i (orthonormal columns),
-// x_i = X_i + Q_i d_i; g Cartesian residual (3 n, DOF 3 i + c); R = P^T g the free residual with
-// P the columns Q_i(:, c) (times the tie sign) of the free components.
+// x_i = X_i + Q_i d_i; s_k scalar unknown k (its value, reference 0); g Cartesian residual
+// (3 n + m: DOF 3 i + c for the points, 3 n + k for scalar k); R = P^T g the free residual with
+// P the columns Q_i(:, c) (times the tie sign) of the free components and the unit columns of
+// the free scalars. Free unknowns are numbered point by point, then the scalars.
 #pragma once
 
 #include <array>
@@ -40,10 +44,14 @@ inline LoadCurve constant_curve(double c = 1.0) {
 class DofMap {
  public:
   using FailFn = void (*)(const std::string& message);
-  /// `owner` prefixes messages ("RodProblem", "ShellProblem").
-  DofMap(int num_points, std::string owner, FailFn fail);
+  /// `owner` prefixes messages ("RodProblem", "ShellProblem"); `num_scalars` scalar unknowns
+  /// after the points.
+  DofMap(int num_points, std::string owner, FailFn fail, int num_scalars = 0);
 
   int num_points() const { return static_cast<int>(points_.size()); }
+  int num_scalars() const { return static_cast<int>(scalars_.size()); }
+  /// Entries of the Cartesian residual: 3 n + m.
+  int num_cartesian() const { return 3 * num_points() + num_scalars(); }
   int num_free() const {
     refresh();
     return num_free_;
@@ -73,10 +81,20 @@ class DofMap {
   /// Free DOF index of a component (-1 if constrained; a tied slave gives its master's index).
   int dof(int point, int component) const;
 
+  // ---- scalar unknowns (k in [0, num_scalars())) ----------------------------------------------
+  void fix_scalar(int k);
+  /// s_k = value * curve(t).
+  void prescribe_scalar(int k, double value, LoadCurve curve);
+  bool scalar_constrained(int k) const;
+  /// Free DOF index of scalar k (-1 if constrained).
+  int scalar_dof(int k) const;
+  /// The scalars s_k(u, t) (resized to num_scalars()); u must have num_free() entries.
+  void current_scalars(const VectorXd& u, double t, std::vector<double>& s) const;
+
   /// Current control points x_i = X_i + Q_i d_i(u, t); u must have num_free() entries.
   void current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
                       std::vector<Vector3d>& x) const;
-  /// R = P^T g (resized to num_free()).
+  /// R = P^T g (g: num_cartesian() entries; R resized to num_free()).
   void reduce(const VectorXd& g, VectorXd& R) const;
   /// The forces the constraints carry, from the Cartesian nodal forces g_i (one per point, e.g.
   /// f_int - f_ext at an equilibrium state): per point, the sum over its local components c of
@@ -86,7 +104,8 @@ class DofMap {
   /// are tied to it reports the whole force its prescription carries, free components report ~0
   /// at equilibrium, and the sum over all points keeps the sum of g (tied axes are parallel).
   std::vector<Vector3d> constraint_forces(const std::vector<Vector3d>& g) const;
-  /// K_free = P^T K_cart P, triplet by triplet (appended to `free`).
+  /// K_free = P^T K_cart P, triplet by triplet (appended to `free`; rows and columns of the
+  /// Cartesian numbering, scalars at 3 n + k).
   void reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const;
 
  private:
@@ -112,8 +131,13 @@ class DofMap {
   };
 
   void check_point(int point, const char* what) const;
+  void check_scalar(int k, const char* what) const;
+  /// reduce() of a triplet whose row or column is a scalar's.
+  void reduce_scalar_triplet(const Triplet& tr, std::vector<Triplet>& free) const;
   void check_component(int component) const;
   void constrain(int point, int component, Prescribed p);
+  /// Sets the constraint of a component whose index into prescribed_ is `index` (-1: none yet).
+  void set_prescribed(int& index, Prescribed p);
   /// Numbers the free unknowns and resolves ties. Constraining and tying only mark the map
   /// stale; the readers call refresh(), so that n constraints cost O(n), not O(n^2).
   void renumber() const;
@@ -128,6 +152,7 @@ class DofMap {
   std::string owner_;
   FailFn fail_;
   std::vector<PointDofs> points_;
+  std::vector<Component> scalars_;  ///< own constraints only (no ties)
   std::vector<Prescribed> prescribed_;
   mutable int num_free_ = 0;
   mutable bool stale_ = false;

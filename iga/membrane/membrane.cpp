@@ -178,7 +178,8 @@ void MembraneProblem::add_pressure(double p, LoadCurve curve) {
   pressures_.push_back({p, std::move(curve)});
 }
 
-void MembraneProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+void MembraneProblem::assemble_model(std::span<const Vector3d> x,
+                                     std::span<const double> /*s: none*/, double t, VectorXd& g,
                                      std::vector<Triplet>* K) {
   // Element by element: f_I = int B_I^T S dA, K_IJ = int (B_I^T D B_J + S^ab R_I,a R_J,b 1) dA.
   const int n_el = points_per_element_;

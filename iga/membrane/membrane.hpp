@@ -118,7 +118,7 @@ class MembraneProblem : public ControlPointProblem {
   /// the displacement, the normal, the principal stretches and the membrane forces S in the
   /// reference local frame e_1 = A_1/|A_1|, e_2 = A_3 x e_1 (N_11, N_22, N_12).
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
-  void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+  void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
 
  private:

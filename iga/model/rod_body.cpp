@@ -197,7 +197,7 @@ void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryMode
       if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
         pair->set_motion(m->second);
       if constexpr (std::is_same_v<P, TwistingRodProblem>)
-        pair->contact().set_twisting_rod(&problem.rod());
+        pair->contact().set_rolling(true);  // the rod hands its frames at each assembly
       problem.attach(std::move(pair));
     }
   });

@@ -652,8 +652,8 @@ void RodProblem::add_moment_terms(std::span<const Vector3d> x, double t, VectorX
   }
 }
 
-void RodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
-                                std::vector<Triplet>* K) {
+void RodProblem::assemble_model(std::span<const Vector3d> x, std::span<const double> /*s: none*/,
+                                double t, VectorXd& g, std::vector<Triplet>* K) {
   rod_.assemble(x, g, K);  // g = f_int
   add_moment_terms(x, t, g, K);
 }

@@ -306,7 +306,7 @@ class RodProblem : public ControlPointProblem {
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
 
   /// g = f_int - (moment loads), tangent triplets.
-  void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+  void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
 
  private:

@@ -402,7 +402,7 @@ void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> 
 int TwistingRod::global_dof(int e, int l) const {
   const int np = degree() + 1;
   return l < 3 * np ? 3 * elements_.at(static_cast<std::size_t>(e)).first + l
-                    : 3 * (num_control_points() + e + l - 3 * np);
+                    : 3 * num_control_points() + e + l - 3 * np;
 }
 
 void TwistingRod::moment_at(double xi, const Vector3d& M, double Mt, std::span<const Vector3d> x,
@@ -412,8 +412,7 @@ void TwistingRod::moment_at(double xi, const Vector3d& M, double Mt, std::span<c
   const Interval dom = reference_.domain();
   if (!(xi >= dom.lo && xi <= dom.hi))
     throw RodError("TwistingRod::moment_at: parameter " + num(xi) + " outside the curve's domain");
-  e = 0;
-  while (e + 1 < num_elements() && xi >= elements_[static_cast<std::size_t>(e)].range.hi) ++e;
+  e = element_at(xi);
   Eval ev;
   ev.xi = &xi;
   ev.moment = true;
@@ -424,36 +423,54 @@ void TwistingRod::moment_at(double xi, const Vector3d& M, double Mt, std::span<c
   K = ev.K;
 }
 
-TwistingRod::Spin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
-                                          std::span<const Vector3d> x,
-                                          std::span<const double> alpha) const {
+SectionSpin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                                    std::span<const Vector3d> x,
+                                    std::span<const double> alpha) const {
   check(x, alpha);
-  Spin sp;
-  while (sp.element + 1 < num_elements() &&
-         xi >= elements_[static_cast<std::size_t>(sp.element)].range.hi)
-    ++sp.element;
+  const int e = element_at(xi);
   Eval ev;
   ev.xi = &xi;
   const std::pair<Vector3d, Vector3d> from{t_c, d1_c};
   ev.spin_from = &from;
-  evaluate(sp.element, x, alpha, committed_, ev);
+  evaluate(e, x, alpha, committed_, ev);
+  SectionSpin sp;
   sp.value = ev.W;
   sp.gradient = ev.f;
   sp.hessian = ev.K;
+  sp.positions = 3 * (degree() + 1);
+  sp.dofs.resize(static_cast<std::size_t>(ev.f.size()));
+  for (std::size_t l = 0; l < sp.dofs.size(); ++l) sp.dofs[l] = global_dof(e, static_cast<int>(l));
   sp.t = ev.strains.t;
   sp.d1 = ev.strains.d1;
   return sp;
 }
 
-TwistStrains TwistingRod::strains(double xi, std::span<const Vector3d> x,
-                                  std::span<const double> alpha) const {
-  check(x, alpha);
+int TwistingRod::element_at(double xi) const {
   int e = 0;
   while (e + 1 < num_elements() && xi >= elements_[static_cast<std::size_t>(e)].range.hi) ++e;
+  return e;
+}
+
+TwistStrains TwistingRod::strains_at(double xi, std::span<const Vector3d> x,
+                                     std::span<const double> alpha) const {
+  check(x, alpha);
   Eval ev;
   ev.xi = &xi;
-  evaluate(e, x, alpha, committed_, ev);
-  TwistStrains s = ev.strains;
+  evaluate(element_at(xi), x, alpha, committed_, ev);
+  return ev.strains;
+}
+
+void TwistingRod::frame(double xi, std::span<const Vector3d> x, std::span<const double> alpha,
+                        Vector3d& t, Vector3d& d1) const {
+  const TwistStrains s = strains_at(xi, x, alpha);
+  t = s.t;
+  d1 = s.d1;
+}
+
+TwistStrains TwistingRod::strains(double xi, std::span<const Vector3d> x,
+                                  std::span<const double> alpha) const {
+  TwistStrains s = strains_at(xi, x, alpha);
+  const int e = element_at(xi);
   // The stress-free strains at xi: the formulas at the reference with its triads.
   const std::vector<Vector3d> X = reference_.control_points();
   const std::vector<double> zero(knots_.size(), 0.0);
@@ -538,21 +555,12 @@ namespace {
 [[noreturn]] void twist_fail(const std::string& msg) {
   throw RodError(msg);
 }
-std::vector<Vector3d> points_and_twists(const TwistingRod& rod) {
-  std::vector<Vector3d> X = rod.reference().control_points();
-  X.resize(static_cast<std::size_t>(rod.num_control_points() + rod.num_knots()), Vector3d::Zero());
-  return X;
-}
 }  // namespace
 
 TwistingRodProblem::TwistingRodProblem(TwistingRod rod)
-    : ControlPointProblem(points_and_twists(rod), "TwistingRodProblem", &twist_fail),
-      rod_(std::move(rod)) {
-  for (int k = 0; k < rod_.num_knots(); ++k) {
-    dofs_.fix(rod_.num_control_points() + k, 1);
-    dofs_.fix(rod_.num_control_points() + k, 2);
-  }
-}
+    : ControlPointProblem(rod.reference().control_points(), "TwistingRodProblem", &twist_fail,
+                          rod.num_knots()),
+      rod_(std::move(rod)) {}
 
 void TwistingRodProblem::clamp(RodEnd end) {
   const int n = rod_.num_control_points();
@@ -584,23 +592,20 @@ void TwistingRodProblem::fix_twist(int knot) {
   if (knot < 0 || knot >= rod_.num_knots())
     throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range [0, " +
                    std::to_string(rod_.num_knots() - 1) + "]");
-  if (!constrained(rod_.num_control_points() + knot, 0)) fix(rod_.num_control_points() + knot, 0);
+  if (!dofs_.scalar_constrained(knot)) dofs_.fix_scalar(knot);
 }
 
 void TwistingRodProblem::prescribe_twist(int knot, double angle, LoadCurve curve) {
   if (knot < 0 || knot >= rod_.num_knots())
     throw RodError("TwistingRodProblem: knot " + std::to_string(knot) + " out of range [0, " +
                    std::to_string(rod_.num_knots() - 1) + "]");
-  prescribe(rod_.num_control_points() + knot, 0, angle, std::move(curve));
+  dofs_.prescribe_scalar(knot, angle, std::move(curve));
 }
 
 void TwistingRodProblem::split(const VectorXd& u, double t, std::vector<Vector3d>& x,
                                std::vector<double>& alpha) const {
   current_points(u, t, x);
-  const std::size_t n = static_cast<std::size_t>(rod_.num_control_points());
-  alpha.resize(static_cast<std::size_t>(rod_.num_knots()));
-  for (std::size_t k = 0; k < alpha.size(); ++k) alpha[k] = x[n + k][0];
-  x.resize(n);
+  dofs_.current_scalars(u, t, alpha);
 }
 
 double TwistingRodProblem::twist(int knot, const VectorXd& u, double t) const {
@@ -638,19 +643,16 @@ int TwistingRodProblem::check_knot(int knot) const {
   return knot;
 }
 
-void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
-                                        std::vector<Triplet>* K) {
-  const std::size_t n = static_cast<std::size_t>(rod_.num_control_points());
-  alpha_.resize(static_cast<std::size_t>(rod_.num_knots()));
-  for (std::size_t k = 0; k < alpha_.size(); ++k) alpha_[k] = x[n + k][0];
-  rod_.assemble(x.first(n), alpha_, g, K);
+void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, std::span<const double> s,
+                                        double t, VectorXd& g, std::vector<Triplet>* K) {
+  rod_.assemble(x, s, g, K);  // alpha = s
   Eigen::VectorXd f;
   Eigen::MatrixXd Km;
   for (const KnotMoment& mo : moments_) {
     const double lam = mo.curve(t);
     if (lam == 0.0) continue;
     int e = 0;
-    rod_.moment_at(mo.xi, lam * mo.M, lam * mo.Mt, x.first(n), alpha_, e, f, Km);
+    rod_.moment_at(mo.xi, lam * mo.M, lam * mo.Mt, x, s, e, f, Km);
     for (Eigen::Index i = 0; i < f.size(); ++i) {
       const int gi = rod_.global_dof(e, static_cast<int>(i));
       g[gi] -= f[i];  // g = f_int - f_ext

@@ -56,10 +56,9 @@
 // from the reference (a rope laid along a curve without being twisted).
 //
 // Unknowns. Element e has 3 (p + 1) position DOFs and the twists of its two knots. Global
-// numbering for assembly: 3 i + c for component c of control point i (n points), 3 (n + k) for
-// the twist at knot k (TwistingRodProblem keeps the twists as the first component of extra
-// points of its DofMap, so that they are fixed, prescribed along load curves and reported like
-// displacements).
+// numbering for assembly: 3 i + c for component c of control point i (n points), 3 n + k for
+// the twist at knot k (TwistingRodProblem keeps the twists as the scalar unknowns of its DofMap,
+// so that they are fixed and prescribed along load curves, and their reactions are torques).
 //
 // Cost: the automatic differentiation costs O(N^2) per operation (N = 3 (p + 1) + 2 element
 // DOFs): forces and tangent take ~67 us per element of degree 2 and ~97 us of degree 3
@@ -70,6 +69,7 @@
 #include <utility>
 #include <vector>
 
+#include "iga/core/section_frames.hpp"
 #include "iga/rod/kirchhoff_rod.hpp"
 
 namespace iga {
@@ -91,8 +91,8 @@ struct TwistStrains {
 
 /// The discretized rod with torsion: reference curve, section (RodSection with GJ), quadrature,
 /// the committed nodal triads; energy, forces and tangent for control points x and knot
-/// twists alpha.
-class TwistingRod {
+/// twists alpha. Its section frames are what a rope's contact rolls by (SectionFrames).
+class TwistingRod final : public SectionFrames {
  public:
   /// Throws RodError: degree outside [2, 5], an interior knot of multiplicity > p - 1, EA <= 0,
   /// EI < 0, GJ <= 0, a ref_direction parallel to the tangent at a knot, a general section
@@ -107,8 +107,8 @@ class TwistingRod {
   /// Knots carrying a twist unknown: num_elements() + 1.
   int num_knots() const { return num_elements() + 1; }
   double knot(int k) const { return knots_.at(static_cast<std::size_t>(k)); }
-  /// Unknowns: 3 per control point and 3 per knot (the first the twist; see the header).
-  int num_dofs() const { return 3 * (num_control_points() + num_knots()); }
+  /// Unknowns: 3 per control point and 1 per knot (see the header).
+  int num_dofs() const { return 3 * num_control_points() + num_knots(); }
   Interval element_range(int e) const;
   int element_first_point(int e) const;
   double reference_length() const;
@@ -141,18 +141,14 @@ class TwistingRod {
 
   /// The rotation of the section at xi about its tangent since it had the frame (t_c, d1_c)
   /// (e.g. at the last commit): the angle from SR(t_c -> t) d1_c to d1 about t (in (-pi, pi]),
-  /// with its gradient and Hessian with respect to the DOFs of the element holding xi (local
-  /// numbering, global_dof); and the current frame there. A rope's contact point rolls by it
-  /// (iga/contact_integrals/curve_contact.hpp).
-  struct Spin {
-    int element = 0;
-    double value = 0.0;
-    Eigen::VectorXd gradient;
-    Eigen::MatrixXd hessian;
-    Vector3d t = Vector3d::Zero(), d1 = Vector3d::Zero();
-  };
-  Spin spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c, std::span<const Vector3d> x,
-                  std::span<const double> alpha) const;
+  /// with its gradient and Hessian with respect to the DOFs of the element holding xi (their
+  /// global numbers in SectionSpin::dofs); and the current frame there. A rope's contact point
+  /// rolls by it (iga/contact_integrals/curve_contact.hpp).
+  SectionSpin spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                         std::span<const Vector3d> x, std::span<const double> alpha) const override;
+  /// The section frame (t, d1) at xi (as strains()).
+  void frame(double xi, std::span<const Vector3d> x, std::span<const double> alpha, Vector3d& t,
+             Vector3d& d1) const override;
 
   /// Position, frame and strains at parameter xi.
   TwistStrains strains(double xi, std::span<const Vector3d> x, std::span<const double> alpha) const;
@@ -221,6 +217,11 @@ class TwistingRod {
   void evaluate(int e, std::span<const Vector3d> x, std::span<const double> alpha,
                 const std::vector<Triad>& triads, Eval& out) const;
   void check(std::span<const Vector3d> x, std::span<const double> alpha) const;
+  /// The element holding parameter xi (the last one for xi at its end).
+  int element_at(double xi) const;
+  /// The strains and frame at xi as the element gives them (no stress-free part).
+  TwistStrains strains_at(double xi, std::span<const Vector3d> x,
+                          std::span<const double> alpha) const;
   void set_reference_triads(const std::vector<Vector3d>& X);
   void set_stress_free_strains(const std::vector<Vector3d>& X);
 
@@ -235,9 +236,10 @@ class TwistingRod {
 };
 
 /// The rod with torsion, its conditions and loads as a Body. Unknowns: the displacements of
-/// the control points (as RodProblem) and the twists alpha_k; twist k is component 0 of the
-/// DofMap's point n + k (components 1, 2 fixed), so that it is fixed, prescribed along a load
-/// curve and reported (reactions(): the torque about the tangent) like a displacement.
+/// the control points (as RodProblem) and the twists alpha_k, the DofMap's scalar unknowns (k:
+/// the knot), fixed and prescribed along load curves; scalar_reactions() gives the torques
+/// about the tangent that fixed twists carry. The rod hands its section frames to its contact
+/// pairs (a rope that rolls, CurveContact::set_rolling).
 ///
 /// Couples and torques at knots (end moments): a couple M fixed in space and a torque M_t about
 /// the current tangent do the virtual work M.(t x dt) + (M.t + M_t) dd1.d2 on the spin of the
@@ -246,15 +248,8 @@ class TwistingRod {
 class TwistingRodProblem : public ControlPointProblem {
  public:
   explicit TwistingRodProblem(TwistingRod rod);
-  // Contact pairs keep a pointer to rod() (CurveContact::set_twisting_rod): not copied or moved.
-  TwistingRodProblem(const TwistingRodProblem&) = delete;
-  TwistingRodProblem& operator=(const TwistingRodProblem&) = delete;
-  TwistingRodProblem(TwistingRodProblem&&) = delete;
-  TwistingRodProblem& operator=(TwistingRodProblem&&) = delete;
-  ~TwistingRodProblem() override = default;
 
   const TwistingRod& rod() const { return rod_; }
-  int num_control_points() const override { return rod_.num_control_points(); }
 
   /// Clamp: the end point, the neighbour's components normal to the end tangent and the twist.
   void clamp(RodEnd end);
@@ -311,8 +306,9 @@ class TwistingRodProblem : public ControlPointProblem {
   /// The centre line with the axial force, the three moments (two bending, torque), the twist
   /// and the section frame (d1, d2) per sample.
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
-  void assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
+  void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
+  const SectionFrames* section_frames() const override { return &rod_; }
 
  private:
   void check_parameter(double xi) const;
@@ -325,7 +321,6 @@ class TwistingRodProblem : public ControlPointProblem {
   };
   TwistingRod rod_;
   std::vector<KnotMoment> moments_;
-  std::vector<double> alpha_;  // work storage
 };
 
 }  // namespace iga

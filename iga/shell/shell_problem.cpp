@@ -186,8 +186,8 @@ void ShellProblem::add_pressure_terms(std::span<const Vector3d> x, double t, Vec
     }
 }
 
-void ShellProblem::assemble_model(std::span<const Vector3d> x, double t, VectorXd& g,
-                                  std::vector<Triplet>* K) {
+void ShellProblem::assemble_model(std::span<const Vector3d> x, std::span<const double> /*s: none*/,
+                                  double t, VectorXd& g, std::vector<Triplet>* K) {
   shell_.assemble(x, g, K);  // g = f_int
   add_pressure_terms(x, t, g, K);
   const std::vector<Vector3d>& X = reference_points();

@@ -23,7 +23,7 @@ struct PairAtTime {
   ContactPair& pair;
   void assemble(const std::vector<Vector3d>& x, Eigen::VectorXd& R,
                 std::vector<Eigen::Triplet<double>>* K) {
-    pair.add(x, 1.0, R, K);
+    pair.add(BodyState{x, {}, nullptr}, 1.0, R, K);
   }
 };
 

@@ -1,4 +1,4 @@
-// CTRS with a rod with torsion (CurveContact::set_twisting_rod): the contact point on the
+// CTRS with a rod with torsion (CurveContact::set_rolling): the contact point on the
 // rope's surface turns with the section, so friction acts on the twist unknowns. Tests: the
 // tangent against central differences in stick and slip, and a rope rolling on a plane
 // (turned about its axis at both ends: with friction its centre line travels R theta, without
@@ -6,8 +6,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <memory>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "contact/rigid_motion.hpp"
@@ -41,6 +43,46 @@ RodSection rope_section() {
   return s;
 }
 
+/// A rolling rope's contact (integral or pair) as test::tangent_error's Contact: the body's
+/// state packed as points, twist k the first coordinate of entry n + k (residual entry
+/// 3 (n + k), the entry's other two coordinates unused), handed to the contact as a BodyState
+/// with the rod's section frames (twist k at Cartesian DOF 3 n + k).
+struct Packed {
+  std::function<void(const BodyState&, Eigen::VectorXd&, std::vector<Triplet>*)> add;
+  const SectionFrames& frames;
+  int n = 0, m = 0;
+  void assemble(const std::vector<Vector3d>& packed, Eigen::VectorXd& R, std::vector<Triplet>* K) {
+    std::vector<double> s(static_cast<std::size_t>(m));
+    for (int k = 0; k < m; ++k)
+      s[static_cast<std::size_t>(k)] = packed[static_cast<std::size_t>(n + k)][0];
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(3 * n + m);
+    std::vector<Triplet> t;
+    add(BodyState{std::span<const Vector3d>(packed.data(), static_cast<std::size_t>(n)), s,
+                  &frames},
+        g, K ? &t : nullptr);
+    const auto packed_index = [&](Eigen::Index i) { return i < 3 * n ? i : 3 * (n + (i - 3 * n)); };
+    for (Eigen::Index i = 0; i < g.size(); ++i) R[packed_index(i)] += g[i];
+    if (K)
+      for (const Triplet& tr : t)
+        K->emplace_back(static_cast<int>(packed_index(tr.row())),
+                        static_cast<int>(packed_index(tr.col())), tr.value());
+  }
+};
+
+Packed packed(CurveContact& cc, const TwistingRod& rod) {
+  return {[&cc](const BodyState& st, Eigen::VectorXd& g, std::vector<Triplet>* K) {
+            cc.assemble(st, g, K);
+          },
+          rod, rod.num_control_points(), rod.num_knots()};
+}
+
+Packed packed(ContactPair& pair, const TwistingRod& rod) {
+  return {[&pair](const BodyState& st, Eigen::VectorXd& g, std::vector<Triplet>* K) {
+            pair.add(st, 1.0, g, K);
+          },
+          rod, rod.num_control_points(), rod.num_knots()};
+}
+
 }  // namespace
 
 TEST_CASE("CurveContact with torsion: tangent = d(residual)/d(points, twists), stick and slip",
@@ -58,18 +100,19 @@ TEST_CASE("CurveContact with torsion: tangent = d(residual)/d(points, twists), s
     const NurbsCurve ref = straight(1.0, R - 0.004, 4);
     const TwistingRod rod(ref, rope_section());
     CurveContact cc(ref, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
-    cc.set_twisting_rod(&rod);
+    cc.set_rolling(true);
+    Packed pc = packed(cc, rod);
     const int n = rod.num_control_points(), m = rod.num_knots();
     std::vector<Vector3d> x0 = ref.control_points();
     x0.resize(static_cast<std::size_t>(n + m), Vector3d::Zero());
     Eigen::VectorXd R0 = Eigen::VectorXd::Zero(3 * (n + m));
-    cc.assemble(x0, R0, nullptr);
+    pc.assemble(x0, R0, nullptr);
     cc.commit();
     std::vector<Vector3d> x = x0;
     for (int i = 0; i < n; ++i)
       x[static_cast<std::size_t>(i)] += 0.002 * Vector3d(U(g), U(g), U(g));
     for (int k = 0; k < m; ++k) x[static_cast<std::size_t>(n + k)][0] = 0.05 * U(g);
-    const double err = test::tangent_error(cc, x, 1e-7);
+    const double err = test::tangent_error(pc, x, 1e-7);
     const CurveContactCounts c = cc.counts();
     stick += c.stick;
     slip += c.slip;
@@ -78,7 +121,7 @@ TEST_CASE("CurveContact with torsion: tangent = d(residual)/d(points, twists), s
     CHECK(err <= 1e-6);
     // The twist rows carry the friction torque: not all zero.
     Eigen::VectorXd Rx = Eigen::VectorXd::Zero(3 * (n + m));
-    cc.assemble(x, Rx, nullptr);
+    pc.assemble(x, Rx, nullptr);
     double torque = 0.0;
     for (int k = 0; k < m; ++k) torque += std::abs(Rx[3 * (n + k)]);
     CHECK(torque > 0.0);
@@ -104,7 +147,7 @@ TEST_CASE("CurveContact with torsion: a rope turned at both ends rolls by R thet
     TwistingRodProblem P(TwistingRod(straight(1.0, R - q / 1e4, 8), rope_section()));
     auto pair = std::make_unique<CurveContactPair>(P.rod().reference(), tool,
                                                    ContactParameters{1e4, 1e4, mu, R}, 3);
-    pair->contact().set_twisting_rod(&P.rod());
+    pair->contact().set_rolling(true);
     P.attach(std::move(pair));
     P.add_line_load(Vector3d(0, 0, -q), constant_curve());  // on from the start
     P.prescribe_twist(P.end_knot(RodEnd::kStart), theta);
@@ -172,7 +215,6 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
   plane->add(make_plane_patch(Vector3d(-2, -2, 0), Vector3d(4, 0, 0), Vector3d(0, 4, 0)));
   const std::shared_ptr<RigidMotion> motion = test::skew_motion();
   const RigidPose G = motion->pose(1.0);
-  using AtTime = test::PairAtTime;
   const double R = 0.05;
   std::mt19937 g(4);
   std::uniform_real_distribution<double> U(-1.0, 1.0);
@@ -188,8 +230,8 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
     const TwistingRod rod(ref, sec), rod_m(ref_m, sec_m);
     CurveContactPair still(ref, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
     CurveContactPair moved(ref_m, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
-    still.contact().set_twisting_rod(&rod);
-    moved.contact().set_twisting_rod(&rod_m);
+    still.contact().set_rolling(true);
+    moved.contact().set_rolling(true);
     moved.set_motion(motion);
     const int n = rod.num_control_points(), m = rod.num_knots();
     std::vector<Vector3d> x0 = ref.control_points();
@@ -203,7 +245,7 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
         y[static_cast<std::size_t>(i)] = G.to_world(y[static_cast<std::size_t>(i)]);
       return y;
     };
-    AtTime ps{still}, pm{moved};
+    Packed ps = packed(still, rod), pm = packed(moved, rod_m);
     test::residual(ps, x0);
     still.commit();
     test::residual(pm, carried(x0));
@@ -218,6 +260,47 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
     CHECK((rm - turned).norm() <= 1e-9 * r.norm());
     CHECK(test::tangent_error(pm, carried(x), 1e-7) <= 1e-6);
   }
+}
+
+TEST_CASE("CurveContact with torsion: a copy of the rod's problem rolls on its own frames",
+          "[iga][contact][ctrs][twist]") {
+  // The pair takes the rod's section frames with the state at each assembly (no pointer to the
+  // rod): a copy of the problem, assembled after the original is gone, gives the original's
+  // residual and tangent, and a rope pressed in and twisted carries a friction torque.
+  auto plane = std::make_shared<RigidSurface>();
+  plane->add(make_plane_patch(Vector3d(-2, -2, 0), Vector3d(4, 0, 0), Vector3d(0, 4, 0)));
+  const double R = 0.05;
+  auto original = std::make_unique<TwistingRodProblem>(
+      TwistingRod(straight(1.0, R - 0.004, 4), rope_section()));
+  auto pair = std::make_unique<CurveContactPair>(original->rod().reference(), plane,
+                                                 ContactParameters{2e3, 1e3, 0.3, R}, 3);
+  pair->contact().set_rolling(true);
+  original->attach(std::move(pair));
+  original->fix(0);
+  original->fix_twist(0);
+  TwistingRodProblem copy(*original);
+  std::mt19937 g(2);
+  std::uniform_real_distribution<double> U(-1.0, 1.0);
+  Eigen::VectorXd u(original->num_dofs());
+  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = 1e-3 * U(g);
+  for (int k = 1; k < original->rod().num_knots(); ++k)
+    u[original->dof_map().scalar_dof(k)] = 0.05 * U(g);
+  Eigen::VectorXd R1, R2;
+  SparseMatrix K1, K2;
+  original->assemble(u, 1.0, R1, &K1);
+  const ContactCounts c1 = original->pair(0).counts();
+  original.reset();
+  copy.assemble(u, 1.0, R2, &K2);
+  INFO(copy.status());
+  REQUIRE(c1.active > 0);
+  CHECK(copy.pair(0).counts().active == c1.active);
+  CHECK((R2 - R1).norm() <= 1e-12 * R1.norm());
+  CHECK((Eigen::MatrixXd(K2) - Eigen::MatrixXd(K1)).norm() <= 1e-12 * Eigen::MatrixXd(K1).norm());
+  double torque = 0.0;
+  for (const CurveContactPoint& cp :
+       dynamic_cast<const CurveContactPair&>(copy.pair(0)).contact().points())
+    torque += std::abs(cp.torque);
+  CHECK(torque > 0.0);
 }
 
 }  // namespace test_curve_contact_twist

@@ -56,7 +56,7 @@ struct PairAtTime {
   ContactPair& pair;
   double t;
   void assemble(const std::vector<Vector3d>& x, VectorXd& R, std::vector<Triplet>* K) {
-    pair.add(x, t, R, K);
+    pair.add(BodyState{x, {}, nullptr}, t, R, K);
   }
 };
 
