@@ -53,9 +53,9 @@ RigidSurface rigid(int kind) {
 
 SurfaceContactParameters parameters(const benchmark::State& state) {
   SurfaceContactParameters p;
-  p.eps_n = 2.5e5;
-  p.eps_t = 2.5e5;
-  p.mu = 0.125;
+  p.law.eps_n = 2.5e5;
+  p.law.eps_t = 2.5e5;
+  p.law.mu = 0.125;
   p.strategy = state.range(0) == 0 ? SurfaceContactStrategy::kRigidMaster
                                    : SurfaceContactStrategy::kRigidSlave;
   p.face = ShellFace::kLower;

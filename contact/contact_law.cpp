@@ -4,6 +4,8 @@
 #include "contact/contact_law.hpp"
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <Eigen/LU>
 
@@ -15,9 +17,32 @@ using Matrix23 = Eigen::Matrix<double, 2, 3>;
 
 }  // namespace
 
+void ContactParameters::check(const std::string& who) const {
+  const auto fail = [&](const char* what, double v) {
+    throw std::invalid_argument(who + ": " + what + ", got " + std::to_string(v));
+  };
+  if (!(eps_n > 0.0) || !std::isfinite(eps_n)) fail("eps_n must be > 0 and finite", eps_n);
+  if (!(eps_t >= 0.0) || !std::isfinite(eps_t)) fail("eps_t must be >= 0 and finite", eps_t);
+  if (!(mu >= 0.0) || !std::isfinite(mu)) fail("mu must be >= 0 and finite", mu);
+}
+
+void ContactEnforcement::check(const std::string& who) const {
+  if (augmented && !(penetration_tol > 0.0 && std::isfinite(penetration_tol)))
+    throw std::invalid_argument(who + ": penetration_tol must be > 0 and finite, got " +
+                                std::to_string(penetration_tol));
+  if (slip_tol != 0.0 && !(augmented && slip_tol > 0.0 && std::isfinite(slip_tol)))
+    throw std::invalid_argument(
+        who + ": slip_tol must be > 0 and finite, with the augmented Lagrangian, got " +
+        std::to_string(slip_tol));
+  if (augmented && max_augmentations < 1)
+    throw std::invalid_argument(who + ": max_augmentations must be >= 1, got " +
+                                std::to_string(max_augmentations));
+}
+
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
-                              double lambda_n, const Vector3d* lambda_t, const Vector3d* roll) {
+                              double lambda_n, const Vector3d* lambda_t, const Vector3d* roll,
+                              double radius) {
   ContactPoint c;
   c.xi = foot.uv;
   const SurfaceDerivs d = s.derivs(foot.uv[0], foot.uv[1], 2);
@@ -30,7 +55,7 @@ ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, co
   const Vector3d dvec = r - d.S;
   c.foot = d.S;
   c.normal = n;
-  c.gap = dvec.dot(n) - p.radius;  // (52)
+  c.gap = dvec.dot(n) - radius;  // (52)
   // (34), augmented: N = min(0, lambda_N + eps_N xi^3); lambda_N = 0 is the penalty law.
   if (lambda_n == 0.0 ? c.gap > 0.0 : lambda_n + p.eps_n * c.gap > 0.0) return c;  // no force
   c.active = true;

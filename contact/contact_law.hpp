@@ -47,6 +47,8 @@
 // that step.
 #pragma once
 
+#include <string>
+
 #include "contact/projection.hpp"
 #include "geometry/surface.hpp"
 
@@ -70,13 +72,23 @@ struct ContactEnforcement {
   double penetration_tol = 0.0;  ///< a length > 0 (augmented only)
   int max_augmentations = 10;    ///< >= 1 (augmented only)
   double slip_tol = 0.0;         ///< a length > 0: augment the stick constraint; 0: do not
+  /// Throws std::invalid_argument, prefixed by `who`, for augmented enforcement with a
+  /// penetration_tol not > 0 and finite or max_augmentations < 1, or a slip_tol other than 0
+  /// that is not > 0 and finite with augmented enforcement.
+  void check(const std::string& who) const;
 };
 
+/// The point law's constants, shared by every contact integral (a rope's, CurveContact; a
+/// shell's, SurfaceContact: each builds its own parameters on these).
 struct ContactParameters {
-  double eps_n = 0.0;   ///< normal penalty eps_N > 0
-  double eps_t = 0.0;   ///< tangential penalty eps_T >= 0 (0: frictionless)
-  double mu = 0.0;      ///< Coulomb friction coefficient >= 0
-  double radius = 0.0;  ///< rope radius R >= 0 (52)
+  double eps_n = 0.0;  ///< normal penalty eps_N > 0 (34)
+  double eps_t = 0.0;  ///< tangential penalty eps_T >= 0 (0: frictionless) (35)
+  double mu = 0.0;     ///< Coulomb friction coefficient >= 0 (36)
+  /// Whether the law has friction: mu > 0 and eps_T > 0.
+  bool friction() const { return mu > 0.0 && eps_t > 0.0; }
+  /// Throws std::invalid_argument, prefixed by `who`, unless eps_N > 0, eps_T >= 0, mu >= 0,
+  /// all finite.
+  void check(const std::string& who) const;
 };
 
 /// Converged state of the previous load step at one contact point.
@@ -118,11 +130,12 @@ struct ContactPoint {
 /// centre line since the anchor (a rope turning about its axis by dphi carries its surface
 /// point by about -R dphi t x n): the slip is then g_T = P (rho - rho_(n) + s), the material
 /// point's motion, so that a point that rolls without slipping sticks; stiffness_roll = df/ds
-/// (null: s = 0).
+/// (null: s = 0). `radius`: the rope's radius R >= 0 in the gap (52) (the rope's own setting,
+/// CurveContactParameters; 0 for a point on a shell's face).
 ContactPoint evaluate_contact(const Surface& s, const ProjectionResult& foot, const Vector3d& r,
                               const ContactParameters& p, const ContactHistory& history,
                               double lambda_n = 0.0, const Vector3d* lambda_t = nullptr,
-                              const Vector3d* roll = nullptr);
+                              const Vector3d* roll = nullptr, double radius = 0.0);
 
 /// The history of a point at rest on its foot: anchored there, no tangential force (the start
 /// state, before the first commit).

@@ -14,12 +14,23 @@
 
 namespace iga {
 
-CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
-                           const ContactParameters& params, int points_per_element)
-    : ref_(reference), rigid_(&rigid), params_(params), per_element_(points_per_element) {
-  if (points_per_element < 1 || points_per_element > 16)
+namespace {
+void check_parameters(const CurveContactParameters& p) {
+  p.law.check("CurveContactParameters");
+  if (!(p.radius >= 0.0) || !std::isfinite(p.radius))
+    throw std::invalid_argument("CurveContactParameters: radius must be >= 0 and finite, got " +
+                                std::to_string(p.radius));
+  if (p.points_per_element < 1 || p.points_per_element > 16)
     throw std::invalid_argument("contact points per element must be in 1..16, got " +
-                                std::to_string(points_per_element));
+                                std::to_string(p.points_per_element));
+}
+}  // namespace
+
+CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
+                           const CurveContactParameters& params)
+    : ref_(reference), rigid_(&rigid), params_(params) {
+  check_parameters(params);
+  const int points_per_element = params.points_per_element;
   std::array<double, kMaxGaussPoints> gx{}, gw{};
   gauss_legendre(points_per_element, gx, gw);
   const std::vector<double> br = ref_.knots().breaks();
@@ -39,18 +50,17 @@ CurveContact::CurveContact(const NurbsCurve& reference, const RigidSurface& rigi
   search_distance_ = params_.radius + chord;
 }
 
+void CurveContact::set_parameters(const CurveContactParameters& p) {
+  check_parameters(p);
+  if (p.points_per_element != params_.points_per_element)
+    throw std::invalid_argument("CurveContact::set_parameters: points_per_element cannot change (" +
+                                std::to_string(params_.points_per_element) + " -> " +
+                                std::to_string(p.points_per_element) + ")");
+  params_ = p;
+}
+
 void CurveContact::set_enforcement(const ContactEnforcement& e) {
-  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
-    throw std::invalid_argument("contact penetration_tol must be > 0 and finite, got " +
-                                std::to_string(e.penetration_tol));
-  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
-    throw std::invalid_argument(
-        "contact slip_tol must be > 0 and finite, with the augmented "
-        "Lagrangian, got " +
-        std::to_string(e.slip_tol));
-  if (e.augmented && e.max_augmentations < 1)
-    throw std::invalid_argument("contact max_augmentations must be >= 1, got " +
-                                std::to_string(e.max_augmentations));
+  e.check("CurveContact");
   enforcement_ = e;
 }
 
@@ -81,8 +91,9 @@ void project_cold(const RigidSurface& rigid, const std::vector<int>& cold,
 // The point law at a point with its foot found: false (law cleared) without a foot or beyond
 // an open edge, where there is no contact; `anchor_start`: the first assembly (see assemble);
 // `roll`: the rolling displacement of a rod with torsion (null: none).
-bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_params, bool tangential,
-                    bool anchor_start, const Vector3d* roll, CurveContactPoint& cp) {
+bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_params, double radius,
+                    bool tangential, bool anchor_start, const Vector3d* roll,
+                    CurveContactPoint& cp) {
   cp.law = ContactPoint();
   cp.N = cp.T = cp.B = 0.0;
   if (!found(cp.foot.status)) return false;
@@ -92,7 +103,7 @@ bool evaluate_point(const RigidSurface& rigid, const ContactParameters& law_para
   }
   if (beyond_open_edge(cp.foot, cp.x)) return false;  // not in contact
   cp.law = evaluate_contact(rigid.patch(cp.foot.patch), cp.foot, cp.x, law_params, cp.history,
-                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr, roll);
+                            cp.lambda_n, tangential ? &cp.lambda_t : nullptr, roll, radius);
   return true;
 }
 
@@ -283,7 +294,7 @@ void CurveContact::assemble(const BodyState& state, Eigen::VectorXd& R,
   // state, so its feet are where the points rest.
   const bool anchor_start = !anchored_start_;
   anchored_start_ = true;
-  ContactParameters law_params = params_;
+  ContactParameters law_params = params_.law;
   law_params.eps_n *= augmentation_.eps_scale;  // 1 but where augmentations stalled
   law_params.eps_t *= augmentation_.eps_t_scale;
   // Each point's law: the closest point warm-started from its last foot (cold ones: done
@@ -303,8 +314,8 @@ void CurveContact::assemble(const BodyState& state, Eigen::VectorXd& R,
     if (frames)
       rolls[i] = spin_and_roll(*frames, x_world, twists, params_.radius, turn_, cp, spins[i]);
     cp.torque = 0.0;
-    evaluated[i] = evaluate_point(*rigid_, law_params, augmentation_.tangential, anchor_start,
-                                  frames ? &rolls[i].s : nullptr, cp)
+    evaluated[i] = evaluate_point(*rigid_, law_params, params_.radius, augmentation_.tangential,
+                                  anchor_start, frames ? &rolls[i].s : nullptr, cp)
                        ? 1
                        : 0;
     if (evaluated[i] == 0 || !cp.law.active) continue;
@@ -334,7 +345,7 @@ void CurveContact::assemble(const BodyState& state, Eigen::VectorXd& R,
   if (K && !any_active)
     for (int i : near_)
       add_near_stiffness(points_[static_cast<std::size_t>(i)], basis_[static_cast<std::size_t>(i)],
-                         p, params_.eps_n, turn_, *K);
+                         p, params_.law.eps_n, turn_, *K);
 }
 
 void CurveContact::commit() {
@@ -362,7 +373,7 @@ AugmentResult CurveContact::passed_through() const {
 AugmentResult CurveContact::augment() {
   if (AugmentResult through = passed_through(); through.status != AugmentStatus::satisfied)
     return through;
-  const bool friction = params_.mu > 0.0 && params_.eps_t > 0.0;
+  const bool friction = params_.law.friction();
   return augmentation_.update(
       points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
       [](const CurveContactPoint& cp) { return cp.law.gap; },
@@ -407,7 +418,7 @@ void CurveContact::archive(StateArchive& a) {
 
 double CurveContact::roundoff() const {
   const double eps =
-      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+      params_.law.eps_n * augmentation_.eps_scale + params_.law.eps_t * augmentation_.eps_t_scale;
   double sum = 0.0;
   for (const CurveContactPoint& cp : points_)
     if (cp.law.active) sum += cp.weight * eps * (cp.x.norm() + params_.radius);

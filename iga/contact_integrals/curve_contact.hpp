@@ -72,15 +72,23 @@ inline bool steady_sliding(int active, int slip, int slip_back, double drag_rati
   return active > 0 && slip == active && slip_back == 0 && drag_ratio <= max_drag;
 }
 
+/// The rope's contact: the point law's constants, the rope's radius and the contact points.
+struct CurveContactParameters {
+  ContactParameters law;       ///< eps_N > 0 (34), eps_T >= 0 (35), mu >= 0 (36)
+  double radius = 0.0;         ///< the rope's radius R >= 0 in the gap (52)
+  int points_per_element = 3;  ///< contact (Gauss) points per element, 1..16
+};
+
 /// Contact integrals of at least this many points evaluate them on all OpenMP threads.
 inline constexpr std::ptrdiff_t kParallelCurvePoints = 256;
 
 class CurveContact {
  public:
   /// `reference`: the curve in its reference configuration (knots, degree, weights are those
-  /// of the current configuration too); `points_per_element` Gauss points per element.
+  /// of the current configuration too). Throws std::invalid_argument for parameters out of
+  /// their ranges.
   CurveContact(const NurbsCurve& reference, const RigidSurface& rigid,
-               const ContactParameters& params, int points_per_element);
+               const CurveContactParameters& params);
 
   /// A rope that rolls: a rod whose sections turn about its centre line (a rod with torsion,
   /// iga/rod/twisting_rod.hpp) on the same reference curve, which hands its section frames
@@ -137,16 +145,18 @@ class CurveContact {
 
   const std::vector<CurveContactPoint>& points() const { return points_; }
   /// Contact points per element: points_ holds them element by element, in order.
-  int points_per_element() const { return per_element_; }
+  int points_per_element() const { return params_.points_per_element; }
   CurveContactCounts counts() const;
   /// Round-off of the contact forces at the last assembly: 8 machine epsilons times
   /// sum_active w (eps_N + eps_T) (|x| + R) with the law's (possibly raised) penalties, an
   /// estimate of the error of computing each force from a gap of coordinates of size |x|.
   double roundoff() const;
-  const ContactParameters& parameters() const { return params_; }
-  void set_parameters(const ContactParameters& p) { params_ = p; }
+  const CurveContactParameters& parameters() const { return params_; }
+  /// New parameters (a continuation); the contact points stay: points_per_element cannot
+  /// change (std::invalid_argument), nor may the others leave their ranges.
+  void set_parameters(const CurveContactParameters& p);
   /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);
-  /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
+  /// throws std::invalid_argument out of its ranges (ContactEnforcement::check).
   const ContactEnforcement& enforcement() const { return enforcement_; }
   void set_enforcement(const ContactEnforcement& e);
   /// Points without a warm start (first assembly, or no foot last time) are projected in one
@@ -171,8 +181,7 @@ class CurveContact {
  private:
   NurbsCurve ref_;
   const RigidSurface* rigid_;
-  ContactParameters params_;
-  int per_element_ = 1;  ///< contact points per element
+  CurveContactParameters params_;
   ContactEnforcement enforcement_;
   NormalAugmentation augmentation_;
   std::vector<CurveContactPoint> points_;

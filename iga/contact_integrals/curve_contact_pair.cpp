@@ -10,17 +10,17 @@ namespace iga {
 namespace {
 
 CurveContact make_contact(const NurbsCurve& reference, const RigidSurface* rigid,
-                          const ContactParameters& params, int points_per_element) {
+                          const CurveContactParameters& params) {
   if (rigid == nullptr) throw std::invalid_argument("CurveContactPair: the rigid surface is null");
-  return CurveContact(reference, *rigid, params, points_per_element);
+  return CurveContact(reference, *rigid, params);
 }
 
 }  // namespace
 
 CurveContactPair::CurveContactPair(const NurbsCurve& reference,
                                    const std::shared_ptr<const RigidSurface>& rigid,
-                                   const ContactParameters& params, int points_per_element)
-    : RigidContactPair(rigid, make_contact(reference, rigid.get(), params, points_per_element)) {
+                                   const CurveContactParameters& params)
+    : RigidContactPair(rigid, make_contact(reference, rigid.get(), params)) {
   const std::vector<double> br = reference.knots().breaks();
   for (std::size_t k = 0; k + 1 < br.size(); ++k) elements_.push_back({br[k], br[k + 1]});
 }
@@ -30,8 +30,7 @@ std::unique_ptr<ContactPair> CurveContactPair::clone() const {
 }
 
 bool CurveContactPair::symmetric() const {
-  const ContactParameters& p = contact().parameters();
-  return !(p.mu > 0.0 && p.eps_t > 0.0);
+  return !contact().parameters().law.friction();
 }
 
 ContactCounts CurveContactPair::counts() const {

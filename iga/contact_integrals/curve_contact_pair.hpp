@@ -15,9 +15,9 @@ namespace iga {
 class CurveContactPair final : public RigidContactPair<CurveContact> {
  public:
   /// The pair of the curve `reference` (the rod's centre line) with `rigid` (not null:
-  /// std::invalid_argument); `points_per_element` in 1..16.
+  /// std::invalid_argument); the parameters as CurveContact takes them.
   CurveContactPair(const NurbsCurve& reference, const std::shared_ptr<const RigidSurface>& rigid,
-                   const ContactParameters& params, int points_per_element);
+                   const CurveContactParameters& params);
 
   std::unique_ptr<ContactPair> clone() const override;
   /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)).

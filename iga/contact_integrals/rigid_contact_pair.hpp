@@ -71,7 +71,7 @@ class RigidContactPair : public ContactPair {
   void archive(StateArchive& a) override { contact_.archive(a); }
   double roundoff() const override { return contact_.roundoff(); }
   double time() const override { return time_; }
-  double mu() const override { return contact_.parameters().mu; }
+  double mu() const override { return contact_.parameters().law.mu; }
   /// "contact 24 (stick 10, slip 14)"; augmented Lagrange: "contact 24 (stick 10, slip 14),
   /// |gap| 3.1e-05", the largest |gap| of a point carrying a force at the last check.
   std::string status() const override {

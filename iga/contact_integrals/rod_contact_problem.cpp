@@ -7,11 +7,10 @@
 namespace iga {
 
 RodContactProblem::RodContactProblem(KirchhoffRod rod, std::shared_ptr<const RigidSurface> rigid,
-                                     const ContactParameters& params, int points_per_element)
+                                     const CurveContactParameters& params)
     : RigidContactProblem(std::move(rod), [&](const RodProblem& p) {
         if (rigid == nullptr) throw RodError("RodContactProblem: the rigid surface is null");
-        return std::make_unique<CurveContactPair>(p.rod().reference(), rigid, params,
-                                                  points_per_element);
+        return std::make_unique<CurveContactPair>(p.rod().reference(), rigid, params);
       }) {}
 
 }  // namespace iga

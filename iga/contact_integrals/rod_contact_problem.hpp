@@ -7,8 +7,9 @@
 //   g_a -= int R_a f ds,   dg_a/dx_b -= int R_a R_b (df/dr) ds      (77), (78a-b)
 // f the point force of contact/contact_law.hpp on the rope's centre line.
 //
-// Notation (symbol -> code): eps_N, eps_T, mu, rope radius R (52) -> ContactParameters eps_n,
-// eps_t, mu, radius; N, T, B (68)-(70) -> CurveContactPoint::N, T, B.
+// Notation (symbol -> code): eps_N, eps_T, mu (34)-(36) -> CurveContactParameters::law eps_n,
+// eps_t, mu; rope radius R (52) -> CurveContactParameters::radius; N, T, B (68)-(70) ->
+// CurveContactPoint::N, T, B.
 #pragma once
 
 #include <memory>
@@ -25,10 +26,10 @@ namespace iga {
 /// outlive the caller's handle.
 class RodContactProblem : public RigidContactProblem<RodProblem, CurveContactPair> {
  public:
-  /// `points_per_element` contact (Gauss) points per rod element, in 1..16 (else
-  /// std::invalid_argument from CurveContact); `rigid` must not be null (RodError).
+  /// The contact's parameters as CurveContact takes them (std::invalid_argument out of their
+  /// ranges); `rigid` must not be null (RodError).
   RodContactProblem(KirchhoffRod rod, std::shared_ptr<const RigidSurface> rigid,
-                    const ContactParameters& params, int points_per_element);
+                    const CurveContactParameters& params);
 };
 
 }  // namespace iga

@@ -368,9 +368,7 @@ void SurfaceContact::check(const SurfaceContactParameters& p) const {
   auto fail = [](const std::string& what, double v) {
     throw std::invalid_argument("SurfaceContactParameters: " + what + ", got " + std::to_string(v));
   };
-  if (!(p.eps_n > 0.0) || !std::isfinite(p.eps_n)) fail("eps_n must be > 0 and finite", p.eps_n);
-  if (!(p.eps_t >= 0.0) || !std::isfinite(p.eps_t)) fail("eps_t must be >= 0 and finite", p.eps_t);
-  if (!(p.mu >= 0.0) || !std::isfinite(p.mu)) fail("mu must be >= 0 and finite", p.mu);
+  p.law.check("SurfaceContactParameters");
   if (!(p.thickness >= 0.0) || !std::isfinite(p.thickness))
     fail("thickness must be >= 0 and finite", p.thickness);
   if (!(p.search_distance > 0.0) || !std::isfinite(p.search_distance))
@@ -380,16 +378,7 @@ void SurfaceContact::check(const SurfaceContactParameters& p) const {
 }
 
 void SurfaceContact::set_enforcement(const ContactEnforcement& e) {
-  if (e.augmented && !(e.penetration_tol > 0.0 && std::isfinite(e.penetration_tol)))
-    throw std::invalid_argument("SurfaceContact: penetration_tol must be > 0 and finite, got " +
-                                std::to_string(e.penetration_tol));
-  if (e.slip_tol != 0.0 && !(e.augmented && e.slip_tol > 0.0 && std::isfinite(e.slip_tol)))
-    throw std::invalid_argument(
-        "SurfaceContact: slip_tol must be > 0 and finite, with the augmented Lagrangian, got " +
-        std::to_string(e.slip_tol));
-  if (e.augmented && e.max_augmentations < 1)
-    throw std::invalid_argument("SurfaceContact: max_augmentations must be >= 1, got " +
-                                std::to_string(e.max_augmentations));
+  e.check("SurfaceContact");
   enforcement_ = e;
 }
 
@@ -592,12 +581,12 @@ void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::Vect
 
   // 2. Point laws, residual and element tangents.
   LawInputs in;
-  in.eps_n = params_.eps_n * augmentation_.eps_scale;    // 1 but where updates stalled
-  in.eps_t = params_.eps_t * augmentation_.eps_t_scale;  // likewise
-  in.mu = params_.mu;
-  in.friction = params_.mu > 0.0 && params_.eps_t > 0.0;
+  in.eps_n = params_.law.eps_n * augmentation_.eps_scale;    // 1 but where updates stalled
+  in.eps_t = params_.law.eps_t * augmentation_.eps_t_scale;  // likewise
+  in.mu = params_.law.mu;
+  in.friction = params_.law.friction();
   in.tangential = augmentation_.tangential;
-  const ContactParameters law_params{in.eps_n, in.eps_t, params_.mu, 0.0};
+  const ContactParameters law_params{in.eps_n, in.eps_t, params_.law.mu};
   const std::size_t re_size = 3 * static_cast<std::size_t>(nen_);
   element_R_.assign(static_cast<std::size_t>(n_el) * re_size, 0.0);
   element_active_.assign(static_cast<std::size_t>(n_el), 0);
@@ -726,12 +715,12 @@ void SurfaceContact::archive(StateArchive& a) {
 }
 
 bool SurfaceContact::sticks(const SurfaceContactPoint& cp) const {
-  return cp.active && !cp.slip && !cp.first_contact && params_.mu > 0.0 && params_.eps_t > 0.0;
+  return cp.active && !cp.slip && !cp.first_contact && params_.law.friction();
 }
 
 double SurfaceContact::roundoff() const {
   const double eps =
-      params_.eps_n * augmentation_.eps_scale + params_.eps_t * augmentation_.eps_t_scale;
+      params_.law.eps_n * augmentation_.eps_scale + params_.law.eps_t * augmentation_.eps_t_scale;
   double sum = 0.0;
   for (const SurfaceContactPoint& cp : points_)
     if (cp.active) sum += cp.weight * eps * cp.x.norm();

@@ -119,10 +119,9 @@ enum class ShellFace {
   kMid,    ///< s = 0: x_c = rho
 };
 
+/// The shell's contact: the point law's constants and where and how the shell touches.
 struct SurfaceContactParameters {
-  double eps_n = 0.0;  ///< normal penalty eps_N > 0 (34)
-  double eps_t = 0.0;  ///< tangential penalty eps_T >= 0 (0: frictionless) (35)
-  double mu = 0.0;     ///< Coulomb coefficient >= 0 (36)
+  ContactParameters law;  ///< eps_N > 0 (34), eps_T >= 0 (35), mu >= 0 (36)
   SurfaceContactStrategy strategy = SurfaceContactStrategy::kRigidMaster;
   ShellFace face = ShellFace::kMid;
   double thickness = 0.0;        ///< shell thickness h >= 0
@@ -211,7 +210,7 @@ class SurfaceContact {
   /// (points_per_direction cannot change).
   void set_parameters(const SurfaceContactParameters& p);
   /// Penalty (default) or augmented Lagrange for the normal constraint (contact_law.hpp);
-  /// throws std::invalid_argument for a penetration_tol <= 0 or max_augmentations < 1.
+  /// throws std::invalid_argument out of its ranges (ContactEnforcement::check).
   const ContactEnforcement& enforcement() const { return enforcement_; }
   void set_enforcement(const ContactEnforcement& e);
   /// The tangent's 3 x 3 blocks are emitted turned, Q K_ab Q^T (a moving tool: the integral

@@ -189,7 +189,7 @@ std::unique_ptr<ContactPair> SurfaceContactPair::clone() const {
 
 bool SurfaceContactPair::symmetric() const {
   const SurfaceContactParameters& p = contact().parameters();
-  const bool friction = p.mu > 0.0 && p.eps_t > 0.0;
+  const bool friction = p.law.friction();
   const bool slave = p.strategy == SurfaceContactStrategy::kRigidSlave;
   return !friction && !slave;
 }
@@ -204,8 +204,8 @@ std::string SurfaceContactPair::describe() const {
   std::ostringstream s;
   s << "STAS contact (rigid "
     << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave")
-    << ", mu = " << p.mu << ") with a rigid surface of " << rigid().num_patches() << " piece(s), "
-    << contact().points().size() << " contact points";
+    << ", mu = " << p.law.mu << ") with a rigid surface of " << rigid().num_patches()
+    << " piece(s), " << contact().points().size() << " contact points";
   return s.str();
 }
 

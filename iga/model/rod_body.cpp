@@ -176,11 +176,11 @@ void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryMode
                      "slip_tol", "moment_about", "search_distance", "per_face", "description"});
     check_body(c, ctx);
     const std::shared_ptr<const RigidSurface> rigid = rigid_surface(c["rigid"], geometry, ctx);
-    ContactParameters cp;
-    penalty_and_friction(c, cp);
+    CurveContactParameters cp;
+    penalty_and_friction(c, cp.law);
     cp.radius = c.has("radius") ? positive(c["radius"], true) : 0.0;
     const ContactEnforcement enforcement = parse_enforcement(c);
-    const int ppe = int_or(c, "points_per_element", 3, 1, 16, "1..16");
+    cp.points_per_element = int_or(c, "points_per_element", 3, 1, 16, "1..16");
     // per_face: a pair per piece (face) of the tool, so that a contact point touches several
     // faces at once, each with its own gap, normal and friction history (issue 15, item 4).
     const bool per_face = c.has("per_face") && c["per_face"].as_bool();
@@ -190,7 +190,7 @@ void attach_rod_entries(const JsonCursor& root, Context& ctx, const GeometryMode
     for (int i = 0; i < n_tools; ++i)
       tools.push_back(per_face ? std::make_shared<const RigidSurface>(rigid->piece(i)) : rigid);
     for (const std::shared_ptr<const RigidSurface>& tool : tools) {
-      auto pair = std::make_unique<CurveContactPair>(problem.rod().reference(), tool, cp, ppe);
+      auto pair = std::make_unique<CurveContactPair>(problem.rod().reference(), tool, cp);
       pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
       if (c.has("search_distance"))  // default: rope radius + the longest element chord
         pair->contact().set_search_distance(positive(c["search_distance"]));

@@ -74,8 +74,7 @@ double number_or(const JsonCursor& o, const char* key, double fallback);
 /// An integer key of `o` in [lo, hi] (message `range`), or `fallback` if absent.
 int int_or(const JsonCursor& o, const char* key, int fallback, int lo, int hi, const char* range);
 /// The penalty and friction keys of a contact pair: eps_N > 0, eps_T >= 0 (0), mu >= 0 (0).
-template <class Params>
-void penalty_and_friction(const JsonCursor& c, Params& p) {
+inline void penalty_and_friction(const JsonCursor& c, ContactParameters& p) {
   p.eps_n = positive(c["eps_N"]);
   p.eps_t = c.has("eps_T") ? positive(c["eps_T"], true) : 0.0;
   p.mu = c.has("mu") ? positive(c["mu"], true) : 0.0;

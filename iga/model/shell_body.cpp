@@ -72,7 +72,7 @@ void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
                         in.b["surface"].as_string() +
                         "\"; the rigid surface must be another surface");
     SurfaceContactParameters cp;
-    penalty_and_friction(c, cp);
+    penalty_and_friction(c, cp.law);
     if (c.has("strategy"))
       cp.strategy = one_of(c["strategy"], {"master", "slave"}) == "master"
                         ? SurfaceContactStrategy::kRigidMaster

@@ -103,9 +103,9 @@ CapstanModel make_capstan(const CapstanParameters& p) {
   section.EA = p.EA;
   section.EI1 = section.EI2 = p.EI;
   KirchhoffRod rod(fit.curve, section);
-  const ContactParameters cp{p.eps_N, p.eps_T, p.mu, p.rope_radius};
+  const CurveContactParameters cp{{p.eps_N, p.eps_T, p.mu}, p.rope_radius, p.contact_points};
   CapstanModel m{p,
-                 RodContactProblem(std::move(rod), rigid, cp, p.contact_points),
+                 RodContactProblem(std::move(rod), rigid, cp),
                  fit.max_deviation,
                  0,
                  0,

@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
@@ -55,7 +56,7 @@ TEST_CASE("CurveContact: tangent = d(residual)/dx, frictionless and frictional",
     const RigidSurface& body = on_torus ? tor : cyl;
     // rope centre line pressed into the surface: radius 0.05, centre line 0.04 from the surface
     const NurbsCurve ref = on_torus ? rope(4.04, 0.2, 1.4, 0.0) : rope(1.04, 0.3, 2.5, 0.1);
-    CurveContact cc(ref, body, ContactParameters{2e3, friction ? 1e3 : 0.0, 0.3, 0.05}, 3);
+    CurveContact cc(ref, body, CurveContactParameters{{2e3, friction ? 1e3 : 0.0, 0.3}, 0.05, 3});
     std::vector<Vector3d> x = ref.control_points();
     // commit a history at a shifted state so that the increments are not zero
     std::vector<Vector3d> x0 = x;
@@ -82,7 +83,7 @@ TEST_CASE("CurveContact: a uniformly penetrating half wrap has the resultant of 
   cyl.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
   const double gap = -0.01, rope_radius = 0.05;
   const NurbsCurve ref = rope(1.0 + rope_radius + gap, 0.0, kPi, 0.0);
-  CurveContact cc(ref, cyl, ContactParameters{1e3, 0.0, 0.0, rope_radius}, 4);
+  CurveContact cc(ref, cyl, CurveContactParameters{{1e3, 0.0, 0.0}, rope_radius, 4});
   Eigen::VectorXd R = Eigen::VectorXd::Zero(3 * ref.num_control_points());
   cc.assemble(ref.control_points(), R, nullptr);
   Vector3d resultant = Vector3d::Zero();
@@ -92,6 +93,46 @@ TEST_CASE("CurveContact: a uniformly penetrating half wrap has the resultant of 
   CHECK(resultant.y() == Approx(1e3 * -gap * 2.0 * r).epsilon(1e-6));
   CHECK(resultant.x() == Approx(0.0).margin(1e-6));
   CHECK(cc.counts().active == static_cast<int>(cc.points().size()));
+}
+
+TEST_CASE("CurveContact: parameters out of their ranges are rejected, the law's by the law",
+          "[iga][contact][ctrs]") {
+  // The rope's parameters are built on the law's (ContactParameters): the law checks its
+  // constants for every integral, the rope its radius and points.
+  RigidSurface cyl;
+  cyl.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0));
+  const NurbsCurve ref = rope(1.05, 0.0, kPi, 0.0);
+  const CurveContactParameters good{{1e3, 1e2, 0.3}, 0.05, 3};
+  CHECK(good.law.friction());
+  CHECK_FALSE(ContactParameters{1e3, 0.0, 0.3}.friction());
+  CHECK_FALSE(ContactParameters{1e3, 1e2, 0.0}.friction());
+  struct Bad {
+    CurveContactParameters p;
+    const char* message;
+  };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Bad& b : {Bad{{{0.0, 0.0, 0.0}, 0.05, 3}, "eps_n must be > 0 and finite, got 0"},
+                       Bad{{{nan, 0.0, 0.0}, 0.05, 3}, "eps_n must be > 0"},
+                       Bad{{{1e3, -1.0, 0.0}, 0.05, 3}, "eps_t must be >= 0"},
+                       Bad{{{1e3, 0.0, -0.1}, 0.05, 3}, "mu must be >= 0"},
+                       Bad{{{1e3, 0.0, 0.0}, -0.05, 3}, "radius must be >= 0"},
+                       Bad{{{1e3, 0.0, 0.0}, 0.05, 0}, "points per element must be in 1..16"}}) {
+    INFO(b.message);
+    CHECK_THROWS_WITH(CurveContact(ref, cyl, b.p), Catch::Contains(b.message));
+  }
+  CurveContact cc(ref, cyl, good);
+  CurveContactParameters more = good;
+  more.law.mu = 0.5;
+  more.radius = 0.06;
+  cc.set_parameters(more);
+  CHECK(cc.parameters().law.mu == 0.5);
+  CHECK(cc.parameters().radius == 0.06);
+  more.points_per_element = 4;
+  CHECK_THROWS_WITH(cc.set_parameters(more), Catch::Contains("points_per_element cannot change"));
+  more.points_per_element = 3;
+  more.law.eps_n = -1.0;
+  CHECK_THROWS_WITH(cc.set_parameters(more), Catch::Contains("eps_n must be > 0"));
+  CHECK(cc.parameters().law.eps_n == 1e3);
 }
 
 TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch, far points inactive",
@@ -105,8 +146,8 @@ TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch, far p
     four.add(make_cylinder(Vector3d(0, 0, -1), Vector3d::UnitZ(), Vector3d::UnitX(), 1.0, 2.0,
                            0.5 * kPi * k, 0.5 * kPi * (k + 1)));
   const NurbsCurve ref = rope(1.04, 0.1, kPi - 0.1, 0.2);
-  const ContactParameters cp{1e3, 0.0, 0.0, 0.05};
-  CurveContact c1(ref, one, cp, 4), c4(ref, four, cp, 4);
+  const CurveContactParameters cp{{1e3, 0.0, 0.0}, 0.05, 4};
+  CurveContact c1(ref, one, cp), c4(ref, four, cp);
   const Eigen::VectorXd R1 = residual(c1, ref.control_points());
   const Eigen::VectorXd R4 = residual(c4, ref.control_points());
   CHECK(c4.broad_phase_points() == static_cast<int>(c4.points().size()));
@@ -124,7 +165,7 @@ TEST_CASE("CurveContact: broad phase on a 4-patch cylinder = single patch, far p
   const Eigen::VectorXd R_away = residual(c4, away);
   CHECK(c4.counts().active == 0);
   CHECK(R_away.norm() == 0.0);
-  CurveContact cold(ref, four, cp, 4);
+  CurveContact cold(ref, four, cp);
   CHECK(residual(cold, away).norm() == 0.0);
   for (const CurveContactPoint& p : cold.points()) CHECK(p.foot.status == ProjectionStatus::far);
 }
@@ -136,7 +177,7 @@ TEST_CASE("CurveContact: a step that carries the rope through the rigid body is 
   // contact, it did not.
   const RigidSurface slab = test::slab();
   const NurbsCurve ref = subdivide(elevate_degree(make_line({-1, 0, 0.15}, {1, 0, 0.15}), 2), 4);
-  CurveContact cc(ref, slab, ContactParameters{1e3, 0.0, 0.0, 0.05}, 3);
+  CurveContact cc(ref, slab, CurveContactParameters{{1e3, 0.0, 0.0}, 0.05, 3});
   cc.set_search_distance(0.5);
   CHECK(test::moved_by(cc, ref, 0.0).status == AugmentStatus::satisfied);
   cc.commit();
@@ -170,7 +211,7 @@ TEST_CASE("CurveContact: assembly on 1 and 2 threads is the same bit for bit",
   std::vector<Eigen::Triplet<double>> K[2];
   for (int t = 0; t < 2; ++t) {
     omp_set_num_threads(t + 1);
-    CurveContact cc(ref, cyl, ContactParameters{2e3, 1e3, 0.3, 0.05}, 3);
+    CurveContact cc(ref, cyl, CurveContactParameters{{2e3, 1e3, 0.3}, 0.05, 3});
     REQUIRE(static_cast<std::ptrdiff_t>(cc.points().size()) >= kParallelCurvePoints);
     Eigen::VectorXd R0 = Eigen::VectorXd::Zero(3 * static_cast<Eigen::Index>(x.size()));
     cc.assemble(x0, R0, nullptr);

@@ -99,7 +99,7 @@ TEST_CASE("CurveContact with torsion: tangent = d(residual)/d(points, twists), s
   for (const double mu : {0.05, 0.3, 5.0}) {
     const NurbsCurve ref = straight(1.0, R - 0.004, 4);
     const TwistingRod rod(ref, rope_section());
-    CurveContact cc(ref, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
+    CurveContact cc(ref, plane, CurveContactParameters{{2e3, 1e3, mu}, R, 3});
     cc.set_rolling(true);
     Packed pc = packed(cc, rod);
     const int n = rod.num_control_points(), m = rod.num_knots();
@@ -146,7 +146,7 @@ TEST_CASE("CurveContact with torsion: a rope turned at both ends rolls by R thet
     // Laid at its sinking under q (gap q / eps_N), so that friction holds it from the start.
     TwistingRodProblem P(TwistingRod(straight(1.0, R - q / 1e4, 8), rope_section()));
     auto pair = std::make_unique<CurveContactPair>(P.rod().reference(), tool,
-                                                   ContactParameters{1e4, 1e4, mu, R}, 3);
+                                                   CurveContactParameters{{1e4, 1e4, mu}, R, 3});
     pair->contact().set_rolling(true);
     P.attach(std::move(pair));
     P.add_line_load(Vector3d(0, 0, -q), constant_curve());  // on from the start
@@ -228,8 +228,8 @@ TEST_CASE("CurveContact with torsion on a moving tool: the still pair's residual
     RodSection sec_m = sec;
     sec_m.ref_direction = G.Q * sec.ref_direction;
     const TwistingRod rod(ref, sec), rod_m(ref_m, sec_m);
-    CurveContactPair still(ref, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
-    CurveContactPair moved(ref_m, plane, ContactParameters{2e3, 1e3, mu, R}, 3);
+    CurveContactPair still(ref, plane, CurveContactParameters{{2e3, 1e3, mu}, R, 3});
+    CurveContactPair moved(ref_m, plane, CurveContactParameters{{2e3, 1e3, mu}, R, 3});
     still.contact().set_rolling(true);
     moved.contact().set_rolling(true);
     moved.set_motion(motion);
@@ -273,7 +273,7 @@ TEST_CASE("CurveContact with torsion: a copy of the rod's problem rolls on its o
   auto original = std::make_unique<TwistingRodProblem>(
       TwistingRod(straight(1.0, R - 0.004, 4), rope_section()));
   auto pair = std::make_unique<CurveContactPair>(original->rod().reference(), plane,
-                                                 ContactParameters{2e3, 1e3, 0.3, R}, 3);
+                                                 CurveContactParameters{{2e3, 1e3, 0.3}, R, 3});
   pair->contact().set_rolling(true);
   original->attach(std::move(pair));
   original->fix(0);

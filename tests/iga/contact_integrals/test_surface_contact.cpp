@@ -120,9 +120,10 @@ TEST_CASE("SurfaceContact: tangent = d(residual)/dx for both strategies, frictio
               plate(body.x0, body.x1, body.x0, body.x1, 2, face == ShellFace::kUpper,
                     [&](double x, double y) { return body.z(x, y) - delta + lift; });
           SurfaceContactParameters prm;
-          prm.eps_n = 1e3;
-          prm.eps_t = friction ? 1e3 : 0.0;
-          prm.mu = friction == 1 ? 0.5 : 0.1;  // stick: |T| ~ 2 < 0.5 |N| ~ 10; slip: 10 > 0.1 |N|
+          prm.law.eps_n = 1e3;
+          prm.law.eps_t = friction ? 1e3 : 0.0;
+          prm.law.mu =
+              friction == 1 ? 0.5 : 0.1;  // stick: |T| ~ 2 < 0.5 |N| ~ 10; slip: 10 > 0.1 |N|
           prm.strategy = strategy;
           prm.face = face;
           prm.thickness = h_shell;
@@ -177,9 +178,9 @@ TEST_CASE(
         return a * x * y - delta + 0.5 * h_shell;
       });
       SurfaceContactParameters prm;
-      prm.eps_n = 1e3;
-      prm.eps_t = 1e3;
-      prm.mu = friction == 1 ? 0.5 : 0.1;
+      prm.law.eps_n = 1e3;
+      prm.law.eps_t = 1e3;
+      prm.law.mu = friction == 1 ? 0.5 : 0.1;
       prm.strategy = strategy;
       prm.face = ShellFace::kLower;
       prm.thickness = h_shell;
@@ -234,9 +235,7 @@ TEST_CASE("SurfaceContact: a 2 x 2 split hyperboloid gives the residual of the s
   std::vector<Vector3d> x = ref.control_points();
   for (Vector3d& q : x) q += 0.003 * Vector3d(U(g), U(g), U(g));
   for (const Strategy strategy : {Strategy::kRigidMaster, Strategy::kRigidSlave}) {
-    SurfaceContactParameters prm{1e3,
-                                 strategy == Strategy::kRigidSlave ? 1e3 : 0.0,
-                                 0.3,
+    SurfaceContactParameters prm{{1e3, strategy == Strategy::kRigidSlave ? 1e3 : 0.0, 0.3},
                                  strategy,
                                  ShellFace::kLower,
                                  0.1,
@@ -429,10 +428,10 @@ TEST_CASE(
     CHECK(sc.counts().active == static_cast<int>(sc.points().size()));
   }
   SurfaceContactParameters bad;
-  bad.eps_n = -1.0;
+  bad.law.eps_n = -1.0;
   CHECK_THROWS_WITH(SurfaceContact(ref, body, bad), Catch::Contains("eps_n must be > 0"));
   SurfaceContact sc(ref, body,
-                    {1e3, 0.0, 0.0, Strategy::kRigidMaster, ShellFace::kMid, 0.0, 3, 0.2});
+                    {{1e3, 0.0, 0.0}, Strategy::kRigidMaster, ShellFace::kMid, 0.0, 3, 0.2});
   SurfaceContactParameters p = sc.parameters();
   p.points_per_direction = 4;
   CHECK_THROWS_AS(sc.set_parameters(p), std::invalid_argument);
@@ -455,9 +454,9 @@ TEST_CASE("SurfaceContact: assembly on 1 and 2 threads is the same bit for bit",
   const int saved = omp_get_max_threads();
   for (const Strategy strategy : {Strategy::kRigidMaster, Strategy::kRigidSlave}) {
     SurfaceContactParameters prm;
-    prm.eps_n = 1e3;
-    prm.eps_t = 1e3;
-    prm.mu = 0.1;
+    prm.law.eps_n = 1e3;
+    prm.law.eps_t = 1e3;
+    prm.law.mu = 0.1;
     prm.strategy = strategy;
     prm.points_per_direction = 5;
     prm.search_distance = 0.5;

@@ -125,12 +125,12 @@ TEST_CASE("ControlPointProblem: two contact pairs add up (two half-stiffness pai
   // give the residual and tangent of one pair with eps_N.
   const auto plane = std::make_shared<RigidSurface>();
   plane->add(Plane(Placement{}, Domain2{{-10, 10}, {-10, 10}}));
-  const ContactParameters full{1e3, 0.0, 0.0, 0.6}, half{5e2, 0.0, 0.0, 0.6};
+  const CurveContactParameters full{{1e3, 0.0, 0.0}, 0.6, 3}, half{{5e2, 0.0, 0.0}, 0.6, 3};
   RodProblem one(rod_at(Vector3d(0, 0, 0.5))), two(rod_at(Vector3d(0, 0, 0.5)));
   for (RodProblem* P : {&one, &two}) P->clamp(RodEnd::kStart);
-  one.attach(std::make_unique<CurveContactPair>(one.rod().reference(), plane, full, 3));
-  two.attach(std::make_unique<CurveContactPair>(two.rod().reference(), plane, half, 3));
-  two.attach(std::make_unique<CurveContactPair>(two.rod().reference(), plane, half, 3));
+  one.attach(std::make_unique<CurveContactPair>(one.rod().reference(), plane, full));
+  two.attach(std::make_unique<CurveContactPair>(two.rod().reference(), plane, half));
+  two.attach(std::make_unique<CurveContactPair>(two.rod().reference(), plane, half));
   REQUIRE(two.num_pairs() == 2);
   std::mt19937 g(7);
   std::uniform_real_distribution<double> U(-0.02, 0.02);

@@ -89,7 +89,7 @@ std::vector<int> contact_state(const RodContactProblem& prob) {
 /// (activation, (34)) and min |Phi| over the active frictional points (stick/slip, (36)).
 void kink_margins(const RodContactProblem& prob, double& gap, double& phi) {
   gap = phi = std::numeric_limits<double>::infinity();
-  const bool friction = prob.contact().parameters().mu > 0.0;
+  const bool friction = prob.contact().parameters().law.mu > 0.0;
   for (const CurveContactPoint& c : prob.contact().points()) {
     if (!found(c.foot.status)) continue;  // beyond the search distance: inactive, no law
     gap = std::min(gap, std::abs(c.law.gap));
@@ -343,7 +343,7 @@ TEST_CASE("RodContactProblem: status line, symmetry flag and bad input", "[iga][
   bad.phi = 7.0;
   CHECK_THROWS_WITH(make_capstan(bad), Catch::Contains("CapstanParameters.phi"));
   CHECK_THROWS_AS(RodContactProblem(frictional.problem.rod(), nullptr,
-                                    ContactParameters{1.0, 0.0, 0.0, 0.0}, 3),
+                                    CurveContactParameters{{1.0, 0.0, 0.0}, 0.0, 3}),
                   RodError);
 }
 
