@@ -316,6 +316,7 @@ struct CaseRun {
   std::optional<Analysis> a;
   AnalysisResult r;
   double pull = 0.0;
+  double T0 = 0.0, rho = 0.0;  ///< the case's pull at the fixed end and drum radius
   /// The line pressure of the last full_slip_steps steps: the plateau's first one is written.
   std::deque<std::string> recent_pressure;
   std::map<double, double> friction_torque;  ///< per step time (--rod torsion)
@@ -325,6 +326,8 @@ void run_case(const RopeOptions& o, const RopeModel& m, const Case& c, CaseRun& 
               Totals& totals) {
   Json d = case_model(m, c);
   const double T0 = d.at(m.ptr.T0).get<double>(), rho = d.at(m.ptr.rho).get<double>();
+  run.T0 = T0;
+  run.rho = rho;
   const double phi = c.phi_deg * kPi / 180.0;
   run.pull = m.ptr.pull ? d.at(*m.ptr.pull).get<double>() : 0.0;
   for (;;) {
@@ -397,8 +400,7 @@ Plateau plateau(const CaseRun& run, double T0) {
 void report_case(const RopeApp& ra, const RopeOptions& o, const RopeModel& m, const Case& c,
                  CaseRun& run, RopeFiles& f, Totals& totals) {
   const AnalysisResult& r = run.r;
-  const Json d = case_model(m, c);
-  const double T0 = d.at(m.ptr.T0).get<double>(), rho = d.at(m.ptr.rho).get<double>();
+  const double T0 = run.T0, rho = run.rho;
   const double phi = c.phi_deg * kPi / 180.0, cH = c.pitch / (2.0 * kPi);
   const double exact = std::exp(c.mu * phi * rho / std::sqrt(rho * rho + cH * cH));  // (83)
   for (const AnalysisStep& s : r.steps)
