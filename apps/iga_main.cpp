@@ -8,12 +8,14 @@
 //   iga project MODEL.json --points pts.csv [--ray dirs.csv] --out feet.csv  projections
 //   iga info die.step                        the faces of a STEP or IGES file
 //   iga import die.step --faces 0,3 --out die.json   the faces as an ordinary model
+//   iga run MODEL.json [--petsc -pc_type hypre ...]  PETSc's options after --petsc
 //
 // Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
 #include <iostream>
 
 #include "apps/common/app_common.hpp"
 #include "apps/iga_commands.hpp"
+#include "iga/parallel/communicator.hpp"
 
 namespace {
 
@@ -48,6 +50,8 @@ int run_iga(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   try {  // every library error ends here with a message
+    // MPI and PETSc under mpirun; PETSc's options after --petsc, taken off the command line.
+    const iga::ParallelSession session(argc, argv);
     return run_iga(argc, argv);
   } catch (const std::exception& e) {
     std::cerr << "iga: error: " << e.what() << "\n";

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 
 #include <omp.h>
 
@@ -16,6 +17,7 @@
 #include "apps/common/resources.hpp"
 #include "apps/iga_commands.hpp"
 #include "iga/model/analysis.hpp"
+#include "iga/parallel/communicator.hpp"
 
 namespace iga::app {
 
@@ -29,6 +31,11 @@ struct RunOptions {
 };
 
 int run_model(const RunOptions& o) {
+  if (world().size() > 1)  // until the model layer distributes its bodies (issue 36)
+    throw std::runtime_error("iga run on " + world().describe() +
+                             ": distributed runs are not available yet; run it as one process "
+                             "(PETSc's solvers work there: \"solver\": {\"linear_solver\": "
+                             "\"mumps\"})");
   Json doc = read_model(o.file, false, o.sets);
   Analysis a = Analysis::from_json(doc, o.file);
   const std::string out =

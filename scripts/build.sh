@@ -3,7 +3,9 @@
 #   scripts/build.sh [release|debug|asan]   (default release) -> build/<flavour>
 # asan: AddressSanitizer + UndefinedBehaviorSanitizer at -O2 with line tables (-g1: stack traces
 # name file and line), and, on a processor with FMA, -ffp-contract=fast -mfma: the one build
-# that also checks that no result depends on fused multiply-adds (docs/portability.md).
+# that also checks that no result depends on fused multiply-adds (docs/portability.md), and the
+# build without PETSc and MPI (-DIGA_WITH_PETSC=OFF: the serial fallback of iga/parallel, and no
+# MPI runtime under the sanitizers).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 flavour=${1:-release}
@@ -12,7 +14,7 @@ case "$flavour" in
   debug)   args=(-DCMAKE_BUILD_TYPE=Debug) ;;
   asan)
     args=(-DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -g1 -DNDEBUG"
-          -DIGA_SANITIZE=ON -DIGA_BUILD_BENCH=OFF)
+          -DIGA_SANITIZE=ON -DIGA_BUILD_BENCH=OFF -DIGA_WITH_PETSC=OFF)
     if grep -qw fma /proc/cpuinfo; then
       args+=(-DIGA_FP_CONTRACT=fast-fma)
     else

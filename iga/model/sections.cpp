@@ -25,6 +25,7 @@
 #include "iga/model/model.hpp"
 #include "iga/output/output_format.hpp"
 #include "iga/output/vtk_writer.hpp"
+#include "iga/parallel/communicator.hpp"
 
 namespace iga::model_detail {
 
@@ -368,6 +369,17 @@ std::vector<AnalysisOutput::Reference> plot_reference(const JsonCursor& r) {
 
 }  // namespace
 
+namespace {
+/// "linear_solver": SuiteSparse, or PETSc's MUMPS or Krylov solvers (a build with PETSc).
+LinearMethod linear_method(const JsonCursor& c) {
+  const std::string m = one_of(c, {"suitesparse", "mumps", "krylov"});
+  if (m == "suitesparse") return LinearMethod::suitesparse;
+  if (!parallel_build())
+    c.fail("\"" + m + "\" needs PETSc, and this build has none (IGA_WITH_PETSC=OFF)");
+  return m == "mumps" ? LinearMethod::mumps : LinearMethod::krylov;
+}
+}  // namespace
+
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
   s.expect_object({"t_end",
                    "initial_step",
@@ -391,8 +403,10 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
                    "control",
                    "desired_iterations",
                    "max_turn_deg",
+                   "linear_solver",
                    "description"});
   NonlinearSolverSettings n;
+  if (s.has("linear_solver")) n.linear_method = linear_method(s["linear_solver"]);
   n.t0 = 0.0;
   if (s.has("t_end")) {
     n.t1 = positive(s["t_end"]);

@@ -120,6 +120,22 @@ const char* to_string(LinearBackend b) {
       return "ldlt";
     case LinearBackend::umfpack:
       return "umfpack";
+    case LinearBackend::mumps:
+      return "mumps";
+    case LinearBackend::krylov:
+      return "krylov";
+  }
+  return "?";
+}
+
+const char* to_string(LinearMethod m) {
+  switch (m) {
+    case LinearMethod::suitesparse:
+      return "suitesparse";
+    case LinearMethod::mumps:
+      return "mumps";
+    case LinearMethod::krylov:
+      return "krylov";
   }
   return "?";
 }
@@ -152,11 +168,30 @@ struct LinearSolver::Impl {
   UmfPack lu;
   bool lu_analyzed = false;
   LinearBackend backend = LinearBackend::none;
+  LinearMethod method = LinearMethod::suitesparse;
+  std::unique_ptr<PetscEngine> engine;  ///< PETSc's solvers (method mumps or krylov)
   LinearSolveStatus status = LinearSolveStatus::not_factorized;
   std::string message;
   bool fell_back = false;
   bool reused = false;
   LinearSolverStats stats;
+
+  /// PETSc's MUMPS or Krylov solver on A (engine), timed and counted; the pattern's reuse is
+  /// the engine's.
+  LinearSolveStatus factorize_petsc() {
+    const Clock::time_point t0 = Clock::now();
+    std::string why;
+    const bool ok = engine->factorize(A, symmetric, why);
+    stats.time_factorize += seconds_since(t0);
+    ++stats.factorizations;
+    reused = engine->reused_analysis();
+    if (!reused) ++stats.analyses;
+    if (!ok) return fail(LinearSolveStatus::singular, why);
+    backend = method == LinearMethod::mumps ? LinearBackend::mumps : LinearBackend::krylov;
+    negative = engine->negative_pivots();
+    status = LinearSolveStatus::success;
+    return status;
+  }
 
   LinearSolveStatus fail(LinearSolveStatus s, std::string why) {
     backend = LinearBackend::none;
@@ -312,15 +347,29 @@ const LinearSolverStats& LinearSolver::stats() const {
 double LinearSolver::rcond() const {
   Impl& m = *impl_;
   if (m.backend == LinearBackend::none) return 0.0;
-  if (m.A.rows() == 0) return 1.0;
+  if (m.A.rows() == 0 || m.engine) return 1.0;  // PETSc's solvers: not estimated
   if (m.backend == LinearBackend::ldlt) return m.ldl.rcond();
   return m.backend == LinearBackend::cholmod ? m.llt.rcond() : m.lu.rcond();
 }
 
 void LinearSolver::reset() {
   const bool symmetric = impl_->symmetric;
+  const LinearMethod method = impl_->method;
   impl_ = std::make_unique<Impl>();
   impl_->symmetric = symmetric;
+  if (method != LinearMethod::suitesparse) set_method(method);
+}
+
+void LinearSolver::set_method(LinearMethod method) {
+  Impl& m = *impl_;
+  m.engine = method == LinearMethod::suitesparse ? nullptr : make_petsc_engine(method);
+  m.method = method;
+  m.backend = LinearBackend::none;
+  m.status = LinearSolveStatus::not_factorized;
+}
+
+LinearMethod LinearSolver::method() const {
+  return impl_->method;
 }
 
 LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
@@ -355,6 +404,7 @@ LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
     m.lu_analyzed = false;
   }
 
+  if (m.engine && m.A.rows() > 0) return m.factorize_petsc();
   if (m.A.rows() == 0) {  // nothing to factorize; solve() returns an empty vector
     m.reused = true;
     m.backend = m.symmetric ? LinearBackend::cholmod : LinearBackend::umfpack;
@@ -426,7 +476,17 @@ LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
     m.message = "CHOLMOD LDL^T: residual above round-off; factorized by UMFPACK";
     return solve(b, x);
   }
-  if (m.backend == LinearBackend::cholmod) {
+  if (m.engine) {
+    std::string why;
+    ok = m.engine->solve(b, x, why);
+    if (!ok) {
+      m.stats.time_solve += seconds_since(t0);
+      ++m.stats.solves;
+      m.status = LinearSolveStatus::singular;
+      m.message = why;
+      return m.status;
+    }
+  } else if (m.backend == LinearBackend::cholmod) {
     x = m.llt.solve(b);
     ok = m.llt.info() == Eigen::Success;
   } else if (m.backend == LinearBackend::umfpack) {

@@ -15,6 +15,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "iga/solvers/petsc_engine.hpp"
+
 namespace iga {
 
 using Eigen::VectorXd;
@@ -26,6 +28,8 @@ enum class LinearBackend {
   cholmod,  ///< CHOLMOD LL^T (symmetric positive definite)
   ldlt,     ///< CHOLMOD simplicial LDL^T (symmetric indefinite, no pivoting)
   umfpack,  ///< UMFPACK LU (general, or the fallback)
+  mumps,    ///< MUMPS through PETSc (LinearMethod::mumps): LDL^T with pivoting, or LU
+  krylov,   ///< a PETSc Krylov solver (LinearMethod::krylov)
 };
 
 /// How the last factorize()/solve() ended.
@@ -80,6 +84,11 @@ class LinearSolver {
 
   /// Picks CHOLMOD (with UMFPACK fallback) or UMFPACK for the next factorize().
   void set_symmetric(bool symmetric);
+  /// The library: SuiteSparse (default; as described above) or PETSc's MUMPS or Krylov solvers
+  /// (petsc_engine.hpp; symmetric() picks MUMPS's LDL^T or LU). Forgets the factorization.
+  /// Throws std::runtime_error for a PETSc method in a build without PETSc.
+  void set_method(LinearMethod method);
+  LinearMethod method() const;
   bool symmetric() const;
 
   /// Analyzes (if the pattern changed) and factorizes A. Throws std::invalid_argument if A is
@@ -103,13 +112,15 @@ class LinearSolver {
   /// (then LDL^T or UMFPACK holds the factorization).
   bool fell_back() const;
   /// The number of negative pivots of the last LDL^T factorization (its inertia: the number of
-  /// negative eigenvalues, by Sylvester's law); 0 after LL^T, -1 after UMFPACK (unknown).
+  /// negative eigenvalues, by Sylvester's law); 0 after LL^T, -1 after UMFPACK or a Krylov
+  /// solver (unknown); MUMPS: its inertia if symmetric, else -1.
   int negative_pivots() const;
   /// Whether the last factorize() reused a symbolic analysis (pattern unchanged).
   bool reused_analysis() const;
   /// A cheap estimate of the reciprocal condition number of the current factorization
   /// (CHOLMOD: (min L_ii / max L_ii)^2; UMFPACK: min |U_ii| / max |U_ii|); 0 if none. A value
   /// near machine epsilon warns of a (nearly) singular matrix that the pivots did not catch.
+  /// PETSc's solvers: not estimated, 1.
   double rcond() const;
   const LinearSolverStats& stats() const;
 

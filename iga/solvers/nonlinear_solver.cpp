@@ -144,8 +144,10 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
       ++a.cholmod_factorizations;
     else if (linear.backend() == LinearBackend::ldlt)
       ++a.ldlt_factorizations;
-    else
+    else if (linear.backend() == LinearBackend::umfpack)
       ++a.umfpack_factorizations;
+    else
+      ++a.petsc_factorizations;
   }
   r.time_linear_solve += seconds_since(t0);
   return ls;
@@ -213,6 +215,7 @@ void append_resolve(StepAttempt& a, const StepAttempt& b) {
   a.cholmod_factorizations += b.cholmod_factorizations;
   a.ldlt_factorizations += b.ldlt_factorizations;
   a.umfpack_factorizations += b.umfpack_factorizations;
+  a.petsc_factorizations += b.petsc_factorizations;
   a.cholesky_fallbacks += b.cholesky_fallbacks;
 }
 
@@ -223,6 +226,7 @@ void add_attempt_totals(NonlinearSolverResult& r, const StepAttempt& a) {
   r.cholmod_factorizations += a.cholmod_factorizations;
   r.ldlt_factorizations += a.ldlt_factorizations;
   r.umfpack_factorizations += a.umfpack_factorizations;
+  r.petsc_factorizations += a.petsc_factorizations;
   r.cholesky_fallbacks += a.cholesky_fallbacks;
 }
 
@@ -268,10 +272,13 @@ void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const
 
 NonlinearSolver::NonlinearSolver(const NonlinearSolverSettings& settings) : settings_(settings) {
   settings_.validate();
+  if (settings_.linear_method != LinearMethod::suitesparse)
+    linear_.set_method(settings_.linear_method);
 }
 
 void NonlinearSolver::set_settings(const NonlinearSolverSettings& settings) {
   settings.validate();
+  if (settings.linear_method != linear_.method()) linear_.set_method(settings.linear_method);
   settings_ = settings;
 }
 
@@ -568,9 +575,13 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
   if (r.augmentations > 0)
     os << format("  augmentations %d (multiplier updates, each followed by a Newton re-solve)\n",
                  r.augmentations);
-  os << format("  factorizations: CHOLMOD %d, LDL^T %d, UMFPACK %d (Cholesky fallbacks %d)\n",
-               r.cholmod_factorizations, r.ldlt_factorizations, r.umfpack_factorizations,
-               r.cholesky_fallbacks);
+  if (r.petsc_factorizations > 0)
+    os << format("  factorizations: PETSc (MUMPS or a Krylov preconditioner) %d\n",
+                 r.petsc_factorizations);
+  else
+    os << format("  factorizations: CHOLMOD %d, LDL^T %d, UMFPACK %d (Cholesky fallbacks %d)\n",
+                 r.cholmod_factorizations, r.ldlt_factorizations, r.umfpack_factorizations,
+                 r.cholesky_fallbacks);
   if (r.jumps > 0)
     os << format(
         "  warning: %d step(s) landed more than %.0f times beyond the tangent's prediction (see "

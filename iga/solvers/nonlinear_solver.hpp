@@ -102,6 +102,9 @@ struct NonlinearSolverSettings {
   /// last two converged states, u_n + (dt / dt_prev) (u_n - u_prev) (from the second step on):
   /// a body carried by a moving tool or anchor then starts where its motion takes it.
   bool secant_predictor = false;
+  /// The library of the linear solves (LinearSolver::set_method): SuiteSparse (default), or
+  /// PETSc's MUMPS or Krylov solvers (a build with PETSc).
+  LinearMethod linear_method = LinearMethod::suitesparse;
 
   /// Throws std::invalid_argument naming the field, e.g. "NonlinearSolverSettings.min_step:
   /// must be > 0, got 0".
@@ -168,6 +171,7 @@ struct StepAttempt {
   int cholmod_factorizations = 0;      ///< factorizations that succeeded with CHOLMOD LL^T
   int ldlt_factorizations = 0;         ///< ... with CHOLMOD LDL^T (symmetric indefinite)
   int umfpack_factorizations = 0;      ///< ... with UMFPACK (incl. fallbacks)
+  int petsc_factorizations = 0;        ///< ... with PETSc (MUMPS or a Krylov preconditioner)
   int cholesky_fallbacks = 0;          ///< LL^T attempts that failed (then LDL^T or UMFPACK)
   /// Load control: |du_1|, the first Newton correction of the step (the tangent's prediction
   /// of its increment, after the secant predictor if any: then the larger of the two).
@@ -194,6 +198,7 @@ struct NonlinearSolverResult {
   int cholmod_factorizations = 0;
   int ldlt_factorizations = 0;
   int umfpack_factorizations = 0;
+  int petsc_factorizations = 0;
   int cholesky_fallbacks = 0;
   int jumps = 0;            ///< load control: converged steps that jumped (StepAttempt::jump_ratio)
   double time_total = 0.0;  ///< wall time of solve() (seconds)

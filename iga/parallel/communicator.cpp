@@ -1,0 +1,38 @@
+// The serial communicator and the run's world; see communicator.hpp.
+#include "iga/parallel/communicator.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace iga {
+
+namespace {
+const Communicator* g_world = nullptr;
+}  // namespace
+
+void SerialCommunicator::abort(int code, const std::string& message) const {
+  std::fprintf(stderr, "%s\n", message.c_str());
+  std::fflush(stderr);
+  std::exit(code);
+}
+
+const Communicator& serial_communicator() {
+  static const SerialCommunicator serial;
+  return serial;
+}
+
+const Communicator& world() {
+  return g_world ? *g_world : serial_communicator();
+}
+
+void detail::set_world(const Communicator* w) {
+  g_world = w;
+}
+
+bool launched_by_mpirun() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
+    if (std::getenv(v) != nullptr) return true;
+  return false;
+}
+
+}  // namespace iga

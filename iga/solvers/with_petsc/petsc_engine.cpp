@@ -1,0 +1,186 @@
+// MUMPS and PETSc's Krylov solvers behind LinearSolver (a build with PETSc); see
+// iga/solvers/petsc_engine.hpp.
+#include <petscksp.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "iga/parallel/communicator.hpp"
+#include "iga/solvers/petsc_engine.hpp"
+
+namespace iga {
+
+namespace {
+
+bool petsc_finalized() {
+  PetscBool finalized = PETSC_FALSE;
+  PetscFinalized(&finalized);
+  return finalized == PETSC_TRUE;
+}
+
+/// A matrix in PETSc (sequential AIJ over this engine's arrays, which keep its pattern) and the
+/// solver of one process.
+class SeqEngine final : public PetscEngine {
+ public:
+  explicit SeqEngine(LinearMethod method) : method_(method) { ensure_petsc(); }
+  ~SeqEngine() override { destroy(); }
+  SeqEngine(const SeqEngine&) = delete;
+  SeqEngine& operator=(const SeqEngine&) = delete;
+  SeqEngine(SeqEngine&&) = delete;
+  SeqEngine& operator=(SeqEngine&&) = delete;
+
+  bool factorize(const Eigen::SparseMatrix<double>& A, bool symmetric, std::string& why) override {
+    const Eigen::SparseMatrix<double, Eigen::RowMajor> csr = A;  // PETSc's AIJ: rows
+    const auto n = static_cast<PetscInt>(csr.rows());
+    const auto nnz = static_cast<std::size_t>(csr.nonZeros());
+    reused_ = mat_ != nullptr && n == n_ && symmetric == symmetric_ && values_.size() == nnz &&
+              std::equal(rows_.begin(), rows_.end(), csr.outerIndexPtr()) &&
+              std::equal(cols_.begin(), cols_.end(), csr.innerIndexPtr());
+    if (!reused_) {
+      destroy();
+      n_ = n;
+      symmetric_ = symmetric;
+      rows_.assign(csr.outerIndexPtr(), csr.outerIndexPtr() + n + 1);
+      cols_.assign(csr.innerIndexPtr(), csr.innerIndexPtr() + nnz);
+      values_.assign(csr.valuePtr(), csr.valuePtr() + nnz);
+      if (!call(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, n, n, rows_.data(), cols_.data(),
+                                          values_.data(), &mat_),
+                "MatCreateSeqAIJWithArrays", why) ||
+          !call(MatSetOption(mat_, MAT_SYMMETRIC, symmetric ? PETSC_TRUE : PETSC_FALSE),
+                "MatSetOption", why) ||
+          !setup_ksp(why))
+        return false;
+    } else {
+      // New values through PETSc's accessor, which marks the matrix changed: the preconditioner
+      // factorizes again (numerically only: the pattern is the same).
+      PetscScalar* v = nullptr;
+      if (!call(MatSeqAIJGetArray(mat_, &v), "MatSeqAIJGetArray", why)) return false;
+      std::copy(csr.valuePtr(), csr.valuePtr() + nnz, v);
+      if (!call(MatSeqAIJRestoreArray(mat_, &v), "MatSeqAIJRestoreArray", why) ||
+          !call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why))
+        return false;
+    }
+    if (!call(KSPSetUp(ksp_), "KSPSetUp", why)) return false;
+    PC pc = nullptr;
+    PCFailedReason failed = PC_NOERROR;
+    if (!call(KSPGetPC(ksp_, &pc), "KSPGetPC", why) || !call(PCSetUp(pc), "PCSetUp", why) ||
+        !call(PCGetFailedReason(pc, &failed), "PCGetFailedReason", why))
+      return false;
+    if (failed != PC_NOERROR) {
+      why = std::string(method_ == LinearMethod::mumps ? "MUMPS" : "PETSc preconditioner") +
+            ": factorization failed (" + PCFailedReasons[failed] + ")";
+      return false;
+    }
+    negative_ = -1;
+    if (method_ != LinearMethod::mumps) return true;
+    Mat F = nullptr;
+    PetscInt null_pivots = 0;
+    if (!call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
+        !call(MatMumpsGetInfog(F, 28, &null_pivots), "MatMumpsGetInfog", why))
+      return false;
+    if (null_pivots > 0) {  // INFOG(28): pivots below MUMPS's threshold (ICNTL(24) = 1)
+      why = "MUMPS: " + std::to_string(null_pivots) + " null pivot(s): the matrix is singular";
+      return false;
+    }
+    if (symmetric) {
+      PetscInt neg = 0, zero = 0, pos = 0;
+      if (!call(MatGetInertia(F, &neg, &zero, &pos), "MatGetInertia", why)) return false;
+      negative_ = static_cast<int>(neg);
+    }
+    return true;
+  }
+
+  bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, std::string& why) override {
+    x.resize(b.size());
+    Vec vb = nullptr, vx = nullptr;
+    const auto n = static_cast<PetscInt>(b.size());
+    bool ok = call(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, b.data(), &vb), "VecCreate", why) &&
+              call(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, x.data(), &vx), "VecCreate", why) &&
+              call(KSPSolve(ksp_, vb, vx), "KSPSolve", why);
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    PetscInt its = 0;
+    if (ok)
+      ok = call(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason", why) &&
+           call(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber", why);
+    VecDestroy(&vb);
+    VecDestroy(&vx);
+    iterations_ = static_cast<int>(its);
+    if (ok && reason < 0) {
+      why = std::string("PETSc KSP did not converge: ") + KSPConvergedReasons[reason] + " after " +
+            std::to_string(its) + " iterations";
+      ok = false;
+    }
+    return ok;
+  }
+
+  int negative_pivots() const override { return negative_; }
+  bool reused_analysis() const override { return reused_; }
+  int iterations() const override { return method_ == LinearMethod::mumps ? 0 : iterations_; }
+
+ private:
+  static bool call(PetscErrorCode e, const char* what, std::string& why) {
+    if (e == 0) return true;
+    const char* text = nullptr;
+    PetscErrorMessage(e, &text, nullptr);
+    why = std::string("PETSc: ") + what + " failed (" + (text ? text : "error") + ")";
+    return false;
+  }
+
+  bool setup_ksp(std::string& why) {
+    PC pc = nullptr;
+    if (!call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate", why) ||
+        !call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why) ||
+        !call(KSPGetPC(ksp_, &pc), "KSPGetPC", why))
+      return false;
+    if (method_ == LinearMethod::mumps) {
+      Mat F = nullptr;
+      if (!call(KSPSetType(ksp_, KSPPREONLY), "KSPSetType", why) ||
+          !call(PCSetType(pc, symmetric_ ? PCCHOLESKY : PCLU), "PCSetType", why) ||
+          !call(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType", why) ||
+          !call(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType", why) ||
+          !call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
+          !call(MatMumpsSetIcntl(F, 13, 1), "MatMumpsSetIcntl", why) ||  // inertia on any ranks
+          !call(MatMumpsSetIcntl(F, 24, 1), "MatMumpsSetIcntl", why))    // null pivots detected
+        return false;
+    } else {
+      // Newton needs its corrections to about the residual's round-off: a relative tolerance of
+      // 1e-10 by default (PETSc's options may change it, and the method).
+      if (!call(KSPSetType(ksp_, KSPGMRES), "KSPSetType", why) ||
+          !call(PCSetType(pc, PCGAMG), "PCSetType", why) ||
+          !call(KSPSetTolerances(ksp_, 1e-10, 1e-300, PETSC_DEFAULT, 2000), "KSPSetTolerances",
+                why))
+        return false;
+    }
+    return call(KSPSetFromOptions(ksp_), "KSPSetFromOptions", why);
+  }
+
+  void destroy() {
+    if (petsc_finalized()) return;  // at exit, after PETSc: its objects went with it
+    if (ksp_) KSPDestroy(&ksp_);
+    if (mat_) MatDestroy(&mat_);
+    ksp_ = nullptr;
+    mat_ = nullptr;
+  }
+
+  LinearMethod method_;
+  Mat mat_ = nullptr;
+  KSP ksp_ = nullptr;
+  PetscInt n_ = -1;
+  bool symmetric_ = true;
+  std::vector<PetscInt> rows_, cols_;
+  std::vector<PetscScalar> values_;  ///< the matrix's values, which PETSc reads in place
+  int negative_ = -1, iterations_ = 0;
+  bool reused_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<PetscEngine> make_petsc_engine(LinearMethod method) {
+  if (method == LinearMethod::suitesparse)
+    throw std::invalid_argument("make_petsc_engine: suitesparse is not a PETSc solver");
+  return std::make_unique<SeqEngine>(method);
+}
+
+}  // namespace iga
