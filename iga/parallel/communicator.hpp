@@ -89,7 +89,8 @@ bool launched_by_mpirun();
 class ParallelSession {
  public:
   ParallelSession(int& argc, char**& argv);
-  ~ParallelSession();
+  // (Out of line: the PETSc build's finalizes PETSc; the one without has nothing to do.)
+  ~ParallelSession();  // NOLINT(performance-trivially-destructible)
   ParallelSession(const ParallelSession&) = delete;
   ParallelSession& operator=(const ParallelSession&) = delete;
   /// Whether this session runs over MPI.
