@@ -9,16 +9,13 @@
 
 #include "iga/parallel/communicator.hpp"
 #include "iga/solvers/petsc_engine.hpp"
+#include "iga/solvers/with_petsc/petsc_common.hpp"
 
 namespace iga {
 
 namespace {
 
-bool petsc_finalized() {
-  PetscBool finalized = PETSC_FALSE;
-  PetscFinalized(&finalized);
-  return finalized == PETSC_TRUE;
-}
+using petsc::call;
 
 /// A matrix in PETSc (sequential AIJ over this engine's arrays, which keep its pattern) and the
 /// solver of one process.
@@ -62,34 +59,8 @@ class SeqEngine final : public PetscEngine {
           !call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why))
         return false;
     }
-    if (!call(KSPSetUp(ksp_), "KSPSetUp", why)) return false;
-    PC pc = nullptr;
-    PCFailedReason failed = PC_NOERROR;
-    if (!call(KSPGetPC(ksp_, &pc), "KSPGetPC", why) || !call(PCSetUp(pc), "PCSetUp", why) ||
-        !call(PCGetFailedReason(pc, &failed), "PCGetFailedReason", why))
-      return false;
-    if (failed != PC_NOERROR) {
-      why = std::string(method_ == LinearMethod::mumps ? "MUMPS" : "PETSc preconditioner") +
-            ": factorization failed (" + PCFailedReasons[failed] + ")";
-      return false;
-    }
-    negative_ = -1;
-    if (method_ != LinearMethod::mumps) return true;
-    Mat F = nullptr;
-    PetscInt null_pivots = 0;
-    if (!call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
-        !call(MatMumpsGetInfog(F, 28, &null_pivots), "MatMumpsGetInfog", why))
-      return false;
-    if (null_pivots > 0) {  // INFOG(28): pivots below MUMPS's threshold (ICNTL(24) = 1)
-      why = "MUMPS: " + std::to_string(null_pivots) + " null pivot(s): the matrix is singular";
-      return false;
-    }
-    if (symmetric) {
-      PetscInt neg = 0, zero = 0, pos = 0;
-      if (!call(MatGetInertia(F, &neg, &zero, &pos), "MatGetInertia", why)) return false;
-      negative_ = static_cast<int>(neg);
-    }
-    return true;
+    return call(KSPSetUp(ksp_), "KSPSetUp", why) &&
+           petsc::check_factorization(ksp_, method_, symmetric, negative_, why);
   }
 
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, std::string& why) override {
@@ -120,44 +91,14 @@ class SeqEngine final : public PetscEngine {
   int iterations() const override { return method_ == LinearMethod::mumps ? 0 : iterations_; }
 
  private:
-  static bool call(PetscErrorCode e, const char* what, std::string& why) {
-    if (e == 0) return true;
-    const char* text = nullptr;
-    PetscErrorMessage(e, &text, nullptr);
-    why = std::string("PETSc: ") + what + " failed (" + (text ? text : "error") + ")";
-    return false;
-  }
-
   bool setup_ksp(std::string& why) {
-    PC pc = nullptr;
-    if (!call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate", why) ||
-        !call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why) ||
-        !call(KSPGetPC(ksp_, &pc), "KSPGetPC", why))
-      return false;
-    if (method_ == LinearMethod::mumps) {
-      Mat F = nullptr;
-      if (!call(KSPSetType(ksp_, KSPPREONLY), "KSPSetType", why) ||
-          !call(PCSetType(pc, symmetric_ ? PCCHOLESKY : PCLU), "PCSetType", why) ||
-          !call(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType", why) ||
-          !call(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType", why) ||
-          !call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
-          !call(MatMumpsSetIcntl(F, 13, 1), "MatMumpsSetIcntl", why) ||  // inertia on any ranks
-          !call(MatMumpsSetIcntl(F, 24, 1), "MatMumpsSetIcntl", why))    // null pivots detected
-        return false;
-    } else {
-      // Newton needs its corrections to about the residual's round-off: a relative tolerance of
-      // 1e-10 by default (PETSc's options may change it, and the method).
-      if (!call(KSPSetType(ksp_, KSPGMRES), "KSPSetType", why) ||
-          !call(PCSetType(pc, PCGAMG), "PCSetType", why) ||
-          !call(KSPSetTolerances(ksp_, 1e-10, 1e-300, PETSC_DEFAULT, 2000), "KSPSetTolerances",
-                why))
-        return false;
-    }
-    return call(KSPSetFromOptions(ksp_), "KSPSetFromOptions", why);
+    return call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate", why) &&
+           call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why) &&
+           petsc::configure(ksp_, method_, symmetric_, why);
   }
 
   void destroy() {
-    if (petsc_finalized()) return;  // at exit, after PETSc: its objects went with it
+    if (petsc::finalized()) return;  // at exit, after PETSc: its objects went with it
     if (ksp_) KSPDestroy(&ksp_);
     if (mat_) MatDestroy(&mat_);
     ksp_ = nullptr;

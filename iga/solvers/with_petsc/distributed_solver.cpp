@@ -1,0 +1,194 @@
+// The distributed linear solver over PETSc (a build with PETSc); see
+// iga/solvers/distributed_solver.hpp.
+#include <petscksp.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "iga/parallel/communicator.hpp"
+#include "iga/solvers/distributed_solver.hpp"
+#include "iga/solvers/with_petsc/petsc_common.hpp"
+
+namespace iga {
+
+using petsc::call;
+
+struct DistributedLinearSolver::Impl {
+  LinearMethod method = LinearMethod::mumps;
+  Mat A = nullptr;
+  KSP ksp = nullptr;
+  Vec b = nullptr, x = nullptr, x_all = nullptr;
+  VecScatter to_all = nullptr;
+  PetscInt n = -1;
+  bool symmetric = true;
+  std::vector<PetscInt> ci, cj;  ///< this rank's triplet positions (the pattern's signature)
+  std::vector<PetscScalar> cv;
+  std::string message;
+  int negative = -1;
+  bool reused = false;
+  bool ready = false;
+
+  ~Impl() { destroy(); }
+  Impl() = default;
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  Impl(Impl&&) = delete;
+  Impl& operator=(Impl&&) = delete;
+
+  void destroy() {
+    if (petsc::finalized()) return;
+    if (ksp) KSPDestroy(&ksp);
+    if (A) MatDestroy(&A);
+    if (b) VecDestroy(&b);
+    if (x) VecDestroy(&x);
+    if (x_all) VecDestroy(&x_all);
+    if (to_all) VecScatterDestroy(&to_all);
+    ksp = nullptr;
+    A = nullptr;
+    b = x = x_all = nullptr;
+    to_all = nullptr;
+  }
+
+  /// A new matrix of this rank's positions (collective), with its solver and vectors.
+  bool create(std::string& why) {
+    destroy();
+    std::vector<PetscInt> i = ci, j = cj;  // PETSc may change the arrays it is given
+    if (!call(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate", why) ||
+        !call(MatSetSizes(A, PETSC_DECIDE, PETSC_DECIDE, n, n), "MatSetSizes", why) ||
+        !call(MatSetType(A, MATAIJ), "MatSetType", why) ||
+        !call(MatSetPreallocationCOO(A, static_cast<PetscCount>(i.size()), i.data(), j.data()),
+              "MatSetPreallocationCOO", why) ||
+        !call(MatSetOption(A, MAT_SYMMETRIC, symmetric ? PETSC_TRUE : PETSC_FALSE), "MatSetOption",
+              why) ||
+        !call(MatCreateVecs(A, &x, &b), "MatCreateVecs", why) ||
+        !call(VecScatterCreateToAll(x, &to_all, &x_all), "VecScatterCreateToAll", why))
+      return false;
+    return call(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate", why) &&
+           call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
+           petsc::configure(ksp, method, symmetric, why);
+  }
+
+  bool setup(std::string& why) {
+    return call(MatSetValuesCOO(A, cv.data(), INSERT_VALUES), "MatSetValuesCOO", why) &&
+           call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
+           call(KSPSetUp(ksp), "KSPSetUp", why) &&
+           petsc::check_factorization(ksp, method, symmetric, negative, why);
+  }
+};
+
+DistributedLinearSolver::DistributedLinearSolver(LinearMethod method)
+    : impl_(std::make_unique<Impl>()) {
+  if (method == LinearMethod::suitesparse)
+    throw std::invalid_argument("DistributedLinearSolver: suitesparse runs on one process only");
+  ensure_petsc();
+  impl_->method = method;
+}
+
+DistributedLinearSolver::~DistributedLinearSolver() = default;
+
+LinearSolveStatus DistributedLinearSolver::factorize(
+    int n, const std::vector<Eigen::Triplet<double>>& local, bool symmetric) {
+  Impl& m = *impl_;
+  const Communicator& w = world();
+  bool same = m.A != nullptr && n == m.n && symmetric == m.symmetric && local.size() == m.ci.size();
+  for (std::size_t k = 0; same && k < local.size(); ++k)
+    same = local[k].row() == m.ci[k] && local[k].col() == m.cj[k];
+  m.reused = w.sum(static_cast<long long>(same ? 0 : 1)) == 0;  // every rank's unchanged
+  m.cv.resize(local.size());
+  for (std::size_t k = 0; k < local.size(); ++k) m.cv[k] = local[k].value();
+  std::string why;
+  bool ok = true;
+  if (!m.reused) {
+    m.n = n;
+    m.symmetric = symmetric;
+    m.ci.resize(local.size());
+    m.cj.resize(local.size());
+    for (std::size_t k = 0; k < local.size(); ++k) {
+      m.ci[k] = local[k].row();
+      m.cj[k] = local[k].col();
+    }
+    ok = m.create(why);
+  }
+  ok = ok && m.setup(why);
+  // A failure on one rank is every rank's (their next steps must agree).
+  m.ready = w.sum(static_cast<long long>(ok ? 0 : 1)) == 0;
+  if (m.ready) {
+    m.message.clear();
+    return LinearSolveStatus::success;
+  }
+  const std::vector<std::string> reasons = w.gather(why);
+  m.message = why;
+  if (w.root())
+    for (const std::string& r : reasons)
+      if (!r.empty()) {
+        m.message = r;
+        break;
+      }
+  w.broadcast(m.message, 0);
+  return LinearSolveStatus::singular;
+}
+
+LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  Impl& m = *impl_;
+  if (!m.ready) {
+    m.message = "solve() without a successful factorization";
+    return LinearSolveStatus::not_factorized;
+  }
+  if (b.size() != m.n)
+    throw std::invalid_argument("DistributedLinearSolver::solve: right-hand side of size " +
+                                std::to_string(b.size()) + " for " + std::to_string(m.n) +
+                                " unknowns");
+  std::string why;
+  PetscInt lo = 0, hi = 0;
+  PetscScalar* bl = nullptr;
+  bool ok = call(VecGetOwnershipRange(m.b, &lo, &hi), "VecGetOwnershipRange", why) &&
+            call(VecGetArray(m.b, &bl), "VecGetArray", why);
+  if (ok) {
+    std::copy(b.data() + lo, b.data() + hi, bl);
+    ok = call(VecRestoreArray(m.b, &bl), "VecRestoreArray", why);
+  }
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+  ok = ok && call(KSPSolve(m.ksp, m.b, m.x), "KSPSolve", why) &&
+       call(KSPGetConvergedReason(m.ksp, &reason), "KSPGetConvergedReason", why);
+  if (ok && reason < 0) {
+    why = std::string("PETSc KSP did not converge: ") + KSPConvergedReasons[reason];
+    ok = false;
+  }
+  ok = ok &&
+       call(VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD),
+            "VecScatterBegin", why) &&
+       call(VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd",
+            why);
+  if (ok) {
+    const PetscScalar* xa = nullptr;
+    ok = call(VecGetArrayRead(m.x_all, &xa), "VecGetArrayRead", why);
+    if (ok) {
+      x = Eigen::Map<const Eigen::VectorXd>(xa, m.n);
+      VecRestoreArrayRead(m.x_all, &xa);
+    }
+  }
+  const Communicator& w = world();
+  if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0 && x.allFinite())
+    return LinearSolveStatus::success;
+  m.message = why.empty() ? "the solution is not finite" : why;
+  return LinearSolveStatus::singular;
+}
+
+const std::string& DistributedLinearSolver::message() const {
+  return impl_->message;
+}
+int DistributedLinearSolver::negative_pivots() const {
+  return impl_->negative;
+}
+bool DistributedLinearSolver::reused_analysis() const {
+  return impl_->reused;
+}
+std::pair<int, int> DistributedLinearSolver::owned_rows() const {
+  PetscInt lo = 0, hi = 0;
+  if (impl_->A) MatGetOwnershipRange(impl_->A, &lo, &hi);
+  return {static_cast<int>(lo), static_cast<int>(hi)};
+}
+
+}  // namespace iga

@@ -1,0 +1,88 @@
+// What the PETSc solvers of a build with PETSc share (petsc_engine.cpp: one process,
+// distributed_solver.cpp: the ranks of the run): error codes as messages, the solver's set-up
+// (MUMPS with its inertia and null-pivot detection, or GMRES with GAMG and a tight tolerance,
+// both open to PETSc's options), and the check of a factorization.
+#pragma once
+
+#include <petscksp.h>
+
+#include <string>
+
+#include "iga/solvers/petsc_engine.hpp"
+
+namespace iga::petsc {
+
+inline bool finalized() {
+  PetscBool done = PETSC_FALSE;
+  PetscFinalized(&done);
+  return done == PETSC_TRUE;
+}
+
+/// true if e is 0; else false with PETSc's message for `what` in `why`.
+inline bool call(PetscErrorCode e, const char* what, std::string& why) {
+  if (e == 0) return true;
+  const char* text = nullptr;
+  PetscErrorMessage(e, &text, nullptr);
+  why = std::string("PETSc: ") + what + " failed (" + (text ? text : "error") + ")";
+  return false;
+}
+
+/// The solver of `ksp` (its operators set): MUMPS's LDL^T (symmetric) or LU with the inertia
+/// computed on any number of ranks (ICNTL(13) = 1) and null pivots detected (ICNTL(24) = 1);
+/// or GMRES with GAMG to a relative 1e-10 (Newton needs its corrections to about the
+/// residual's round-off). PETSc's options may change either.
+inline bool configure(KSP ksp, LinearMethod method, bool symmetric, std::string& why) {
+  PC pc = nullptr;
+  if (!call(KSPGetPC(ksp, &pc), "KSPGetPC", why)) return false;
+  if (method == LinearMethod::mumps) {
+    Mat F = nullptr;
+    if (!call(KSPSetType(ksp, KSPPREONLY), "KSPSetType", why) ||
+        !call(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType", why) ||
+        !call(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType", why) ||
+        !call(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType", why) ||
+        !call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
+        !call(MatMumpsSetIcntl(F, 13, 1), "MatMumpsSetIcntl", why) ||
+        !call(MatMumpsSetIcntl(F, 24, 1), "MatMumpsSetIcntl", why))
+      return false;
+  } else if (!call(KSPSetType(ksp, KSPGMRES), "KSPSetType", why) ||
+             !call(PCSetType(pc, PCGAMG), "PCSetType", why) ||
+             !call(KSPSetTolerances(ksp, 1e-10, 1e-300, PETSC_DEFAULT, 2000), "KSPSetTolerances",
+                   why)) {
+    return false;
+  }
+  return call(KSPSetFromOptions(ksp), "KSPSetFromOptions", why);
+}
+
+/// After KSPSetUp: the preconditioner's failure, MUMPS's null pivots (INFOG(28)) as a singular
+/// matrix, and the inertia's negative count of a symmetric MUMPS factorization (else -1).
+inline bool check_factorization(KSP ksp, LinearMethod method, bool symmetric, int& negative,
+                                std::string& why) {
+  PC pc = nullptr;
+  PCFailedReason failed = PC_NOERROR;
+  negative = -1;
+  if (!call(KSPGetPC(ksp, &pc), "KSPGetPC", why) || !call(PCSetUp(pc), "PCSetUp", why) ||
+      !call(PCGetFailedReason(pc, &failed), "PCGetFailedReason", why))
+    return false;
+  if (failed != PC_NOERROR) {
+    why = std::string(method == LinearMethod::mumps ? "MUMPS" : "PETSc preconditioner") +
+          ": factorization failed (" + PCFailedReasons[failed] + ")";
+    return false;
+  }
+  if (method != LinearMethod::mumps) return true;
+  Mat F = nullptr;
+  PetscInt null_pivots = 0;
+  if (!call(PCFactorGetMatrix(pc, &F), "PCFactorGetMatrix", why) ||
+      !call(MatMumpsGetInfog(F, 28, &null_pivots), "MatMumpsGetInfog", why))
+    return false;
+  if (null_pivots > 0) {
+    why = "MUMPS: " + std::to_string(null_pivots) + " null pivot(s): the matrix is singular";
+    return false;
+  }
+  if (!symmetric) return true;
+  PetscInt neg = 0, zero = 0, pos = 0;
+  if (!call(MatGetInertia(F, &neg, &zero, &pos), "MatGetInertia", why)) return false;
+  negative = static_cast<int>(neg);
+  return true;
+}
+
+}  // namespace iga::petsc
