@@ -66,6 +66,11 @@ class NonlinearProblem {
   virtual void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) = 0;
   /// Whether the tangent is symmetric (e.g. false with friction): picks CHOLMOD or UMFPACK.
   virtual bool symmetric() const { return true; }
+  /// Whether the problem is spread over the ranks of the run (iga/parallel): then assemble()
+  /// gives on every rank the whole residual R (summed over the ranks, the same everywhere) but
+  /// K holds only this rank's part, and the linear solver sums the parts over the ranks
+  /// (LinearSolver::set_distributed). Default false: K is the whole tangent.
+  virtual bool distributed() const { return false; }
   /// Called after a converged step at time t with state u: commit history variables.
   virtual void commit(const VectorXd& u, double t) { (void)u, (void)t; }
   /// Called when Newton has converged at time t with state u (the state of the last assembly),

@@ -170,6 +170,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
                                  Workspace& w, StepAttempt& a, NonlinearSolverResult& r) {
   const NonlinearSolverSettings& s = settings_;
   linear_.set_symmetric(problem.symmetric());
+  linear_.set_distributed(problem.distributed());
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   std::string error;
   const auto finish = [&a](NewtonOutcome outcome, std::string message) {

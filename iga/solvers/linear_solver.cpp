@@ -9,6 +9,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "iga/parallel/communicator.hpp"
+#include "iga/solvers/distributed_solver.hpp"
+
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
@@ -169,7 +172,8 @@ struct LinearSolver::Impl {
   bool lu_analyzed = false;
   LinearBackend backend = LinearBackend::none;
   LinearMethod method = LinearMethod::suitesparse;
-  std::unique_ptr<PetscEngine> engine;  ///< PETSc's solvers (method mumps or krylov)
+  std::unique_ptr<PetscEngine> engine;            ///< PETSc's solvers (method mumps or krylov)
+  std::unique_ptr<DistributedLinearSolver> dist;  ///< the same over the ranks (distributed)
   LinearSolveStatus status = LinearSolveStatus::not_factorized;
   std::string message;
   bool fell_back = false;
@@ -189,6 +193,37 @@ struct LinearSolver::Impl {
     if (!ok) return fail(LinearSolveStatus::singular, why);
     backend = method == LinearMethod::mumps ? LinearBackend::mumps : LinearBackend::krylov;
     negative = engine->negative_pivots();
+    status = LinearSolveStatus::success;
+    return status;
+  }
+
+  /// This rank's part A of the matrix, summed over the ranks and factorized by `dist`
+  /// (collective; `bad`: this rank's non-finite entry, if any, which fails every rank).
+  LinearSolveStatus factorize_distributed(const SparseMatrix& A_local, const std::string& bad) {
+    const Communicator& w = world();
+    if (w.sum(static_cast<long long>(bad.empty() ? 0 : 1)) > 0) {
+      reused = false;
+      std::string why = bad;
+      const std::vector<std::string> all = w.gather(bad);
+      for (const std::string& b : all)
+        if (!b.empty() && why.empty()) why = b;
+      w.broadcast(why, 0);
+      return fail(LinearSolveStatus::invalid_input, why);
+    }
+    const Clock::time_point t0 = Clock::now();
+    std::vector<Eigen::Triplet<double>> t;
+    t.reserve(static_cast<std::size_t>(A_local.nonZeros()));
+    for (Eigen::Index j = 0; j < A_local.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(A_local, j); it; ++it)
+        t.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    const LinearSolveStatus s = dist->factorize(static_cast<int>(A_local.rows()), t, symmetric);
+    stats.time_factorize += seconds_since(t0);
+    ++stats.factorizations;
+    reused = dist->reused_analysis();
+    if (!reused) ++stats.analyses;
+    if (s != LinearSolveStatus::success) return fail(s, dist->message());
+    backend = method == LinearMethod::mumps ? LinearBackend::mumps : LinearBackend::krylov;
+    negative = dist->negative_pivots();
     status = LinearSolveStatus::success;
     return status;
   }
@@ -353,16 +388,20 @@ double LinearSolver::rcond() const {
 }
 
 void LinearSolver::reset() {
-  const bool symmetric = impl_->symmetric;
+  const bool symmetric = impl_->symmetric, distributed = impl_->dist != nullptr;
   const LinearMethod method = impl_->method;
   impl_ = std::make_unique<Impl>();
   impl_->symmetric = symmetric;
   if (method != LinearMethod::suitesparse) set_method(method);
+  set_distributed(distributed);
 }
 
 void LinearSolver::set_method(LinearMethod method) {
   Impl& m = *impl_;
+  if (m.dist && method == LinearMethod::suitesparse)
+    throw std::invalid_argument("LinearSolver: a distributed solver needs a PETSc method");
   m.engine = method == LinearMethod::suitesparse ? nullptr : make_petsc_engine(method);
+  if (m.dist) m.dist = std::make_unique<DistributedLinearSolver>(method);
   m.method = method;
   m.backend = LinearBackend::none;
   m.status = LinearSolveStatus::not_factorized;
@@ -370,6 +409,22 @@ void LinearSolver::set_method(LinearMethod method) {
 
 LinearMethod LinearSolver::method() const {
   return impl_->method;
+}
+
+void LinearSolver::set_distributed(bool distributed) {
+  Impl& m = *impl_;
+  if (distributed == (m.dist != nullptr)) return;
+  if (distributed && m.method == LinearMethod::suitesparse)
+    throw std::invalid_argument(
+        "LinearSolver: a problem spread over the ranks needs a PETSc solver (\"linear_solver\": "
+        "\"mumps\" or \"krylov\")");
+  m.dist = distributed ? std::make_unique<DistributedLinearSolver>(m.method) : nullptr;
+  m.backend = LinearBackend::none;
+  m.status = LinearSolveStatus::not_factorized;
+}
+
+bool LinearSolver::distributed() const {
+  return impl_->dist != nullptr;
 }
 
 LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
@@ -388,6 +443,7 @@ LinearSolveStatus LinearSolver::factorize(const SparseMatrix& A) {
   const int analyses_before = m.stats.analyses;
 
   const std::string bad = first_non_finite(A);
+  if (m.dist) return m.factorize_distributed(A, bad);
   if (!bad.empty()) {
     m.reused = false;
     return m.fail(LinearSolveStatus::invalid_input, bad);
@@ -452,6 +508,15 @@ LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
   if (m.backend == LinearBackend::none) {
     m.status = LinearSolveStatus::not_factorized;
     m.message = "solve() without a successful factorization";
+    return m.status;
+  }
+  if (m.dist) {  // collective; the size is checked by the distributed solver
+    const Clock::time_point t0 = Clock::now();
+    const LinearSolveStatus st = m.dist->solve(b, x);
+    m.stats.time_solve += seconds_since(t0);
+    ++m.stats.solves;
+    m.status = st;
+    m.message = st == LinearSolveStatus::success ? std::string() : m.dist->message();
     return m.status;
   }
   if (b.size() != m.A.rows())

@@ -89,6 +89,13 @@ class LinearSolver {
   /// Throws std::runtime_error for a PETSc method in a build without PETSc.
   void set_method(LinearMethod method);
   LinearMethod method() const;
+  /// Distributed (NonlinearProblem::distributed): factorize() takes this rank's part of the
+  /// matrix, summed over the ranks of the run by DistributedLinearSolver (MUMPS, or the Krylov
+  /// method), and solve() a right-hand side that is the same on every rank, whose whole solution
+  /// every rank gets; both are then collective. Needs a PETSc method (std::invalid_argument
+  /// otherwise). Forgets the factorization.
+  void set_distributed(bool distributed);
+  bool distributed() const;
   bool symmetric() const;
 
   /// Analyzes (if the pattern changed) and factorizes A. Throws std::invalid_argument if A is

@@ -289,6 +289,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
   linear_.set_symmetric(problem.symmetric());
+  linear_.set_distributed(problem.distributed());
 
   // Returns |R|, or -1 with `error` set when the problem threw.
   std::string error;
