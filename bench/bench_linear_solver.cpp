@@ -9,7 +9,9 @@
 //     1 CHOLMOD simplicial LL^T, 2 CHOLMOD simplicial LDL^T (the indefinite path),
 //     3 UMFPACK LU (the unsymmetric path and the last fallback), 4 iga::LinearSolver (what a
 //     Newton iteration calls: CHOLMOD with supernodal or simplicial as CHOLMOD's flop count
-//     decides), 5 and 6: 0 and 2 with METIS nested dissection as the only ordering;
+//     decides), 5 and 6: 0 and 2 with METIS nested dissection as the only ordering, 7 and 8:
+//     iga::LinearSolver with MUMPS through PETSc, LDL^T (symmetric) and LU (a build with PETSc;
+//     skipped without);
 //   BM_Solve/<method>/<n>: the triangular solves of one right-hand side.
 // The supernodal factorization's speed is the BLAS's: compare the system's libblas.so.3
 // (Debian's alternatives: reference BLAS or OpenBLAS, scripts/install-deps.sh installs
@@ -27,6 +29,7 @@
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/core/sparse_assembly.hpp"
+#include "iga/parallel/communicator.hpp"
 #include "iga/shell/kirchhoff_love_shell.hpp"
 #include "iga/solvers/linear_solver.hpp"
 
@@ -79,7 +82,9 @@ const char* method_name(int m) {
                                 "umfpack_lu",
                                 "LinearSolver",
                                 "cholmod_supernodal_llt_metis",
-                                "cholmod_simplicial_ldlt_metis"};
+                                "cholmod_simplicial_ldlt_metis",
+                                "mumps_ldlt",
+                                "mumps_lu"};
   return names[m];
 }
 
@@ -108,8 +113,16 @@ void run(benchmark::State& state, const SparseMatrix& K, bool solve) {
     state.SkipWithError("inaccurate solution");
 }
 
-void run_linear_solver(benchmark::State& state, const SparseMatrix& K, bool solve) {
-  LinearSolver solver;
+void run_linear_solver(benchmark::State& state, const SparseMatrix& K, bool solve,
+                       LinearMethod method = LinearMethod::suitesparse, bool symmetric = true) {
+  LinearSolver solver(symmetric);
+  if (method != LinearMethod::suitesparse) {
+    if (!parallel_build()) {
+      state.SkipWithError("no PETSc in this build");
+      return;
+    }
+    solver.set_method(method);
+  }
   if (solver.factorize(K) != LinearSolveStatus::success) {
     state.SkipWithError(solver.message().c_str());
     return;
@@ -148,6 +161,12 @@ void bench(benchmark::State& state, bool solve) {
     case 6:
       run<Metis<SimplicialLdlt>>(state, K, solve);
       break;
+    case 7:
+      run_linear_solver(state, K, solve, LinearMethod::mumps, true);
+      break;
+    case 8:
+      run_linear_solver(state, K, solve, LinearMethod::mumps, false);
+      break;
     default:
       run_linear_solver(state, K, solve);
   }
@@ -162,10 +181,10 @@ void BM_Solve(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Factorize)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {20, 40, 80}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80}})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Solve)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {20, 40, 80}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace
