@@ -16,6 +16,17 @@ void SerialCommunicator::abort(int code, const std::string& message) const {
   std::exit(code);
 }
 
+std::string Communicator::first_message(const std::string& s) const {
+  std::string first;
+  for (const std::string& m : gather(s))  // rank 0 only: the others gather nothing
+    if (!m.empty()) {
+      first = m;
+      break;
+    }
+  broadcast(first, 0);
+  return first;
+}
+
 const Communicator& serial_communicator() {
   static const SerialCommunicator serial;
   return serial;

@@ -42,6 +42,9 @@ class Communicator {
   /// s of rank `from` on every rank.
   virtual void broadcast(std::string& s, int from = 0) const = 0;
   virtual void barrier() const = 0;
+  /// The first non-empty of the ranks' strings, in rank order, on every rank (empty if all
+  /// are): a failure's reason that every rank reports alike.
+  std::string first_message(const std::string& s) const;
   /// Ends every rank of the run with `code` after printing `message` (a rank that failed while
   /// the others wait in a collective: never a hang). Serial: prints and exits.
   [[noreturn]] virtual void abort(int code, const std::string& message) const = 0;

@@ -186,13 +186,20 @@ struct LinearSolver::Impl {
     const Clock::time_point t0 = Clock::now();
     std::string why;
     const bool ok = engine->factorize(A, symmetric, why);
+    return petsc_factorized(t0, ok ? LinearSolveStatus::success : LinearSolveStatus::singular, why,
+                            engine->reused_analysis(), engine->negative_pivots());
+  }
+
+  /// The bookkeeping of a PETSc factorization (one process or distributed) begun at t0.
+  LinearSolveStatus petsc_factorized(Clock::time_point t0, LinearSolveStatus s,
+                                     const std::string& why, bool reused_pattern, int negatives) {
     stats.time_factorize += seconds_since(t0);
     ++stats.factorizations;
-    reused = engine->reused_analysis();
+    reused = reused_pattern;
     if (!reused) ++stats.analyses;
-    if (!ok) return fail(LinearSolveStatus::singular, why);
+    if (s != LinearSolveStatus::success) return fail(s, why);
     backend = method == LinearMethod::mumps ? LinearBackend::mumps : LinearBackend::krylov;
-    negative = engine->negative_pivots();
+    negative = negatives;
     status = LinearSolveStatus::success;
     return status;
   }
@@ -203,12 +210,7 @@ struct LinearSolver::Impl {
     const Communicator& w = world();
     if (w.sum(static_cast<long long>(bad.empty() ? 0 : 1)) > 0) {
       reused = false;
-      std::string why = bad;
-      const std::vector<std::string> all = w.gather(bad);
-      for (const std::string& b : all)
-        if (!b.empty() && why.empty()) why = b;
-      w.broadcast(why, 0);
-      return fail(LinearSolveStatus::invalid_input, why);
+      return fail(LinearSolveStatus::invalid_input, w.first_message(bad));
     }
     const Clock::time_point t0 = Clock::now();
     std::vector<Eigen::Triplet<double>> t;
@@ -217,15 +219,8 @@ struct LinearSolver::Impl {
       for (SparseMatrix::InnerIterator it(A_local, j); it; ++it)
         t.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
     const LinearSolveStatus s = dist->factorize(static_cast<int>(A_local.rows()), t, symmetric);
-    stats.time_factorize += seconds_since(t0);
-    ++stats.factorizations;
-    reused = dist->reused_analysis();
-    if (!reused) ++stats.analyses;
-    if (s != LinearSolveStatus::success) return fail(s, dist->message());
-    backend = method == LinearMethod::mumps ? LinearBackend::mumps : LinearBackend::krylov;
-    negative = dist->negative_pivots();
-    status = LinearSolveStatus::success;
-    return status;
+    return petsc_factorized(t0, s, dist->message(), dist->reused_analysis(),
+                            dist->negative_pivots());
   }
 
   LinearSolveStatus fail(LinearSolveStatus s, std::string why) {

@@ -39,8 +39,6 @@ class PetscEngine {
   virtual int negative_pivots() const = 0;
   /// Whether the last factorize() kept the matrix's pattern (and MUMPS its analysis).
   virtual bool reused_analysis() const = 0;
-  /// Krylov iterations of the last solve (0 for MUMPS).
-  virtual int iterations() const = 0;
 };
 
 /// The engine of `method` (mumps or krylov; PETSc is started on first use, ensure_petsc).

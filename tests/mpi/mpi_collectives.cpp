@@ -54,6 +54,10 @@ int main(int argc, char** argv) {
   w.broadcast(s, n - 1);
   expect(s == "from the last rank", "broadcast");
   expect(w.describe() == "MPI, " + std::to_string(n) + " ranks", "describe");
+  // Rank 0 has nothing to say, ranks 1 and up do: rank 1's message reaches every rank.
+  expect(w.first_message(r == 0 ? "" : "from rank " + std::to_string(r)) == "from rank 1",
+         "first_message");
+  expect(w.first_message("").empty(), "first_message of nothing");
   const long long failed = w.sum(static_cast<long long>(errors));
   if (r == 0) std::printf("mpi_collectives: %d ranks, %lld failures\n", n, failed);
   return failed == 0 ? 0 : 1;

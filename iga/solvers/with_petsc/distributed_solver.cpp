@@ -118,15 +118,7 @@ LinearSolveStatus DistributedLinearSolver::factorize(
     m.message.clear();
     return LinearSolveStatus::success;
   }
-  const std::vector<std::string> reasons = w.gather(why);
-  m.message = why;
-  if (w.root())
-    for (const std::string& r : reasons)
-      if (!r.empty()) {
-        m.message = r;
-        break;
-      }
-  w.broadcast(m.message, 0);
+  m.message = w.first_message(why);
   return LinearSolveStatus::singular;
 }
 

@@ -77,7 +77,6 @@ class SeqEngine final : public PetscEngine {
            call(KSPGetIterationNumber(ksp_, &its), "KSPGetIterationNumber", why);
     VecDestroy(&vb);
     VecDestroy(&vx);
-    iterations_ = static_cast<int>(its);
     if (ok && reason < 0) {
       why = std::string("PETSc KSP did not converge: ") + KSPConvergedReasons[reason] + " after " +
             std::to_string(its) + " iterations";
@@ -88,7 +87,6 @@ class SeqEngine final : public PetscEngine {
 
   int negative_pivots() const override { return negative_; }
   bool reused_analysis() const override { return reused_; }
-  int iterations() const override { return method_ == LinearMethod::mumps ? 0 : iterations_; }
 
  private:
   bool setup_ksp(std::string& why) {
@@ -112,7 +110,7 @@ class SeqEngine final : public PetscEngine {
   bool symmetric_ = true;
   std::vector<PetscInt> rows_, cols_;
   std::vector<PetscScalar> values_;  ///< the matrix's values, which PETSc reads in place
-  int negative_ = -1, iterations_ = 0;
+  int negative_ = -1;
   bool reused_ = false;
 };
 

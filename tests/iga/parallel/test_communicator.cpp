@@ -33,6 +33,8 @@ TEST_CASE("Communicator: one process, every collective the identity", "[iga][par
   s.broadcast(b, 0);
   CHECK(b == "kept");
   CHECK(s.describe() == "serial");
+  CHECK(s.first_message("why") == "why");
+  CHECK(s.first_message("").empty());
   if (!launched_by_mpirun()) CHECK(&world() == &s);
 }
 
