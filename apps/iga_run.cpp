@@ -31,21 +31,29 @@ struct RunOptions {
 };
 
 int run_model(const RunOptions& o) {
-  if (world().size() > 1)  // until the model layer distributes its bodies (issue 36)
-    throw std::runtime_error("iga run on " + world().describe() +
-                             ": distributed runs are not available yet; run it as one process "
-                             "(PETSc's solvers work there: \"solver\": {\"linear_solver\": "
-                             "\"mumps\"})");
+  // Under mpirun the model is spread over the processes (docs/parallel.md); process 0 reports
+  // and writes the tables and fields, every process its restart file.
+  const Communicator& comm = world();
+  std::ostream null_stream(nullptr);  // the other processes' reports go nowhere
+  std::ostream& out_log = comm.root() ? std::cout : null_stream;
   Json doc = read_model(o.file, false, o.sets);
-  Analysis a = Analysis::from_json(doc, o.file);
+  Analysis a = Analysis::from_json(doc, o.file, comm);
   const std::string out =
       o.out.empty() ? "out/" + (a.name().empty() ? std::string("run") : a.name()) : o.out;
-  std::filesystem::create_directories(out);
-  std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
+  if (comm.root()) {
+    std::filesystem::create_directories(out);
+    std::ofstream(std::filesystem::path(out) / "model_used.json") << format_json(doc) << "\n";
+  }
   if (o.threads > 0) omp_set_num_threads(o.threads);
-  std::cout << "iga run: " << o.file << ": " << a.describe() << " (" << omp_get_max_threads()
-            << " threads)\n";
+  out_log << "iga run: " << o.file << ": " << a.describe() << " (" << omp_get_max_threads()
+          << " threads"
+          << (comm.size() > 1 ? " on each of " + std::to_string(comm.size()) + " processes"
+                              : std::string())
+          << ")\n";
   const AnalysisResult r = a.run(o.quiet ? nullptr : &std::cout, out, {}, o.restart);
+  const bool ok =
+      r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
+  if (!comm.root()) return ok ? 0 : 2;
   std::cout << "iga run: results in " << out << " (steps.csv, summary.json";
   if (a.output().vtk != AnalysisOutput::Vtk::kNone)  // one series per body (write_output)
     for (int b = 0; b < a.num_bodies(); ++b)
@@ -71,8 +79,6 @@ int run_model(const RunOptions& o) {
     else
       std::cout << "iga run: warning: the plot " << png << " failed (python3 with matplotlib?)\n";
   }
-  const bool ok =
-      r.solver.converged() || (r.full_slip && r.solver.status == NonlinearSolverStatus::stopped);
   if (!ok) std::cout << "iga run: the run ended early: " << r.solver.message << "\n";
   return ok ? 0 : 2;
 }

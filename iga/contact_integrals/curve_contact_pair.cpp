@@ -33,12 +33,12 @@ bool CurveContactPair::symmetric() const {
   return !contact().parameters().law.friction();
 }
 
-ContactCounts CurveContactPair::counts() const {
+ContactCounts CurveContactPair::local_counts() const {
   const CurveContactCounts c = contact().counts();
   return {c.active, c.stick, c.slip};
 }
 
-bool CurveContactPair::sliding_steadily() const {
+bool CurveContactPair::local_sliding_steadily() const {
   const CurveContactCounts c = contact().counts();
   return steady_sliding(c.active, c.slip, std::min(c.slip_positive, c.slip_negative),
                         c.drag_ratio(), mu());

@@ -22,10 +22,6 @@ class CurveContactPair final : public RigidContactPair<CurveContact> {
   std::unique_ptr<ContactPair> clone() const override;
   /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)).
   bool symmetric() const override;
-  ContactCounts counts() const override;
-  /// The rope's rule (steady_sliding): every active point slips, all pulling one way, and the
-  /// friction lies along the rope.
-  bool sliding_steadily() const override;
   /// "CTRS contact with a rigid surface of 1 piece(s), 80 contact points".
   std::string describe() const override;
   /// Per rod element, at the samples in it: contact_pressure -N (force per reference length),
@@ -37,6 +33,12 @@ class CurveContactPair final : public RigidContactPair<CurveContact> {
   /// Active points with N, T, B, slip (0/1) and the surface normal.
   SampledMesh tool_points() const override;
   std::vector<ContactFoot> tool_feet() const override;
+
+ protected:
+  ContactCounts local_counts() const override;
+  /// The rope's rule (steady_sliding): every active point slips, all pulling one way, and the
+  /// friction lies along the rope.
+  bool local_sliding_steadily() const override;
 
  private:
   std::vector<Interval> elements_;  ///< the rod's element ranges

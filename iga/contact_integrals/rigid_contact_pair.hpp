@@ -9,8 +9,8 @@
 #pragma once
 
 #include <chrono>
-#include <cstdio>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -37,6 +37,7 @@ class RigidContactPair : public ContactPair {
   /// keeps is thus in the tool's frame and moves with it.
   void add(const BodyState& state, double t, VectorXd& g, std::vector<Triplet>* K) override {
     const auto start = std::chrono::steady_clock::now();
+    clear_total();
     pose_ = pose(t);
     const std::span<const Vector3d> x = state.x;
     x_.resize(x.size());  // no reallocation after the first call
@@ -69,26 +70,17 @@ class RigidContactPair : public ContactPair {
   AugmentResult augment() override { return contact_.augment(); }
   void restore() override { contact_.restore(); }
   void archive(StateArchive& a) override { contact_.archive(a); }
-  double roundoff() const override { return contact_.roundoff(); }
   double time() const override { return time_; }
   double mu() const override { return contact_.parameters().law.mu; }
-  /// "contact 24 (stick 10, slip 14)"; augmented Lagrange: "contact 24 (stick 10, slip 14),
-  /// |gap| 3.1e-05", the largest |gap| of a point carrying a force at the last check.
-  std::string status() const override {
-    const auto c = contact_.counts();
-    std::string s = "contact " + std::to_string(c.active) + " (stick " + std::to_string(c.stick) +
-                    ", slip " + std::to_string(c.slip) + ")";
-    if (contact_.enforcement().augmented) {
-      char buf[32];
-      std::snprintf(buf, sizeof buf, ", |gap| %.1e", contact_.augmentation().max_gap);
-      s += buf;
-    }
-    return s;
-  }
 
  protected:
   RigidContactPair(std::shared_ptr<const RigidSurface> rigid, Integral contact)
       : ContactPair(std::move(rigid)), contact_(std::move(contact)) {}
+  double local_roundoff() const override { return contact_.roundoff(); }
+  std::optional<double> checked_gap() const override {
+    if (!contact_.enforcement().augmented) return std::nullopt;
+    return contact_.augmentation().max_gap;
+  }
 
  private:
   Integral contact_;

@@ -311,7 +311,7 @@ void add_element_tangent(const Eigen::MatrixXd& Z, const Eigen::MatrixXd& Nall, 
 }  // namespace
 
 SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface& rigid,
-                               const SurfaceContactParameters& params)
+                               const SurfaceContactParameters& params, const ElementBlock& block)
     : ref_(reference), rigid_(&rigid), params_(params) {
   check(params);
   const int np = params.points_per_direction;
@@ -324,9 +324,10 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
   std::vector<int> cps(static_cast<std::size_t>(nen_));
   for (std::size_t ev = 0; ev + 1 < bv.size(); ++ev)
     for (std::size_t eu = 0; eu + 1 < bu.size(); ++eu) {
+      if (!block.contains(static_cast<int>(eu), static_cast<int>(ev))) continue;
       const double hu = 0.5 * (bu[eu + 1] - bu[eu]), hv = 0.5 * (bv[ev + 1] - bv[ev]);
       Element el;
-      const int e = static_cast<int>(elements_.size());
+      const int e = static_cast<int>(eu + (bu.size() - 1) * ev);  // over the whole patch
       for (int jv = 0; jv < np; ++jv)
         for (int iu = 0; iu < np; ++iu) {
           SurfaceContactPoint cp;

@@ -104,6 +104,7 @@
 #include "geometry/nurbs_surface.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
 #include "iga/core/contact_pair.hpp"
+#include "iga/core/partition.hpp"
 #include "iga/core/state_archive.hpp"
 
 namespace iga {
@@ -166,9 +167,12 @@ class SurfaceContact {
  public:
   /// `reference`: the shell mid-surface in its reference configuration (its knots and
   /// weights are those of the current configuration too). Throws std::invalid_argument on
-  /// invalid parameters. `rigid` must outlive this object.
+  /// invalid parameters. `rigid` must outlive this object. Contact points are made in the
+  /// elements of `block` only (a process's part of a patch spread over several,
+  /// iga/core/partition.hpp); SurfaceContactPoint::element numbers elements over the whole
+  /// patch (e_u + n_u e_v).
   SurfaceContact(const NurbsSurface& reference, const RigidSurface& rigid,
-                 const SurfaceContactParameters& params);
+                 const SurfaceContactParameters& params, const ElementBlock& block = {});
   /// Control points of the body.
   int num_body_points() const { return ref_.num_u() * ref_.num_v(); }
 

@@ -70,9 +70,15 @@ class ShellContactField {
     bool gap_known = false;
   };
 
-  Value at(double u, double v) const {
-    const std::size_t iu = span_of(bu_, u), iv = span_of(bv_, v);
-    const Element& el = elements_[iv * (bu_.size() - 1) + iu];
+  /// The fields at (u, v) in element e (e_u + n_u e_v; -1: the span of (u, v), a border
+  /// belonging to the span after it). A sample on a border takes the element it belongs to
+  /// (SampledMesh::elements): on a shell cut over several processes, the one whose process
+  /// sampled it.
+  Value at(double u, double v, int e = -1) const {
+    const std::size_t k = e >= 0 && static_cast<std::size_t>(e) < elements_.size()
+                              ? static_cast<std::size_t>(e)
+                              : span_of(bv_, v) * (bu_.size() - 1) + span_of(bu_, u);
+    const Element& el = elements_[k];
     if (el.u.empty() || el.v.empty()) return {};
     Value out = el.smooth ? lagrange(el, u, v) : bilinear(el, u, v);
     out.pressure = std::max(0.0, out.pressure);
@@ -168,18 +174,19 @@ class ShellContactField {
 };
 
 SurfaceContact make_contact(const NurbsSurface& reference, const RigidSurface* rigid,
-                            const SurfaceContactParameters& params) {
+                            const SurfaceContactParameters& params, const ElementBlock& block) {
   if (rigid == nullptr)
     throw std::invalid_argument("SurfaceContactPair: the rigid surface is null");
-  return SurfaceContact(reference, *rigid, params);
+  return SurfaceContact(reference, *rigid, params, block);
 }
 
 }  // namespace
 
 SurfaceContactPair::SurfaceContactPair(const NurbsSurface& reference,
                                        const std::shared_ptr<const RigidSurface>& rigid,
-                                       const SurfaceContactParameters& params)
-    : RigidContactPair(rigid, make_contact(reference, rigid.get(), params)),
+                                       const SurfaceContactParameters& params,
+                                       const ElementBlock& block)
+    : RigidContactPair(rigid, make_contact(reference, rigid.get(), params, block)),
       breaks_u_(reference.knots_u().breaks()),
       breaks_v_(reference.knots_v().breaks()) {}
 
@@ -194,7 +201,7 @@ bool SurfaceContactPair::symmetric() const {
   return !friction && !slave;
 }
 
-ContactCounts SurfaceContactPair::counts() const {
+ContactCounts SurfaceContactPair::local_counts() const {
   const SurfaceContactCounts c = contact().counts();
   return {c.active, c.stick, c.slip};
 }
@@ -214,8 +221,10 @@ void SurfaceContactPair::add_tool_fields(SampledMesh& body) const {
   PointFields c;
   c.name({"contact_pressure", "contact_gap", "contact_state", "contact_undefined"},
          {"contact_traction"});
-  for (const std::array<double, 2>& uv : body.params) {
-    const ShellContactField::Value cv = field.at(uv[0], uv[1]);
+  const bool by_element = body.elements.size() == body.params.size();
+  for (std::size_t i = 0; i < body.params.size(); ++i) {
+    const std::array<double, 2>& uv = body.params[i];
+    const ShellContactField::Value cv = field.at(uv[0], uv[1], by_element ? body.elements[i] : -1);
     const bool finite =
         std::isfinite(cv.pressure) && std::isfinite(cv.gap) && cv.traction.allFinite();
     c.append({finite ? cv.pressure : 0.0, finite ? cv.gap : 0.0, cv.state,

@@ -16,16 +16,16 @@ namespace iga {
 class SurfaceContactPair final : public RigidContactPair<SurfaceContact> {
  public:
   /// The pair of the surface `reference` (the shell's mid-surface; params.thickness must be the
-  /// shell's) with `rigid` (not null: std::invalid_argument).
+  /// shell's) with `rigid` (not null: std::invalid_argument), its contact points in the
+  /// elements of `block` (SurfaceContact).
   SurfaceContactPair(const NurbsSurface& reference,
                      const std::shared_ptr<const RigidSurface>& rigid,
-                     const SurfaceContactParameters& params);
+                     const SurfaceContactParameters& params, const ElementBlock& block = {});
 
   std::unique_ptr<ContactPair> clone() const override;
   /// Friction (mu > 0 and eps_T > 0) makes the tangent non-symmetric ((38)-(39)); so does the
   /// rigid-slave strategy (the ray direction depends on the shell's control points, (5)).
   bool symmetric() const override;
-  ContactCounts counts() const override;
   /// "STAS contact (rigid master, mu = 0.2) with a rigid surface of 1 piece(s), 256 contact
   /// points".
   std::string describe() const override;
@@ -37,6 +37,9 @@ class SurfaceContactPair final : public RigidContactPair<SurfaceContact> {
   /// Active points with N, gap, slip (0/1), the shell normal and the tangential force.
   SampledMesh tool_points() const override;
   std::vector<ContactFoot> tool_feet() const override;
+
+ protected:
+  ContactCounts local_counts() const override;
 
  private:
   std::vector<double> breaks_u_, breaks_v_;  ///< the shell's element borders

@@ -19,8 +19,23 @@
 
 namespace iga {
 
+/// This process's share of a body in a run over several processes (BodySystem::distribute).
+struct BodyShare {
+  /// Whether this process assembles the body: all of it, or the part it built (a shell's block
+  /// of elements, with its pairs' contact points in them). A body that another process assembles
+  /// whole gives a zero residual and no tangent here.
+  bool assembles = true;
+  /// Whether this process adds the terms of single control points (dead nodal loads, springs):
+  /// one of the processes that assemble the body.
+  bool point_terms = true;
+};
+
 class Body : public NonlinearProblem {
  public:
+  /// This process's share of the body; by default all of it (one process).
+  const BodyShare& share() const { return share_; }
+  void set_share(const BodyShare& s) { share_ = s; }
+
   /// "rod", "shell": the kind of body, for file names and summaries.
   virtual std::string type() const = 0;
   /// One phrase, e.g. "rod of 8 elements (degree 3, 11 control points)".
@@ -45,6 +60,9 @@ class Body : public NonlinearProblem {
   virtual int num_pairs() const = 0;
   virtual const ContactPair& pair(int i) const = 0;
   virtual ContactPair& pair(int i) = 0;
+
+ private:
+  BodyShare share_;
 };
 
 }  // namespace iga

@@ -2,6 +2,8 @@
 #include "iga/core/body_system.hpp"
 
 #include <algorithm>
+#include <span>
+#include <stdexcept>
 #include <string>
 
 #include "iga/core/state_archive.hpp"
@@ -17,26 +19,97 @@ VectorXd BodySystem::block(const VectorXd& u, int b) const {
   return u.segment(offset(b), offset(b + 1) - offset(b));
 }
 
+void BodySystem::distribute(const Communicator& comm, std::vector<int> owner) {
+  if (owner.size() != bodies_.size())
+    throw std::invalid_argument("BodySystem::distribute: " + std::to_string(owner.size()) +
+                                " owners for " + std::to_string(bodies_.size()) + " bodies");
+  const int r = comm.rank();
+  for (std::size_t b = 0; b < owner.size(); ++b) {
+    if (owner[b] < -1 || owner[b] >= comm.size())
+      throw std::invalid_argument("BodySystem::distribute: body " + std::to_string(b) +
+                                  " owned by process " + std::to_string(owner[b]) + " of " +
+                                  std::to_string(comm.size()));
+    const bool cut = owner[b] < 0;
+    bodies_[b]->set_share({cut || owner[b] == r, cut ? r == 0 : owner[b] == r});
+  }
+  comm_ = &comm;
+  owner_ = std::move(owner);
+}
+
 void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
-  if (bodies_.size() == 1) {  // the block is the whole: no copies
+  if (bodies_.size() == 1 && !distributed()) {  // the block is the whole: no copies
     bodies_[0]->assemble(u, t, R, K);
     return;
   }
   const int n = num_dofs();
-  R.resize(n);
+  R.setZero(n);
   if (K) triplets_.clear();
-  for (int b = 0; b < num_bodies(); ++b) {
-    const int o = offset(b), nb = offset(b + 1) - o;
-    bodies_[static_cast<std::size_t>(b)]->assemble(u.segment(o, nb), t, Rb_, K ? &Kb_ : nullptr);
-    R.segment(o, nb) = Rb_;
-    if (!K) continue;
-    for (int j = 0; j < Kb_.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(Kb_, j); it; ++it)
-        triplets_.emplace_back(o + static_cast<int>(it.row()), o + static_cast<int>(it.col()),
-                               it.value());
+  // Over several processes a failure of one process's share is every process's: each takes
+  // part in the reductions whatever happened, then all throw the first process's error (a
+  // process that left alone would leave the others waiting).
+  std::string error;
+  try {
+    for (int b = 0; b < num_bodies(); ++b) {
+      const int o = offset(b), nb = offset(b + 1) - o;
+      bodies_[static_cast<std::size_t>(b)]->assemble(u.segment(o, nb), t, Rb_, K ? &Kb_ : nullptr);
+      R.segment(o, nb) = Rb_;
+      if (!K) continue;
+      for (int j = 0; j < Kb_.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(Kb_, j); it; ++it)
+          triplets_.emplace_back(o + static_cast<int>(it.row()), o + static_cast<int>(it.col()),
+                                 it.value());
+    }
+  } catch (const std::exception& e) {
+    if (!distributed()) throw;
+    error = e.what();
+  }
+  if (distributed()) {
+    comm_->sum(std::span<double>(R.data(), static_cast<std::size_t>(R.size())));
+    if (combine_tallies(!error.empty())) throw std::runtime_error(comm_->first_message(error));
   }
   if (!K) return;
   assembler_.assemble(triplets_, n, n, *K);  // the pattern kept while the bodies' are
+}
+
+bool BodySystem::combine_tallies(bool failed) {
+  // Per pair: the sums (active, stick, slip, force, moment, round-off) and the maxima (|gap|,
+  // 1 where a part with contact does not slide steadily), each in one reduction; the last
+  // maximum is 1 where a process failed.
+  constexpr int kSums = 10, kMaxima = 2;
+  std::vector<ContactPair*> pairs;
+  for (Body* b : bodies_)
+    for (int k = 0; k < b->num_pairs(); ++k) pairs.push_back(&b->pair(k));
+  std::vector<double> sums(kSums * pairs.size()), maxima(kMaxima * pairs.size() + 1);
+  maxima.back() = failed ? 1.0 : 0.0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const ContactTally c = pairs[k]->local_tally();
+    double* s = sums.data() + kSums * k;
+    s[0] = c.counts.active;
+    s[1] = c.counts.stick;
+    s[2] = c.counts.slip;
+    for (int i = 0; i < 3; ++i) {
+      s[3 + i] = c.force[i];
+      s[6 + i] = c.moment[i];
+    }
+    s[9] = c.roundoff;
+    maxima[kMaxima * k] = c.max_gap;
+    maxima[kMaxima * k + 1] = c.steady ? 0.0 : 1.0;
+  }
+  if (!sums.empty()) comm_->sum(sums);
+  comm_->max(maxima);
+  if (maxima.back() != 0.0) return true;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    const double* s = sums.data() + kSums * k;
+    ContactTally c;
+    c.counts = {static_cast<int>(s[0]), static_cast<int>(s[1]), static_cast<int>(s[2])};
+    c.force = Vector3d(s[3], s[4], s[5]);
+    c.moment = Vector3d(s[6], s[7], s[8]);
+    c.roundoff = s[9];
+    c.max_gap = maxima[kMaxima * k];
+    c.steady = maxima[kMaxima * k + 1] == 0.0;
+    pairs[k]->set_total(c);
+  }
+  return false;
 }
 
 bool BodySystem::symmetric() const {
@@ -52,7 +125,16 @@ AugmentResult BodySystem::augment(const VectorXd& u, double t) {
   AugmentResult r;
   for (int b = 0; b < num_bodies(); ++b)
     merge_augment(r, bodies_[static_cast<std::size_t>(b)]->augment(block(u, b), t));
-  return r;
+  if (!distributed()) return r;
+  // The worst status over the processes, with the message of the first process that has it.
+  const double worst = comm_->max(static_cast<double>(augment_severity(r.status)));
+  const bool mine = static_cast<double>(augment_severity(r.status)) == worst;
+  AugmentResult whole;
+  for (AugmentStatus s : {AugmentStatus::satisfied, AugmentStatus::updated, AugmentStatus::failed,
+                          AugmentStatus::passed_through})
+    if (static_cast<double>(augment_severity(s)) == worst) whole.status = s;
+  whole.message = comm_->first_message(mine ? r.message : std::string());
+  return whole;
 }
 
 void BodySystem::restore() {

@@ -3,8 +3,15 @@
 // diagonal (bodies couple only through what a later pair between bodies adds); history,
 // multipliers, symmetry and status are the bodies'.
 //
+// Spread over the processes of a run (distribute): every process holds every body and the
+// whole u; each assembles its share of the bodies (Body::share), the residuals are summed over
+// the processes (every process has the whole R) and the tangent stays in parts (distributed());
+// the pairs' figures of each assembly (counts, tool forces, round-off) are combined into every
+// process's pairs (ContactPair::set_total), the bodies' augmentation results into one.
+//
 // Notation: n_b the unknowns of body b, o_b = n_1 + ... + n_{b-1} its offset; u_b = u(o_b :
-// o_b + n_b) its block.
+// o_b + n_b) its block; P the processes, owner(b) the process that assembles body b whole, or
+// -1 for a body cut into parts, one on every process.
 #pragma once
 
 #include <string>
@@ -12,6 +19,7 @@
 
 #include "iga/core/body.hpp"
 #include "iga/core/sparse_assembly.hpp"
+#include "iga/parallel/communicator.hpp"
 
 namespace iga {
 
@@ -25,6 +33,15 @@ class BodySystem : public NonlinearProblem {
   int offset(int b) const { return offsets_.at(static_cast<std::size_t>(b)); }
   /// u_b, the block of body b in u.
   VectorXd block(const VectorXd& u, int b) const;
+
+  /// Spreads the system over the processes of `comm` (it must outlive the system): owner[b]
+  /// the process that assembles body b whole, or -1 for a body that built its own part on
+  /// every process (then process 0 adds its point terms). Sets the bodies' shares.
+  void distribute(const Communicator& comm, std::vector<int> owner);
+  const Communicator& communicator() const { return *comm_; }
+  /// owner(b) of distribute (0 on one process).
+  int owner(int b) const { return owner_.empty() ? 0 : owner_.at(static_cast<std::size_t>(b)); }
+  bool distributed() const override { return comm_->size() > 1; }
 
   int num_dofs() const override { return offsets_.back(); }
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
@@ -40,7 +57,13 @@ class BodySystem : public NonlinearProblem {
   std::string status() const override;
 
  private:
+  /// After an assembly over several processes: every pair's figures combined (set_total),
+  /// unless some process `failed`. Returns whether one did.
+  bool combine_tallies(bool failed);
+
   std::vector<Body*> bodies_;
+  const Communicator* comm_ = &serial_communicator();
+  std::vector<int> owner_;       ///< empty: one process
   std::vector<int> offsets_{0};  ///< o_b, and the total at the end
   // Work storage of assemble() for several bodies.
   VectorXd Rb_;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -39,6 +40,20 @@ struct BodyState {
 /// Contact point counts of a pair at its last assembly.
 struct ContactCounts {
   int active = 0, stick = 0, slip = 0;
+};
+
+/// What one part of a pair reports of its last assembly. A body spread over several processes
+/// (BodySystem::distribute) has a part of each of its pairs on each process: the parts' tallies
+/// are combined (ContactPair::combine) into the pair's whole (ContactPair::set_total). Counts,
+/// the force on the tool, its moment about the origin and the round-off add up; the largest
+/// |gap| of exact enforcement is the largest of the parts'; the pair slides steadily when
+/// every part with contact does.
+struct ContactTally {
+  ContactCounts counts;
+  Vector3d force = Vector3d::Zero(), moment = Vector3d::Zero();
+  double roundoff = 0.0;
+  double max_gap = 0.0;  ///< exact enforcement: the largest |gap| at the last check
+  bool steady = true;    ///< the part slides steadily, or has no contact
 };
 
 /// A contact point seen from the rigid tool: its foot, the pressure and the traction the body
@@ -69,17 +84,27 @@ class ContactPair {
   /// The pair's history and contact points' state for a restart (NonlinearProblem::archive).
   virtual void archive(StateArchive& a) = 0;
   /// Round-off in |g| of the contact forces at the last assembly (NonlinearProblem).
-  virtual double roundoff() const = 0;
+  double roundoff() const { return total_ ? total_->roundoff : local_roundoff(); }
   /// Whether the contribution to the tangent is symmetric (false with friction).
   virtual bool symmetric() const = 0;
-  /// "contact 24 (stick 10, slip 14)" (and ", |gap| 3.1e-05" with exact enforcement).
-  virtual std::string status() const = 0;
-  virtual ContactCounts counts() const = 0;
+  /// "contact 24 (stick 10, slip 14)" (and ", |gap| 3.1e-05" with exact enforcement, the
+  /// largest |gap| of a point carrying a force at the last check).
+  std::string status() const;
+  ContactCounts counts() const { return total_ ? total_->counts : local_counts(); }
   /// Whether the pair's contact slides steadily at the last assembly: the rule of a sliding
   /// plateau, which a model selects as its stop criterion ("solver": "stop_at_full_slip_after").
-  /// Here every active point slips (always, without friction); a pair refines it to its own
-  /// kind of contact (a rod's: CurveContactPair, steady_sliding in curve_contact.hpp).
-  virtual bool sliding_steadily() const;
+  /// By default every active point slips (always, without friction); a pair refines it to its
+  /// own kind of contact (a rod's: CurveContactPair, steady_sliding in curve_contact.hpp).
+  bool sliding_steadily() const;
+
+  // ---- a pair spread over several processes --------------------------------------------------
+  /// This process's part of the last assembly.
+  ContactTally local_tally() const;
+  /// The whole pair's figures (the parts' tallies combined): counts(), roundoff(), status(),
+  /// sliding_steadily(), tool_force() and tool_moment() report them until the next add().
+  void set_total(const ContactTally& total) { total_ = total; }
+  /// The tallies of parts combined into the whole's.
+  static ContactTally combine(const ContactTally& a, const ContactTally& b);
   /// Coulomb coefficient.
   virtual double mu() const = 0;
   /// Seconds spent in add() so far.
@@ -101,8 +126,11 @@ class ContactPair {
   const RigidPose& pose() const { return pose_; }
   /// The force the body exerts on the tool at the last assembly (world frame; minus the
   /// contact forces on the body), and its moment about the point p.
-  const Vector3d& tool_force() const { return force_; }
-  Vector3d tool_moment(const Vector3d& p) const { return moment_ - p.cross(force_); }
+  const Vector3d& tool_force() const { return total_ ? total_->force : force_; }
+  Vector3d tool_moment(const Vector3d& p) const {
+    return total_ ? Vector3d(total_->moment - p.cross(total_->force))
+                  : Vector3d(moment_ - p.cross(force_));
+  }
 
   // ---- output (world frame, the pose of the last assembly) -------------------------------------
   /// Adds the contact fields at the samples of the body's mesh (its params and elements).
@@ -117,6 +145,16 @@ class ContactPair {
   ContactPair(const ContactPair&) = default;
   ContactPair& operator=(const ContactPair&) = default;
 
+  /// This process's part of the figures above (counts(), roundoff(), sliding_steadily()).
+  virtual ContactCounts local_counts() const = 0;
+  virtual double local_roundoff() const = 0;
+  virtual bool local_sliding_steadily() const;
+  /// Exact enforcement: the largest |gap| of a point carrying a force at the last check;
+  /// penalty: none.
+  virtual std::optional<double> checked_gap() const = 0;
+  /// An assembly starts: the whole's figures of the last one are void.
+  void clear_total() { total_.reset(); }
+
   /// The output above in the tool's frame, as the contact integral holds it.
   virtual void add_tool_fields(SampledMesh& body) const = 0;
   virtual SampledMesh tool_points() const = 0;
@@ -129,6 +167,7 @@ class ContactPair {
  private:
   std::shared_ptr<const RigidSurface> rigid_;  ///< shared: the pair may outlive its maker
   std::shared_ptr<const RigidMotion> motion_;
+  std::optional<ContactTally> total_;  ///< set_total's, until the next add()
 };
 
 }  // namespace iga

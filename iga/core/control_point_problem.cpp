@@ -84,6 +84,7 @@ std::string ControlPointProblem::status() const {
 }
 
 SampledMesh ControlPointProblem::sample(const VectorXd& u, double t, int samples) const {
+  if (!share().assembles) return {};  // another process samples the body
   SampledMesh m = sample_model(u, t, samples);
   if (pairs_.size() == 1) pairs_.front()->add_fields(m);
   if (pairs_.size() <= 1) return m;
@@ -132,15 +133,16 @@ std::vector<double> ControlPointProblem::scalar_reactions(const VectorXd& u, dou
 }
 
 void ControlPointProblem::add_nodal_load(std::vector<std::pair<int, Vector3d>> forces,
-                                         LoadCurve curve) {
-  dead_loads_.push_back(NodalLoad{std::move(forces), std::move(curve)});
+                                         LoadCurve curve, bool split) {
+  dead_loads_.push_back(NodalLoad{std::move(forces), std::move(curve), split});
 }
 
-void ControlPointProblem::add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve) {
+void ControlPointProblem::add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve,
+                                         bool split) {
   std::vector<std::pair<int, Vector3d>> forces;
   for (std::size_t i = 0; i < f.size(); ++i)
     if (f[i].squaredNorm() > 0.0) forces.emplace_back(static_cast<int>(i), f[i]);
-  add_nodal_load(std::move(forces), std::move(curve));
+  add_nodal_load(std::move(forces), std::move(curve), split);
 }
 
 void ControlPointProblem::current_points(const VectorXd& u, double t,
@@ -177,15 +179,20 @@ VectorXd ControlPointProblem::dead_load(double t) const {
 }
 
 void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
+  cart_triplets_.clear();
+  if (!share().assembles) {  // another process assembles the body
+    g_.setZero(dofs_.num_cartesian());
+    return;
+  }
   current_points(u, t, x_);
   dofs_.current_scalars(u, t, s_);
-  cart_triplets_.clear();
   std::vector<Triplet>* K = tangent ? &cart_triplets_ : nullptr;
   assemble_model(x_, s_, t, g_, K);  // g = f_int (- configuration-dependent loads)
   if (g_.size() != dofs_.num_cartesian())
     throw std::logic_error(describe() + ": the model's residual has " + std::to_string(g_.size()) +
                            " entries, expected " + std::to_string(dofs_.num_cartesian()));
   for (const NodalLoad& L : dead_loads_) {
+    if (!L.split && !share().point_terms) continue;  // added by another process
     const double lam = L.curve(t);
     for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
   }

@@ -122,10 +122,14 @@ class ControlPointProblem : public Body {
   virtual bool model_symmetric() const { return true; }
   /// The body sampled with its own fields, params and elements set (Body::sample).
   virtual SampledMesh sample_model(const VectorXd& u, double t, int samples) const = 0;
-  /// A dead load: fixed nodal forces scaled by curve(t).
-  void add_nodal_load(std::vector<std::pair<int, Vector3d>> forces, LoadCurve curve);
+  /// A dead load: fixed nodal forces scaled by curve(t). `split`: the forces are this
+  /// process's part of the load (integrated over its elements), added by every process;
+  /// otherwise the whole load, added by the process that adds the body's point terms
+  /// (Body::share).
+  void add_nodal_load(std::vector<std::pair<int, Vector3d>> forces, LoadCurve curve,
+                      bool split = false);
   /// Nodal forces f_i from a dense per-point array (zero entries dropped).
-  void add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve);
+  void add_nodal_load(const std::vector<Vector3d>& f, LoadCurve curve, bool split = false);
   const std::vector<Vector3d>& reference_points() const { return X_; }
   /// A rod's end crossing a symmetry plane of normal n at right angles (the reference tangent
   /// x_i1 - x_i0 along n): the end point i0 stays in the plane and its neighbour i1 moves with
@@ -139,6 +143,7 @@ class ControlPointProblem : public Body {
   struct NodalLoad {
     std::vector<std::pair<int, Vector3d>> forces;
     LoadCurve curve;
+    bool split = false;  ///< this process's part of the load (add_nodal_load)
   };
   /// Cartesian residual g and (optionally) Cartesian triplets at x.
   void assemble_cartesian(const VectorXd& u, double t, bool tangent);

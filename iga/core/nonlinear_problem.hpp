@@ -31,26 +31,27 @@ struct AugmentResult {
   AugmentStatus status = AugmentStatus::satisfied;
   std::string message;  ///< what was found (e.g. the largest penetration against the tolerance)
 };
+/// How bad an augmentation result is: passed_through 3 > failed 2 > updated 1 > satisfied 0.
+inline int augment_severity(AugmentStatus s) {
+  switch (s) {
+    case AugmentStatus::passed_through:
+      return 3;
+    case AugmentStatus::failed:
+      return 2;
+    case AugmentStatus::updated:
+      return 1;
+    case AugmentStatus::satisfied:
+      break;
+  }
+  return 0;
+}
 /// Joins the result of one part (a contact pair, a body) into that of the whole: the worst
-/// status (passed_through > failed > updated > satisfied) with the messages of the parts that
-/// have it.
+/// status (augment_severity) with the messages of the parts that have it.
 inline void merge_augment(AugmentResult& whole, const AugmentResult& part) {
-  const auto rank = [](AugmentStatus s) {
-    switch (s) {
-      case AugmentStatus::passed_through:
-        return 3;
-      case AugmentStatus::failed:
-        return 2;
-      case AugmentStatus::updated:
-        return 1;
-      case AugmentStatus::satisfied:
-        break;
-    }
-    return 0;
-  };
-  if (rank(part.status) > rank(whole.status)) {
+  if (augment_severity(part.status) > augment_severity(whole.status)) {
     whole = part;
-  } else if (rank(part.status) == rank(whole.status) && !part.message.empty()) {
+  } else if (augment_severity(part.status) == augment_severity(whole.status) &&
+             !part.message.empty()) {
     whole.message += (whole.message.empty() ? "" : "; ") + part.message;
   }
 }

@@ -6,6 +6,7 @@
 // fields are values per sample, scalars or 3-vectors, in the order they are added.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <initializer_list>
 #include <stdexcept>
@@ -14,6 +15,8 @@
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "iga/core/partition.hpp"
 
 namespace iga {
 
@@ -55,6 +58,9 @@ struct SampledMesh {
   };
   Shape shape = Shape::kPoints;
   int nu = 0, nv = 0;  ///< grid size (kGrid)
+  /// A part of a grid (a process's block of a cut patch): the column and row of its first
+  /// point in the whole grid (kGrid).
+  int i0 = 0, j0 = 0;
   std::vector<Eigen::Vector3d> points;
   /// The body's parameters (u, v) and element of each point, where the mesh samples a body (for
   /// fields added by others, e.g. a contact pair's contact pressure on the body); else empty.
@@ -66,22 +72,31 @@ struct SampledMesh {
 /// A grid over a patch's element spans, `samples` intervals per span and direction (kGrid;
 /// bu, bv: the breaks of the knot vectors in u and v), without points or fields yet: its size,
 /// and each sample's parameters and element (u fastest; elements eu + n_u ev, a span's end
-/// belonging to that span, the first sample to span 0).
+/// belonging to that span, the first sample to the first span). Only the spans of `block` are
+/// sampled (a process's part of a patch spread over several; by default all); the elements
+/// keep their numbers over the whole patch.
 inline SampledMesh element_grid(const std::vector<double>& bu, const std::vector<double>& bv,
-                                int samples) {
-  const auto along = [samples](const std::vector<double>& br) {
+                                int samples, const ElementBlock& block = {}) {
+  const auto along = [samples](const std::vector<double>& br, int lo, int hi) {
     std::vector<std::pair<double, int>> s;  // (parameter, span)
-    for (std::size_t k = 0; k + 1 < br.size(); ++k)
-      for (int i = (k == 0 ? 0 : 1); i <= samples; ++i)
-        s.emplace_back(br[k] + (br[k + 1] - br[k]) * i / samples, static_cast<int>(k));
+    const int n = static_cast<int>(br.size()) - 1;
+    lo = std::max(lo, 0);
+    hi = std::min(hi, n);
+    for (int k = lo; k < hi; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      for (int i = (k == lo ? 0 : 1); i <= samples; ++i)
+        s.emplace_back(br[kk] + (br[kk + 1] - br[kk]) * i / samples, k);
+    }
     return s;
   };
-  const auto us = along(bu), vs = along(bv);
+  const auto us = along(bu, block.u0, block.u1), vs = along(bv, block.v0, block.v1);
   const int ne_u = static_cast<int>(bu.size()) - 1;
   SampledMesh m;
   m.shape = SampledMesh::Shape::kGrid;
   m.nu = static_cast<int>(us.size());
   m.nv = static_cast<int>(vs.size());
+  m.i0 = std::max(block.u0, 0) * samples;
+  m.j0 = std::max(block.v0, 0) * samples;
   for (const auto& [v, ev] : vs)
     for (const auto& [u, eu] : us) {
       m.params.push_back({u, v});

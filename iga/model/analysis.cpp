@@ -15,6 +15,7 @@
 #include <tuple>
 
 #include "geometry/constructions.hpp"
+#include "iga/core/partition.hpp"
 #include "iga/model/body_types.hpp"
 #include "iga/model/model.hpp"
 #include "iga/model/sections.hpp"
@@ -50,7 +51,31 @@ class LoadDirection {
   bool started_ = false;
 };
 
+/// The process of each body over P processes (BodySystem::distribute): -1 for a cut body,
+/// whose work all processes share; the others whole to the least loaded process, in the
+/// file's order, weighed by their control points.
+std::vector<int> owners(const std::vector<std::unique_ptr<Body>>& bodies,
+                        const std::vector<bool>& cut, int P) {
+  std::vector<double> load(static_cast<std::size_t>(P), 0.0), work;
+  for (std::size_t b = 0; b < cut.size(); ++b) {
+    const double n = bodies[b]->num_control_points();
+    if (cut[b])
+      for (double& l : load) l += n / P;
+    else
+      work.push_back(n);
+  }
+  const std::vector<int> whole = assign_whole(work, load);
+  std::vector<int> owner;
+  owner.reserve(cut.size());
+  for (std::size_t b = 0, k = 0; b < cut.size(); ++b) owner.push_back(cut[b] ? -1 : whole[k++]);
+  return owner;
+}
+
 }  // namespace
+
+std::string restart_file_of(const std::string& path, int rank) {
+  return rank == 0 ? path : path + "." + std::to_string(rank);
+}
 
 std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& steps) {
   std::vector<LoadLimitPoint> out;
@@ -64,7 +89,7 @@ std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& s
   return out;
 }
 
-Analysis Analysis::from_json(const Json& doc, const std::string& file) {
+Analysis Analysis::from_json(const Json& doc, const std::string& file, const Communicator& comm) {
   const Model model = parse_model(doc, file);  // format, version, geometry, known sections
   const JsonCursor root(doc, file);
   Analysis a;
@@ -108,19 +133,23 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
     ctx.motions = parse_rigid_motions(root["rigid_motions"], ctx, a.geometry_);
   a.system_ = std::make_unique<BodySystem>();
   std::vector<Context> read;  // each body's context, for the output section
+  std::vector<bool> cut;      // each body's: cut over the processes
   for (const std::string& name : bodies.keys()) {
     Context bc = ctx;
     bc.body = name;
     bc.body_index = static_cast<int>(a.bodies_.size());
     const JsonCursor b = bodies[name];
     if (!b.json().is_object()) b.fail_type("an object with a \"type\" key");
+    const BodyType& type = body_type(b["type"]);
     std::unique_ptr<Body> body =
-        body_type(b["type"]).build(BodyInput{root, b, bc, a.geometry_, materials});
+        type.build(BodyInput{root, b, bc, a.geometry_, materials, comm.rank(), comm.size()});
+    cut.push_back(type.cut && comm.size() > 1);
     a.body_names_.push_back(name);
     a.bodies_.push_back(std::move(body));
     a.system_->add(*a.bodies_.back());
     read.push_back(std::move(bc));
   }
+  if (comm.size() > 1) a.system_->distribute(comm, owners(a.bodies_, cut, comm.size()));
   a.collect_pairs(root);
   if (root.has("rigid_motions"))  // a motion of a tool no pair touches is a typo
     for (const std::string& tool : root["rigid_motions"].keys())
@@ -130,6 +159,15 @@ Analysis Analysis::from_json(const Json& doc, const std::string& file) {
                                                "\"");
   if (root.has("solver"))
     a.settings_ = parse_solver(root["solver"], a.stop_full_slip_after_, a.full_slip_steps_);
+  if (comm.size() > 1 && a.settings_.linear_method == LinearMethod::suitesparse) {
+    // Over several processes the tangent is solved by PETSc: MUMPS unless the model says
+    // otherwise; SuiteSparse works on one process only.
+    if (root.has("solver") && root["solver"].has("linear_solver"))
+      root["solver"]["linear_solver"].fail(
+          "SuiteSparse solves on one process; over " + std::to_string(comm.size()) +
+          " processes use \"mumps\" (the default there) or \"krylov\"");
+    a.settings_.linear_method = LinearMethod::mumps;
+  }
   // Every load curve, used or not (steps.csv has a column for each), must stay finite over the
   // run's pseudo-time.
   for (const auto& [name, curve] : a.curves_)
@@ -186,8 +224,8 @@ std::pair<Vector3d, Vector3d> Analysis::tool_load(int k) const {
   return {P.tool_force(), P.tool_moment(P.pose().to_world(p.moment_about))};
 }
 
-Analysis Analysis::load(const std::string& path) {
-  return from_json(read_json_file(path), path);
+Analysis Analysis::load(const std::string& path, const Communicator& comm) {
+  return from_json(read_json_file(path), path, comm);
 }
 
 std::string Analysis::describe() const {
@@ -235,6 +273,12 @@ std::vector<Vector3d> Analysis::reactions(const VectorXd& u, double t) {
     if (a.empty()) a = body(q.body).reactions(system_->block(u, q.body), t);
     r.push_back(a[static_cast<std::size_t>(q.point)]);
   }
+  // Each process has its share's part (the constraint forces are linear in the residual).
+  std::vector<double> flat;
+  for (const Vector3d& v : r) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
+  communicator().sum(flat);
+  for (std::size_t k = 0; k < r.size(); ++k)
+    r[k] = Vector3d(flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]);
   return r;
 }
 
@@ -375,6 +419,11 @@ void Analysis::archive_run(StateArchive& a, RunState& s,
     a.io(stored);
     if (a.loading() && stored != value) a.fail(name_of(stored, value));
   };
+  same(communicator().size(), [](int f, int m) {
+    return "the file was written by a run on " + std::to_string(f) +
+           " process(es), this one runs on " + std::to_string(m) +
+           ": restart it on as many (each process's file holds its share of the bodies)";
+  });
   same(system_->num_dofs(), [](int f, int m) {
     return "the file's model has " + std::to_string(f) + " unknowns, this one " + std::to_string(m);
   });
@@ -398,28 +447,50 @@ void Analysis::archive_run(StateArchive& a, RunState& s,
   system_->archive(a);
 }
 
+void Analysis::read_restart(const std::string& file, RunState& s,
+                            const std::vector<std::unique_ptr<OutputSink>>& sinks) {
+  // Each process reads its own file; one that cannot stops them all with its reason.
+  const Communicator& comm = communicator();
+  std::string why;
+  try {
+    StateArchive a = StateArchive::reader(restart_file_of(file, comm.rank()));
+    archive_run(a, s, sinks);
+    a.finish();
+  } catch (const std::exception& e) {
+    if (comm.size() == 1) throw;
+    why = e.what();
+  }
+  if (comm.size() > 1)
+    if (const std::string first = comm.first_message(why); !first.empty())
+      throw RestartError(first);
+}
+
 // The output side of one run(): the sinks (steps table, field series, summary; iga/output), restart
 // files, the error that ends the run.
 struct Analysis::RunContext {
   RunContext(Analysis& a, std::ostream* l, std::string dir, AnalysisResult& r)
-      : an(a), log(l), out_dir(std::move(dir)), res(r) {
+      : an(a), comm(a.communicator()), log(l), out_dir(std::move(dir)), res(r) {
     // Made whether or not there is an output folder: a restart file holds their state.
     for (const std::string& format :
          {std::string("csv"), an.output_.field_format, std::string("summary")})
       sinks.push_back(make_output_sink(format));
   }
   Analysis& an;
+  // The run's processes: all take part in every step's reductions and in the fields' gather;
+  // process 0 writes the tables, summary and fields; each writes its own restart file.
+  const Communicator& comm;
   std::ostream* log;
   std::string out_dir;
   AnalysisResult& res;
   RunState rs;  // a restart's state
   std::vector<std::unique_ptr<OutputSink>> sinks;
-  bool opened = false;  // the sinks write into out_dir
+  bool opened = false;  // the run writes into out_dir (process 0's sinks)
   // An error after the start (output of a converged step, the problem's history update, the
   // user's callback, the last ParaView files) ends the run with status `failed` and this
   // message; summary.json and the rows written so far stay.
   std::string error;
-  std::string restart_path;  // empty: no output folder
+  std::string restart_base;  // restart.bin in the output folder (empty: no output folder)
+  std::string restart_path;  // this process's restart file (restart_file_of)
   int restart_step = -1;     // the step of the last restart file written
   int sliding_steps = 0;     // consecutive steps of steady sliding (the plateau so far)
   LoadDirection direction;   // of the load factor along the path (its limit points)
@@ -431,11 +502,35 @@ struct Analysis::RunContext {
   // restart); the rigid tools at t0. steps.csv that cannot be written: std::runtime_error.
   void open() {
     if (out_dir.empty()) return;
-    fs::create_directories(out_dir);
-    restart_path = (fs::path(out_dir) / "restart.bin").string();
+    restart_base = (fs::path(out_dir) / "restart.bin").string();
+    restart_path = restart_file_of(restart_base, comm.rank());
+    try {
+      fs::create_directories(out_dir);
+      opened = true;
+    } catch (const std::exception& e) {
+      error = e.what();
+    }
+    if (opened && comm.root()) open_sinks();
+    // An output folder or a steps.csv that cannot be written ends the run before it starts, on
+    // every process; the other sinks' errors end it after the start (status failed,
+    // summary.json written).
+    if (comm.size() > 1) {
+      const double worst = comm.max(!opened ? 2.0 : !error.empty() ? 1.0 : 0.0);
+      if (worst > 0.0) error = comm.first_message(error);
+      if (worst == 2.0) opened = false;
+    }
+    if (!opened) throw std::runtime_error(error);
+  }
+
+  void open_sinks() {
     const std::vector<std::string> columns = an.csv_columns();
-    sinks.front()->open(out_dir, columns);  // steps.csv
-    opened = true;
+    try {
+      sinks.front()->open(out_dir, columns);  // steps.csv
+    } catch (const std::exception& e) {
+      error = e.what();
+      opened = false;
+      return;
+    }
     try {
       for (std::size_t i = 1; i < sinks.size(); ++i) sinks[i]->open(out_dir, columns);
     } catch (const std::exception& e) {
@@ -453,19 +548,30 @@ struct Analysis::RunContext {
   }
 
   void snapshot(double key, const std::vector<MeshOutput>& meshes) {
+    if (!comm.root()) return;
     for (const std::unique_ptr<OutputSink>& sink : sinks) sink->snapshot(key, meshes);
   }
 
   // The field series' snapshot of (u, t); its key: t, or under arc length (t falls after a
-  // limit point and comes back: ParaView orders a series by its times) the step.
+  // limit point and comes back: ParaView orders a series by its times) the step. Every
+  // process takes part (the meshes are gathered to process 0).
   void fields(const VectorXd& u, double t, const std::string& stem) {
     const bool by_step = an.settings_.control == PathControl::arc_length;
     snapshot(by_step ? static_cast<double>(step_number()) : t, an.output_meshes(stem, u, t));
   }
 
+  // Over several processes: whether every process goes on after a step, and the first
+  // process's error (every process stops when one does: none is left waiting).
+  bool agree(bool go_on) {
+    if (comm.size() == 1) return go_on;
+    const double worst = comm.max(!error.empty() ? 2.0 : go_on ? 0.0 : 1.0);
+    if (worst == 2.0) error = comm.first_message(error);
+    return worst == 0.0;
+  }
+
   // The sinks' summary of the run.
   void close() {
-    if (!opened) return;
+    if (!opened || !comm.root()) return;
     const Json summary = an.summary(res);
     for (const std::unique_ptr<OutputSink>& sink : sinks) sink->close(summary);
   }
@@ -480,7 +586,7 @@ struct Analysis::RunContext {
     StateArchive a = StateArchive::writer();
     an.archive_run(a, w, sinks);
     a.save(restart_path);
-    res.restart_file = restart_path;
+    res.restart_file = restart_base;  // the name a restart is given (each process adds its own)
     restart_step = w.steps;
   }
 
@@ -507,10 +613,10 @@ struct Analysis::RunContext {
       }
       const int every = an.output_.restart_every;
       if (!restart_path.empty() && every > 0 && k % every == 0) write_restart(u, checkpoint);
-      return go_on;
+      return agree(go_on);
     } catch (const std::exception& e) {
       error = "output of the step at t = " + fmt(t) + ": " + e.what();
-      return false;
+      return agree(false);
     }
   }
 
@@ -552,16 +658,17 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
                              const AnalysisStepCallback& user_callback,
                              const std::string& restart_file) {
   AnalysisResult res;
+  const Communicator& comm = communicator();
+  if (!comm.root()) log = nullptr;  // process 0 reports
   NonlinearSolver solver(settings_);
   solver.set_log(log);
   RunContext run{*this, log, out_dir, res};
-  // A restart: the state of the run that wrote the file (RestartError if it does not fit).
+  // A restart: the state of the run that wrote the file (RestartError if it does not fit);
+  // each process reads its own file, and a process that cannot stops them all.
   VectorXd u = VectorXd::Zero(system_->num_dofs());
   const bool resumed = !restart_file.empty();
   if (resumed) {
-    StateArchive a = StateArchive::reader(restart_file);
-    archive_run(a, run.rs, run.sinks);
-    a.finish();
+    read_restart(restart_file, run.rs, run.sinks);
     u = run.rs.u;
     run.sliding_steps = run.rs.sliding_steps;
     run.direction.update(run.rs.solver.t);  // the path's limit points from the next step on
@@ -577,6 +684,10 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     try {
       res.solver = solver.solve(*system_, u, on_step, resumed ? &run.rs.solver : nullptr);
     } catch (const std::exception& e) {  // from commit(): u is the last converged state
+      // Over several processes, one that fails alone here would leave the others waiting:
+      // the run ends on every process, with this message (the rows written so far stay).
+      if (comm.size() > 1)
+        comm.abort(1, "process " + std::to_string(comm.rank()) + ": " + e.what());
       run.error = e.what();
       res.solver.t = !res.steps.empty() ? res.steps.back().t
                      : resumed          ? run.rs.solver.t
@@ -593,6 +704,7 @@ AnalysisResult Analysis::run(std::ostream* log, const std::string& out_dir,
     } catch (const std::exception& e) {
       run.error = std::string("writing the ParaView files of the last step: ") + e.what();
     }
+    run.agree(true);  // an error of process 0 is every process's
   }
   if (!run.error.empty()) {
     res.solver.status = NonlinearSolverStatus::failed;

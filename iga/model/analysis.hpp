@@ -98,6 +98,10 @@ struct LoadLimitPoint {
 /// summary.json lists them with the monitors' displacements.
 std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& steps);
 
+/// The restart file of process `rank` of a run whose restart file is `path` (a run over several
+/// processes writes one file per process): `path` for process 0, `path`.<rank> for the others.
+std::string restart_file_of(const std::string& path, int rank);
+
 /// Called by Analysis::run after each converged step (after the step's row is written); return
 /// false to stop the run.
 using AnalysisStepCallback =
@@ -109,16 +113,26 @@ struct AnalysisResult {
   VectorXd u;                 ///< state at the last converged step (time solver.t)
   bool full_slip = false;     ///< the run stopped at the onset of full slip
   double contact_time = 0.0;  ///< seconds in the contact integrals (part of the assembly)
-  std::string restart_file;   ///< the last restart file written (empty: none)
+  /// The last restart file written (empty: none); over several processes the name of process
+  /// 0's, which a restart is given (restart_file_of names the others').
+  std::string restart_file;
 };
 
 class Analysis {
  public:
   /// Builds the analysis of a parsed model document (the whole file, "format"
-  /// "iga-contact-model"); `file` names it in messages. Throws ModelError.
-  static Analysis from_json(const Json& doc, const std::string& file);
+  /// "iga-contact-model"); `file` names it in messages. Throws ModelError. Spread over the
+  /// processes of `comm` (world(), under mpirun; it must outlive the analysis): every process
+  /// reads the whole model and builds every body and tool, shells cut into blocks of elements
+  /// (one per process) and the other bodies whole on one process each, balanced by control
+  /// points (iga/core/partition.hpp, docs/parallel.md). A shell that cannot be cut into as
+  /// many blocks, or exact enforcement on a cut shell, is a ModelError.
+  static Analysis from_json(const Json& doc, const std::string& file,
+                            const Communicator& comm = serial_communicator());
   /// read_json_file + from_json.
-  static Analysis load(const std::string& path);
+  static Analysis load(const std::string& path, const Communicator& comm = serial_communicator());
+  /// The processes the analysis is spread over.
+  const Communicator& communicator() const { return system_->communicator(); }
 
   const std::string& name() const { return name_; }
   const GeometryModel& geometry() const { return geometry_; }
@@ -275,6 +289,10 @@ class Analysis {
   /// back (StateArchive; checks that the file is of this model).
   void archive_run(StateArchive& a, RunState& s,
                    const std::vector<std::unique_ptr<OutputSink>>& sinks);
+  /// The run's state from the restart file `file` (this process's: restart_file_of), through
+  /// archive_run; RestartError on every process when one cannot read its own.
+  void read_restart(const std::string& file, RunState& s,
+                    const std::vector<std::unique_ptr<OutputSink>>& sinks);
   /// The record of a converged step at (u, t): counts, reactions, monitored displacements.
   AnalysisStep record_step(const VectorXd& u, double t, int iterations);
   /// The load factor lambda of time t: (t - t0) / (t1 - t0) (steps.csv, summary.json).

@@ -18,6 +18,7 @@
 #include "geometry/constructions.hpp"
 #include "iga/model/model.hpp"
 #include "iga/model/sections.hpp"
+#include "iga/output/mesh_parts.hpp"
 #include "iga/output/output_format.hpp"
 #include "iga/output/vtk_writer.hpp"
 
@@ -153,38 +154,90 @@ std::pair<std::vector<Vector3d>, double> tool_grid(const Surface& S) {
 
 }  // namespace
 
+namespace {
+
+/// The feet of a pair as a mesh of points (the output's tool_contact mesh), with their
+/// footprint radius as one more field (for the tool's fields; taken off before writing).
+SampledMesh feet_mesh(const std::vector<ContactFoot>& feet) {
+  SampledMesh m;
+  std::vector<double> pressure, state, radius;
+  std::vector<Vector3d> traction;
+  for (auto* v : {&pressure, &state, &radius}) v->reserve(feet.size());
+  traction.reserve(feet.size());
+  m.points.reserve(feet.size());
+  for (const ContactFoot& f : feet) {
+    m.points.push_back(f.x);
+    pressure.push_back(f.pressure);
+    state.push_back(f.state);
+    radius.push_back(f.radius);
+    traction.push_back(f.traction);
+  }
+  m.fields.scalars = {{"contact_pressure", pressure}, {"contact_state", state}, {"radius", radius}};
+  m.fields.vectors = {{"tangential_traction", traction}};
+  return m;
+}
+
+/// The feet of feet_mesh back, the radius field taken off the mesh.
+std::vector<ContactFoot> take_feet(SampledMesh& m) {
+  std::vector<ContactFoot> feet(m.points.size());
+  const auto& sc = m.fields.scalars;
+  const auto& tr = m.fields.vectors.at(0).second;
+  for (std::size_t i = 0; i < feet.size(); ++i)
+    feet[i] = {m.points[i], sc.at(0).second[i], sc.at(1).second[i], sc.at(2).second[i], tr[i]};
+  m.fields.scalars.pop_back();
+  return feet;
+}
+
+}  // namespace
+
 std::vector<MeshOutput> Analysis::output_meshes(const std::string& stem, const VectorXd& u,
                                                 double t) {
-  std::vector<MeshOutput> meshes;
+  // This process's part: each body sampled (its share), each pair's contact points and feet.
+  std::vector<MeshOutput> parts;
+  parts.reserve(static_cast<std::size_t>(num_bodies() + 2 * num_pairs()));
   for (int b = 0; b < num_bodies(); ++b) {
     const Body& B = body(b);
     const std::string series = num_bodies() == 1 ? B.type() : body_name(b);
     const int n =
         output_.samples_per_element > 0 ? output_.samples_per_element : B.default_samples();
-    meshes.push_back({series, stem + "_" + series, name_ + " " + series + ", t = " + fmt(t),
-                      B.sample(system_->block(u, b), t, n)});
+    parts.push_back({series, stem + "_" + series, name_ + " " + series + ", t = " + fmt(t),
+                     B.sample(system_->block(u, b), t, n)});
   }
   for (int k = 0; k < num_pairs(); ++k) {
     const ContactPair& P = pair(k);
     const std::string ps = index_suffix(k, num_pairs());
-    meshes.push_back({"contact" + ps, stem + "_contact" + ps,
-                      name_ + " contact points, t = " + fmt(t), P.points()});
+    parts.push_back({"contact" + ps, stem + "_contact" + ps,
+                     name_ + " contact points, t = " + fmt(t), P.points()});
     // The same contact seen from the rigid tool: its surface points (the feet) with the
     // pressure, the traction the body exerts on the tool, and the state (1 stick, 2 slip).
-    const std::vector<ContactFoot> feet = P.feet();
-    SampledMesh fm;
-    std::vector<double> pressure, state;
-    std::vector<Vector3d> traction;
-    for (const ContactFoot& f : feet) {
-      fm.points.push_back(f.x);
-      pressure.push_back(f.pressure);
-      state.push_back(f.state);
-      traction.push_back(f.traction);
+    parts.push_back({"", stem + "_tool_contact" + ps,
+                     name_ + " contact on the rigid tool, t = " + fmt(t), feet_mesh(P.feet())});
+  }
+  // Over several processes: the parts gathered to process 0 and joined there.
+  const Communicator& comm = communicator();
+  if (comm.size() > 1) {
+    const std::vector<std::string> packed = comm.gather(pack_meshes(parts));
+    if (!comm.root()) return {};
+    std::vector<std::vector<MeshOutput>> of_rank;
+    of_rank.reserve(packed.size());
+    for (const std::string& p : packed) of_rank.push_back(unpack_meshes(p));
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      std::vector<MeshOutput> pieces;
+      pieces.reserve(of_rank.size());
+      for (std::vector<MeshOutput>& r : of_rank) pieces.push_back(std::move(r.at(i)));
+      parts[i] = join_parts(std::move(pieces));
     }
-    fm.fields.scalars = {{"contact_pressure", pressure}, {"contact_state", state}};
-    fm.fields.vectors = {{"tangential_traction", traction}};
-    meshes.push_back({"", stem + "_tool_contact" + ps,
-                      name_ + " contact on the rigid tool, t = " + fmt(t), std::move(fm)});
+  }
+  std::vector<MeshOutput> meshes;
+  meshes.reserve(parts.size());
+  auto next = parts.begin();
+  for (int b = 0; b < num_bodies(); ++b) meshes.push_back(std::move(*next++));
+  for (int k = 0; k < num_pairs(); ++k) {
+    const ContactPair& P = pair(k);
+    const std::string ps = index_suffix(k, num_pairs());
+    meshes.push_back(std::move(*next++));  // the contact points
+    meshes.push_back(std::move(*next++));  // the feet
+    const std::vector<ContactFoot> feet = take_feet(meshes.back().mesh);
     // ... and as fields on a grid of each bounded piece of the tool (tool_fields).
     const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {

@@ -26,6 +26,9 @@ struct BodyInput {
   Context& ctx;            ///< the reader sets ctx.shape
   const GeometryModel& geometry;
   const JsonCursor& materials;  ///< the "materials" section (possibly empty)
+  /// The processes of the run and this one's rank: a body type that cuts its bodies
+  /// (BodyType::cut) builds the part of process `rank` only (iga/core/partition.hpp).
+  int rank = 0, processes = 1;
 };
 
 /// A body type of the model file.
@@ -37,6 +40,10 @@ struct BodyType {
   /// Builds the body with the boundary conditions, loads and contact pairs that name it (in
   /// the file's order) and sets in.ctx.shape; ModelError at the entry at fault.
   std::function<std::unique_ptr<Body>(const BodyInput& in)> build;
+  /// Whether a body of this type is cut into parts over the processes of a run (each process
+  /// builds and assembles its part: a shell's block of elements); otherwise it goes whole to
+  /// one process (Analysis::from_json balances them).
+  bool cut = false;
 };
 
 /// Registers a body type under its "type" name (replacing one of the name).
@@ -62,9 +69,9 @@ BodyShape surface_shape(const NurbsSurface& S);
 /// The STAS contact pairs ("surface_to_rigid", [KS15] Sects. 2-3) of the body being read
 /// (in.ctx.body), on the surface of its control points, attached to `problem` in the file's
 /// order; `thickness` places the contact faces ("face": lower, upper, mid), `body_type` names
-/// the body in messages.
+/// the body in messages; contact points in the elements of `block` (a process's part).
 void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
                           const NurbsSurface& surface, const std::string& body_type,
-                          double thickness);
+                          double thickness, const ElementBlock& block = {});
 
 }  // namespace iga::model_detail

@@ -56,7 +56,7 @@ BodyShape surface_shape(const NurbsSurface& S) {
 
 void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
                           const NurbsSurface& surface, const std::string& body_type,
-                          double thickness) {
+                          double thickness, const ElementBlock& block) {
   const Context& ctx = in.ctx;
   for_each_entry(in.root, "contact", ctx, [&](const JsonCursor& c) {
     if (one_of(c["type"], {"curve_to_rigid", "surface_to_rigid"}) != "surface_to_rigid")
@@ -87,9 +87,16 @@ void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
         int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
     const ContactEnforcement enforcement = parse_enforcement(c);
+    // The multipliers' update is decided from the whole pair's largest gap: not yet over the
+    // parts of a body cut over several processes.
+    if (enforcement.augmented && !block.whole())
+      c["enforcement"].fail(
+          "exact enforcement of a " + body_type +
+          " cut over several processes is not available yet: use the penalty (the default) or "
+          "run on one process");
     cp.thickness = thickness;
     try {
-      auto pair = std::make_unique<SurfaceContactPair>(surface, rigid, cp);
+      auto pair = std::make_unique<SurfaceContactPair>(surface, rigid, cp, block);
       pair->contact().set_enforcement(enforcement);  // validated by parse_enforcement
       if (const auto m = ctx.motions.find(c["rigid"].as_string()); m != ctx.motions.end())
         pair->set_motion(m->second);
@@ -217,6 +224,15 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   const JsonCursor mat = body_material(b, in.materials, {"shell"}, "shell");
   ShellOptions opt;
   opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
+  if (in.processes > 1) {  // this process's block of the patch's elements
+    const int nu = static_cast<int>(surface->knots_u().breaks().size()) - 1;
+    const int nv = static_cast<int>(surface->knots_v().breaks().size()) - 1;
+    try {
+      opt.block = element_block(in.rank, in.processes, nu, nv);
+    } catch (const std::invalid_argument& e) {
+      sc.fail(e.what());
+    }
+  }
   std::optional<KirchhoffLoveShell> shell;
   try {
     shell.emplace(*surface, parse_shell_material(mat), opt);
@@ -226,7 +242,8 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   ctx.shape = surface_shape(*surface);
 
   auto problem = std::make_unique<ShellProblem>(std::move(*shell));
-  attach_surface_pairs(in, *problem, *surface, "shell", problem->shell().material().thickness);
+  attach_surface_pairs(in, *problem, *surface, "shell", problem->shell().material().thickness,
+                       opt.block);
   for_each_entry(root, "boundary_conditions", ctx,
                  [&](const JsonCursor& o) { parse_shell_boundary_condition(o, ctx, *problem); });
   for_each_entry(root, "loads", ctx,
@@ -241,6 +258,7 @@ BodyType shell_body_type() {
   t.material_types = {"shell"};
   t.check_material = [](const JsonCursor& m) { parse_shell_material(m); };
   t.build = build_shell;
+  t.cut = true;
   return t;
 }
 

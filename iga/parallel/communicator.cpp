@@ -3,12 +3,25 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
+#include <string>
 
 namespace iga {
 
 namespace {
 const Communicator* g_world = nullptr;
 }  // namespace
+
+SerialCommunicator::SerialCommunicator(int rank, int size) : rank_(rank), size_(size) {
+  if (size < 1 || rank < 0 || rank >= size)
+    throw std::invalid_argument("SerialCommunicator: process " + std::to_string(rank) + " of " +
+                                std::to_string(size));
+}
+
+std::string SerialCommunicator::describe() const {
+  if (size_ == 1) return "serial";
+  return "process " + std::to_string(rank_) + " of " + std::to_string(size_) + ", alone";
+}
 
 void SerialCommunicator::abort(int code, const std::string& message) const {
   std::fprintf(stderr, "%s\n", message.c_str());

@@ -52,11 +52,16 @@ class Communicator {
   virtual std::string describe() const = 0;
 };
 
-/// One process: every collective operation is the identity.
+/// One process on its own: every collective operation is the identity. By default the one
+/// process of a serial run. SerialCommunicator(r, P) is process r of P standing alone: a model
+/// built on it is that process's share of a run over P, which one process can assemble and
+/// check (its sums are its own part; tests).
 class SerialCommunicator final : public Communicator {
  public:
-  int rank() const override { return 0; }
-  int size() const override { return 1; }
+  SerialCommunicator() = default;
+  SerialCommunicator(int rank, int size);
+  int rank() const override { return rank_; }
+  int size() const override { return size_; }
   using Communicator::max;
   using Communicator::sum;
   void sum(std::span<double>) const override {}
@@ -66,7 +71,11 @@ class SerialCommunicator final : public Communicator {
   void broadcast(std::string&, int) const override {}
   void barrier() const override {}
   [[noreturn]] void abort(int code, const std::string& message) const override;
-  std::string describe() const override { return "serial"; }
+  /// "serial", or "process 1 of 3, alone".
+  std::string describe() const override;
+
+ private:
+  int rank_ = 0, size_ = 1;
 };
 
 /// The serial communicator (one instance for the program).

@@ -310,10 +310,12 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
   gauss_legendre(ngv, xv, wv);
   const KnotVector& U = reference_.knots_u();
   const KnotVector& V = reference_.knots_v();
-  for (int jv = q; jv < reference_.num_v(); ++jv) {
+  for (int jv = q, ev = 0; jv < reference_.num_v(); ++jv) {
     if (!(V[jv + 1] > V[jv])) continue;
-    for (int iu = p; iu < reference_.num_u(); ++iu) {
+    for (int iu = p, eu = 0; iu < reference_.num_u(); ++iu) {
       if (!(U[iu + 1] > U[iu])) continue;
+      ++patch_elements_;
+      if (!options_.block.contains(eu++, ev)) continue;
       elements_.push_back({static_cast<int>(qps_.size()),
                            ngu * ngv,
                            iu,
@@ -328,6 +330,7 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
           qps_.push_back(make_point(mu + hu * xu[ia], mv + hv * xv[ib], hu * wu[ia] * hv * wv[ib]));
         }
     }
+    ++ev;
   }
 }
 

@@ -63,6 +63,7 @@
 #include "geometry/nurbs_surface.hpp"
 #include "geometry/rational_basis.hpp"
 #include "iga/core/dof_map.hpp"
+#include "iga/core/partition.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -117,6 +118,9 @@ PlaneStressPoint neo_hookean_plane_stress(double E, double nu, const Matrix2d& A
 
 struct ShellOptions {
   int quadrature_points = 0;  ///< Gauss-Legendre points per direction and element; 0: p + 1
+  /// The elements this shell builds and assembles (a process's part of a patch spread over
+  /// several, iga/core/partition.hpp); by default all.
+  ElementBlock block;
 };
 
 /// Largest degree per direction of a shell patch (fixed-capacity element arrays).
@@ -160,9 +164,13 @@ class KirchhoffLoveShell {
 
   const NurbsSurface& reference() const { return reference_; }
   const ShellMaterial& material() const { return material_; }
+  const ShellOptions& options() const { return options_; }
   int num_control_points() const { return reference_.num_u() * reference_.num_v(); }
   int num_dofs() const { return 3 * num_control_points(); }
+  /// The elements built here (those of options.block).
   int num_elements() const { return static_cast<int>(elements_.size()); }
+  /// The elements of the whole patch (its non-empty knot spans).
+  int num_patch_elements() const { return patch_elements_; }
   int num_quadrature_points(int e) const;
   /// Parameter rectangle of element e.
   Domain2 element_range(int e) const;
@@ -221,6 +229,7 @@ class KirchhoffLoveShell {
   ShellOptions options_;
   std::vector<Vector3d> X_;
   std::vector<Element> elements_;
+  int patch_elements_ = 0;
   std::vector<QuadraturePoint> qps_;
   ShellThicknessRule thickness_rule_;
 };

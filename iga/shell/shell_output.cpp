@@ -9,7 +9,7 @@ namespace iga {
 
 std::string ShellProblem::describe() const {
   const NurbsSurface& S = shell_.reference();
-  return "shell of " + std::to_string(shell_.num_elements()) + " elements (degree " +
+  return "shell of " + std::to_string(shell_.num_patch_elements()) + " elements (degree " +
          std::to_string(S.degree_u()) + " x " + std::to_string(S.degree_v()) + ", " +
          std::to_string(num_control_points()) + " control points" +
          (shell_.material().law == ShellLaw::kNeoHookean
@@ -21,7 +21,8 @@ std::string ShellProblem::describe() const {
 SampledMesh ShellProblem::sample_model(const VectorXd& u, double t, int samples) const {
   const std::vector<Vector3d> x = current_points(u, t);
   const NurbsSurface& S = shell_.reference();
-  SampledMesh m = element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples);
+  SampledMesh m =
+      element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples, shell_.options().block);
   std::vector<Vector3d> disp, normal, nloc, mloc;
   std::vector<double> von_mises, singular;
   for (const auto& [pu, pv] : m.params) {

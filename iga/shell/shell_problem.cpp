@@ -124,7 +124,7 @@ void ShellProblem::add_surface_load(const Vector3d& q, LoadCurve curve) {
         f[static_cast<std::size_t>(qp.basis.global_index(k))] +=
             (qp.wJ * qp.basis.R[static_cast<std::size_t>(k)]) * q;
     }
-  add_nodal_load(f, std::move(curve));
+  add_nodal_load(f, std::move(curve), /*split=*/!shell_.options().block.whole());
 }
 
 void ShellProblem::add_pressure(double p, LoadCurve curve) {
@@ -192,6 +192,7 @@ void ShellProblem::assemble_model(std::span<const Vector3d> x, std::span<const d
   add_pressure_terms(x, t, g, K);
   const std::vector<Vector3d>& X = reference_points();
   for (const Spring& s : springs_) {
+    if (!share().point_terms) break;  // added by another process
     const double k = s.k * s.curve(t);
     const std::size_t i = static_cast<std::size_t>(s.point);
     const Vector3d u = x[i] - X[i];

@@ -1,0 +1,194 @@
+// A model's parts over P processes add up to the model (iga/core/partition.hpp,
+// BodySystem::distribute), checked in one process: each part is the analysis built as process
+// r of P standing alone (SerialCommunicator(r, P): it says so but sums nothing), assembled at a
+// state of the serial run. Its residual and tangent are then its own share; summed over r they must
+// be the model's (every shell element, contact point, load and spring once: a shell's surface load
+// split with its elements, point loads and springs on process 0 only, a rod whole on one process),
+// and so must the pairs' counts and tool forces. The processor grid and the parts' sizes are
+// checked too. The same analyses run under mpirun in tests/mpi/mpi_models.cpp; this test needs
+// neither MPI nor PETSc, so it runs in every build (the sanitizers' too).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "iga/core/partition.hpp"
+#include "iga/model/analysis.hpp"
+#include "iga/parallel/communicator.hpp"
+#include "iga/shell/shell_problem.hpp"
+
+// The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
+namespace test_partition_models {
+
+using namespace iga;
+
+namespace {
+
+const std::string kData = std::string(IGA_SOURCE_DIR) + "/data/";
+
+struct State {
+  VectorXd u;
+  double t = 0.0;
+};
+
+/// The model at its state after `steps` converged steps of the serial run (no output).
+State serial_state(Json doc, const std::string& file, int steps) {
+  doc["solver"]["max_steps"] = steps;
+  if (doc.contains("output")) doc["output"]["vtk"] = "none";
+  Analysis a = Analysis::from_json(doc, file);
+  const AnalysisResult r = a.run();
+  REQUIRE(!r.steps.empty());
+  return {r.u, r.solver.t};
+}
+
+struct Assembly {
+  VectorXd R;
+  SparseMatrix K;
+  std::vector<ContactCounts> counts;
+  std::vector<Vector3d> forces;
+};
+
+Assembly assemble(Analysis& a, const State& s) {
+  Assembly out;
+  a.problem().assemble(s.u, s.t, out.R, &out.K);
+  for (int k = 0; k < a.num_pairs(); ++k) {
+    out.counts.push_back(a.pair(k).counts());
+    out.forces.push_back(a.pair(k).tool_force());
+  }
+  return out;
+}
+
+/// The parts of the model on P processes, assembled at s, summed; against the whole.
+void check_parts(const std::string& file, int steps, int P, const Json& loads = Json()) {
+  CAPTURE(file, P);
+  const std::string path = kData + file;
+  Json doc = read_json_file(path);
+  if (!loads.is_null()) doc["loads"] = loads;
+  const State s = serial_state(doc, path, steps);
+  Analysis whole = Analysis::from_json(doc, path);
+  const Assembly w = assemble(whole, s);
+  Assembly sum;
+  sum.R = VectorXd::Zero(w.R.size());
+  sum.K.resize(w.K.rows(), w.K.cols());
+  sum.counts.resize(w.counts.size());
+  sum.forces.assign(w.forces.size(), Vector3d::Zero());
+  int built = 0;  // shell elements built over the parts
+  for (int r = 0; r < P; ++r) {
+    const SerialCommunicator comm(r, P);
+    Analysis part = Analysis::from_json(doc, path, comm);
+    CHECK(part.problem().distributed());
+    const Assembly p = assemble(part, s);
+    sum.R += p.R;
+    sum.K = SparseMatrix(sum.K + p.K);
+    for (std::size_t k = 0; k < p.counts.size(); ++k) {
+      sum.counts[k].active += p.counts[k].active;
+      sum.counts[k].stick += p.counts[k].stick;
+      sum.counts[k].slip += p.counts[k].slip;
+      sum.forces[k] += p.forces[k];
+    }
+    for (int b = 0; b < part.num_bodies(); ++b)
+      if (const auto* shell = dynamic_cast<const ShellProblem*>(&part.body(b)))
+        built += shell->shell().num_elements();
+  }
+  int patch = 0;
+  for (int b = 0; b < whole.num_bodies(); ++b)
+    if (const auto* shell = dynamic_cast<const ShellProblem*>(&whole.body(b)))
+      patch += shell->shell().num_patch_elements();
+  CHECK(built == patch);
+  CHECK((sum.R - w.R).norm() <= 1e-12 * w.K.norm() * std::max(1.0, s.u.norm()));
+  CHECK(SparseMatrix(sum.K - w.K).norm() <= 1e-12 * w.K.norm());
+  for (std::size_t k = 0; k < w.counts.size(); ++k) {
+    CHECK(sum.counts[k].active == w.counts[k].active);
+    CHECK(sum.counts[k].stick == w.counts[k].stick);
+    CHECK(sum.counts[k].slip == w.counts[k].slip);
+    CHECK((sum.forces[k] - w.forces[k]).norm() <= 1e-10 * std::max(1e-300, w.forces[k].norm()));
+  }
+  // Some contact is active at the state: the contact points' split is tested.
+  int active = 0;
+  for (const ContactCounts& c : w.counts) active += c.active;
+  CHECK(active > 0);
+}
+
+}  // namespace
+
+TEST_CASE("processor grid: the shortest cut, every block at least one element", "[partition]") {
+  CHECK(processor_grid(1, 5, 7) == std::array<int, 2>{1, 1});
+  // 2 processes on 20 x 10 elements: cut across u (10 edges), not across v (20).
+  CHECK(processor_grid(2, 20, 10) == std::array<int, 2>{2, 1});
+  CHECK(processor_grid(2, 10, 20) == std::array<int, 2>{1, 2});
+  CHECK(processor_grid(4, 10, 10) == std::array<int, 2>{2, 2});  // cut 20, against 30 for 4 x 1
+  CHECK(processor_grid(4, 100, 3) == std::array<int, 2>{4, 1});
+  CHECK(processor_grid(3, 2, 5) == std::array<int, 2>{1, 3});  // 3 x 1 has a block of no element
+  CHECK_THROWS_WITH(processor_grid(7, 4, 4), Catch::Contains("cannot be cut into 7 blocks"));
+  CHECK_THROWS_AS(processor_grid(0, 4, 4), std::invalid_argument);
+}
+
+TEST_CASE("element blocks tile the patch, as even as whole elements allow", "[partition]") {
+  for (const auto& [P, nu, nv] :
+       std::vector<std::array<int, 3>>{{2, 7, 3}, {3, 10, 10}, {4, 9, 5}, {6, 13, 4}}) {
+    CAPTURE(P, nu, nv);
+    std::vector<int> owner(static_cast<std::size_t>(nu * nv), -1);
+    int smallest = nu * nv, largest = 0;
+    for (int r = 0; r < P; ++r) {
+      const ElementBlock b = element_block(r, P, nu, nv);
+      CHECK(!b.whole());
+      const int n = (b.u1 - b.u0) * (b.v1 - b.v0);
+      smallest = std::min(smallest, n);
+      largest = std::max(largest, n);
+      for (int ev = 0; ev < nv; ++ev)
+        for (int eu = 0; eu < nu; ++eu)
+          if (b.contains(eu, ev)) {
+            CHECK(owner[static_cast<std::size_t>(eu + nu * ev)] == -1);  // no element twice
+            owner[static_cast<std::size_t>(eu + nu * ev)] = r;
+          }
+    }
+    CHECK(std::count(owner.begin(), owner.end(), -1) == 0);  // none left out
+    CHECK(smallest >= 1);
+    const std::array<int, 2> g = processor_grid(P, nu, nv);
+    // rows and columns differ by at most one element between blocks
+    CHECK(largest <= (nu / g[0] + 1) * (nv / g[1] + 1));
+  }
+  CHECK(ElementBlock{}.whole());
+  CHECK(element_block(1, 2, 4, 2).describe() == "elements [2, 4) x [0, 2)");
+}
+
+TEST_CASE("whole bodies go to the least loaded process, in order", "[partition]") {
+  std::vector<double> load{10.0, 0.0, 0.0};
+  CHECK(assign_whole({5.0, 5.0, 3.0, 4.0}, load) == std::vector<int>{1, 2, 1, 2});
+  CHECK(load == std::vector<double>{10.0, 8.0, 9.0});
+}
+
+TEST_CASE("a model's parts over 2 and 3 processes add up to it: shell with friction on a CAD die",
+          "[partition]") {
+  for (int P : {2, 3}) check_parts("plate_on_die.json", 4, P);
+}
+
+TEST_CASE("a model's parts over 2 and 4 processes add up to it: plate indented by a sphere",
+          "[partition]") {
+  for (int P : {2, 4}) check_parts("indented_plate.json", 3, P);
+  // with loads of every kind: split over the elements (surface) or added once (point, edge)
+  const Json loads = Json::parse(R"([
+    {"type": "point_force", "body": "plate", "at": [0.3, 0.6], "force": [0, 0, -0.02],
+     "curve": "press"},
+    {"type": "edge_load", "body": "plate", "edge": "u_min", "q": [0, 0, -0.01], "curve": "press"},
+    {"type": "surface_load", "body": "plate", "q": [0, 0, -0.002], "curve": "press"}])");
+  for (int P : {2, 3}) check_parts("indented_plate.json", 3, P, loads);
+}
+
+TEST_CASE("a model's parts over 2 and 3 processes add up to it: two ropes, each whole on one",
+          "[partition]") {
+  for (int P : {2, 3}) check_parts("two_ropes.json", 5, P);
+}
+
+TEST_CASE("a shell cut over more processes than it has elements is refused at its surface",
+          "[partition]") {
+  const Json doc = read_json_file(kData + "indented_plate.json");
+  const SerialCommunicator comm(0, 100000);
+  CHECK_THROWS_WITH(Analysis::from_json(doc, "indented_plate.json", comm),
+                    Catch::Contains("/bodies/plate/surface") &&
+                        Catch::Contains("cannot be cut into 100000 blocks"));
+}
+
+}  // namespace test_partition_models

@@ -1,0 +1,257 @@
+// Run by the suite under mpirun on 2 and 3 ranks (tests/CMakeLists.txt): models of data/
+// spread over the ranks (Analysis::from_json with world(): shells cut into blocks of
+// elements, rods whole on a rank) against the same models run on one process (rank 0, the
+// serial communicator). Issue 36's must-hold, at every common time (both runs take the same
+// steps here: the round-off probe is off, and nothing but the order of sums differs):
+//  - t, the tool forces and moments, the reactions and the monitored displacements within
+//    1e-8 of their scale (the largest magnitude of the quantity over the run; for a moment,
+//    plus the largest force times the bodies' size, its round-off's lever);
+//  - active, stick and slip counts (of all pairs and of each) within 1 %;
+//  - the end time and the number of steps the same, the status converged (or the sliding
+//    plateau reached) in both.
+// And the output: the same files in both output folders, the fields of every VTK XML file (shells
+// joined from their blocks, rods from the rank that owns them, contact points from all) within 1e-8
+// of each array's largest value (of the file's, for an array that is round-off beside it), but for
+// the contact state (0, 1, 2), which must match; a restart of the spread run from its own restart
+// files (one per rank) ends where the whole run does; the serial analysis refuses those files
+// (another process count). Exit 0 on every rank when all hold. Usage: mpi_models <output folder>
+// <model.json>...
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "geometry/json_reader.hpp"
+#include "iga/core/control_point_problem.hpp"
+#include "iga/model/analysis.hpp"
+#include "iga/parallel/communicator.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
+#include "tests/support/vtk_xml_read.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using iga::AnalysisResult;
+using iga::AnalysisStep;
+using iga::Vector3d;
+
+struct Checker {
+  int errors = 0;
+  std::string model;
+  void expect(bool ok, const std::string& what) {
+    if (ok) return;
+    std::fprintf(stderr, "[rank %d] %s: %s\n", iga::world().rank(), model.c_str(), what.c_str());
+    ++errors;
+  }
+};
+
+// The largest |v| over the steps, of the vectors `get` picks from a step.
+template <class Get>
+double scale_of(const std::vector<AnalysisStep>& steps, std::size_t n, Get get) {
+  std::vector<double> s(n, 0.0);
+  for (const AnalysisStep& st : steps)
+    for (std::size_t k = 0; k < n; ++k) s[k] = std::max(s[k], get(st, k).norm());
+  return n == 0 ? 0.0 : *std::max_element(s.begin(), s.end());
+}
+
+// The size of the bodies: the diagonal of their reference control points' box.
+double model_size(iga::Analysis& a) {
+  Eigen::AlignedBox3d box;
+  for (int b = 0; b < a.num_bodies(); ++b)
+    if (auto* p = dynamic_cast<iga::ControlPointProblem*>(&a.body(b)))
+      for (int i = 0; i < p->num_control_points(); ++i) box.extend(p->reference_point(i));
+  return box.isEmpty() ? 1.0 : box.diagonal().norm();
+}
+
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+bool counts_close(int a, int b) {
+  return std::abs(a - b) <= 0.01 * std::max(a, b);
+}
+
+void compare_steps(Checker& c, const AnalysisResult& whole, const AnalysisResult& spread,
+                   double size, double span) {
+  const std::vector<AnalysisStep>& s = whole.steps;
+  const std::vector<AnalysisStep>& d = spread.steps;
+  c.expect(whole.solver.status == spread.solver.status,
+           "status " + std::string(to_string(whole.solver.status)) + " on one process, " +
+               to_string(spread.solver.status) + " spread");
+  c.expect(whole.solver.converged() || whole.full_slip,
+           "the run on one process: " + whole.solver.message);
+  c.expect(s.size() == d.size() && !s.empty(), "steps: " + std::to_string(s.size()) +
+                                                   " on one process, " + std::to_string(d.size()) +
+                                                   " spread");
+  if (s.empty() || s.size() != d.size()) return;
+  const std::size_t np = s.front().tool_loads.size(), nr = s.front().reactions.size(),
+                    nm = s.front().displacements.size();
+  const double F =
+      scale_of(s, np, [](const AnalysisStep& st, std::size_t k) { return st.tool_loads[k].first; });
+  const double M =
+      scale_of(s, np,
+               [](const AnalysisStep& st, std::size_t k) { return st.tool_loads[k].second; }) +
+      F * size;
+  const double R =
+      scale_of(s, nr, [](const AnalysisStep& st, std::size_t k) { return st.reactions[k]; });
+  const double U =
+      scale_of(s, nm, [](const AnalysisStep& st, std::size_t k) { return st.displacements[k]; });
+  constexpr double kTol = 1e-8;
+  double worst[4] = {0.0, 0.0, 0.0, 0.0};  // F, M, R, U relative to their scales
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const AnalysisStep &a = s[i], &b = d[i];
+    const std::string at = "step " + std::to_string(i + 1) + " (t = " + std::to_string(a.t) + ")";
+    c.expect(std::abs(a.t - b.t) <= kTol * span, at + ": t " + std::to_string(b.t) + " spread");
+    c.expect(counts_close(a.contact.active, b.contact.active) &&
+                 counts_close(a.contact.stick, b.contact.stick) &&
+                 counts_close(a.contact.slip, b.contact.slip),
+             at + ": contact counts " + std::to_string(a.contact.active) + "/" +
+                 std::to_string(a.contact.stick) + "/" + std::to_string(a.contact.slip) +
+                 " on one process, " + std::to_string(b.contact.active) + "/" +
+                 std::to_string(b.contact.stick) + "/" + std::to_string(b.contact.slip) +
+                 " spread");
+    for (std::size_t k = 0; k < np; ++k) {
+      c.expect(counts_close(a.pairs[k].active, b.pairs[k].active) &&
+                   counts_close(a.pairs[k].stick, b.pairs[k].stick) &&
+                   counts_close(a.pairs[k].slip, b.pairs[k].slip),
+               at + ": pair " + std::to_string(k) + "'s counts");
+      worst[0] = std::max(worst[0], (a.tool_loads[k].first - b.tool_loads[k].first).norm() / F);
+      worst[1] = std::max(worst[1], (a.tool_loads[k].second - b.tool_loads[k].second).norm() / M);
+    }
+    for (std::size_t k = 0; k < nr; ++k)
+      worst[2] = std::max(worst[2], (a.reactions[k] - b.reactions[k]).norm() / R);
+    for (std::size_t k = 0; k < nm; ++k)
+      worst[3] = std::max(worst[3], (a.displacements[k] - b.displacements[k]).norm() / U);
+  }
+  const char* what[4] = {"tool forces", "tool moments", "reactions", "monitors"};
+  for (int q = 0; q < 4; ++q) {
+    c.expect(!(worst[q] > kTol), std::string(what[q]) + " differ by " +
+                                     std::to_string(worst[q] / kTol) + "e-8 of their scale");
+    std::printf("  %-12s %.1e of their scale\n", what[q], worst[q]);
+  }
+}
+
+// The output folders: the same files, the last step's fields alike.
+void compare_files(Checker& c, const fs::path& whole, const fs::path& spread) {
+  std::set<std::string> a, b;
+  for (const auto& e : fs::directory_iterator(whole))
+    if (e.path().filename().string().rfind("restart", 0) != 0) a.insert(e.path().filename());
+  for (const auto& e : fs::directory_iterator(spread))
+    if (e.path().filename().string().rfind("restart", 0) != 0) b.insert(e.path().filename());
+  c.expect(a == b, "the output folders hold other files");
+  int compared = 0;
+  for (const std::string& f : a) {
+    const std::string ext = fs::path(f).extension().string();
+    if ((ext != ".vts" && ext != ".vtu") || !b.count(f)) continue;
+    const iga::test::VtkXmlFile x = iga::test::read_vtk_xml(whole / f);
+    const iga::test::VtkXmlFile y = iga::test::read_vtk_xml(spread / f);
+    c.expect(y.all_finite(), f + ": a value that is not finite");
+    // An array that is round-off next to the file's largest (a straight rope's binormal
+    // traction, zero in theory) is compared at the file's scale, any other at its own.
+    double file_top = 0.0;
+    for (const auto& [name, arr] : x.arrays)
+      if (arr.type.rfind("Float", 0) == 0)
+        for (double v : arr.values) file_top = std::max(file_top, std::abs(v));
+    for (const auto& [name, arr] : x.arrays) {
+      const std::vector<double> v = y.field(name);
+      if (v.size() != arr.values.size()) {
+        c.expect(false, f + ": " + name + " has " + std::to_string(v.size()) + " values, not " +
+                            std::to_string(arr.values.size()));
+        continue;
+      }
+      double top = 0.0, diff = 0.0;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        top = std::max(top, std::abs(arr.values[i]));
+        diff = std::max(diff, std::abs(arr.values[i] - v[i]));
+      }
+      const bool exact = name == "contact_state" || arr.type.rfind("Float", 0) != 0;
+      const double scale = top > 1e-6 * file_top ? top : file_top;
+      c.expect(exact ? diff == 0.0 : diff <= 1e-8 * scale,
+               f + ": " + name + " differs by " + num(diff) + " (largest value " + num(top) + ")");
+    }
+    ++compared;
+  }
+  c.expect(compared > 0, "no VTK XML file to compare");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const iga::ParallelSession session(argc, argv);
+  // Both runs must take the same steps: the probe's refusals are drawn from each run's own bits.
+  const iga::RoundoffProbeOff probe_off;
+  const iga::Communicator& w = iga::world();
+  if (argc < 3) {
+    if (w.root()) std::fprintf(stderr, "usage: mpi_models <output folder> <model.json>...\n");
+    return 2;
+  }
+  const fs::path out = argv[1];
+  int errors = 0;
+  for (int i = 2; i < argc; ++i) {
+    Checker c;
+    const std::string file = argv[i];
+    c.model = fs::path(file).stem().string();
+    const iga::Json doc = iga::read_json_file(file);
+    const std::string tag = c.model + "_" + std::to_string(w.size()) + "_ranks";
+    const fs::path spread_dir = out / tag, whole_dir = out / (tag + "_whole");
+    if (w.root()) {
+      fs::remove_all(spread_dir);
+      fs::remove_all(whole_dir);
+    }
+    w.barrier();
+    iga::Analysis spread = iga::Analysis::from_json(doc, file, w);
+    const AnalysisResult d = spread.run(nullptr, spread_dir.string());
+    if (w.root())
+      std::printf("%s on %d ranks: %zu steps\n", c.model.c_str(), w.size(), d.steps.size());
+    // A restart of the spread run from its files (one per rank) at its middle step ends where
+    // it does. The files: a run stopped by max_steps writes them.
+    {
+      iga::Analysis first = iga::Analysis::from_json(doc, file, w);
+      first.solver_settings().max_steps = std::max<int>(1, static_cast<int>(d.steps.size()) / 2);
+      const fs::path dir = out / (tag + "_restart");
+      if (w.root()) fs::remove_all(dir);
+      w.barrier();
+      const AnalysisResult r1 = first.run(nullptr, dir.string());
+      c.expect(!r1.restart_file.empty(), "the stopped run wrote no restart file");
+      c.expect(fs::exists(iga::restart_file_of(r1.restart_file, w.rank())),
+               "no restart file of this rank");
+      iga::Analysis second = iga::Analysis::from_json(doc, file, w);
+      const AnalysisResult r2 = second.run(nullptr, dir.string(), {}, r1.restart_file);
+      // (Not bit for bit: MUMPS's factorization over several processes sums in the order its
+      // messages arrive.)
+      const double gap = r2.u.size() == d.u.size() ? (r2.u - d.u).norm() / d.u.norm() : 1.0;
+      c.expect(r2.solver.status == d.solver.status && gap <= 1e-8,
+               "the restarted run ends elsewhere: |u - u_whole| / |u_whole| = " + num(gap));
+      if (w.root()) {  // one process refuses the files of several
+        iga::Analysis alone = iga::Analysis::from_json(doc, file);
+        bool refused = false;
+        try {
+          (void)alone.run(nullptr, {}, {}, r1.restart_file);
+        } catch (const iga::RestartError& e) {
+          refused = std::string(e.what()).find("process") != std::string::npos;
+        }
+        c.expect(refused, "one process took the restart file of " + std::to_string(w.size()));
+      }
+    }
+    if (w.root()) {
+      iga::Analysis whole = iga::Analysis::from_json(doc, file);
+      const AnalysisResult s = whole.run(nullptr, whole_dir.string());
+      const iga::NonlinearSolverSettings& set = whole.solver_settings();
+      compare_steps(c, s, d, model_size(whole), std::abs(set.t1 - set.t0));
+      compare_files(c, whole_dir, spread_dir);
+      std::printf("%s: %s\n", c.model.c_str(), c.errors == 0 ? "the same" : "DIFFERENT");
+    }
+    errors += c.errors;
+    w.barrier();
+  }
+  const long long failed = w.sum(static_cast<long long>(errors));
+  if (w.root()) std::printf("mpi_models: %d ranks, %lld failures\n", w.size(), failed);
+  return failed == 0 ? 0 : 1;
+}
