@@ -12,9 +12,11 @@
 //
 // Errors go to stderr with exit status 1 (bad input) or 2 (bad command line).
 #include <iostream>
+#include <optional>
 
 #include "apps/common/app_common.hpp"
 #include "apps/iga_commands.hpp"
+#include "iga/core/state_archive.hpp"
 #include "iga/parallel/communicator.hpp"
 
 namespace {
@@ -49,11 +51,28 @@ int run_iga(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {  // every library error ends here with a message
+  std::optional<iga::ParallelSession> session;
+  try {
     // MPI and PETSc under mpirun; PETSc's options after --petsc, taken off the command line.
-    const iga::ParallelSession session(argc, argv);
-    return run_iga(argc, argv);
+    session.emplace(argc, argv);
   } catch (const std::exception& e) {
+    std::cerr << "iga: error: " << e.what() << "\n";
+    return 1;
+  }
+  const iga::Communicator& world = iga::world();
+  try {  // every library error ends here with a message
+    return run_iga(argc, argv);
+  } catch (const iga::ModelError& e) {
+    // Bad input, the same on every process (Analysis::from_json agrees on it): said once.
+    if (world.root()) std::cerr << "iga: error: " << e.what() << "\n";
+    return 1;
+  } catch (const iga::RestartError& e) {  // agreed too (Analysis::run)
+    if (world.root()) std::cerr << "iga: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    // Over several processes an error may be this process's alone, the others waiting for it
+    // in a collective: it ends them all, with its message.
+    if (world.size() > 1) world.abort(1, std::string("iga: error: ") + e.what());
     std::cerr << "iga: error: " << e.what() << "\n";
     return 1;
   }

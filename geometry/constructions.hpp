@@ -18,12 +18,16 @@ namespace iga {
 /// Size limits of the constructions (docs/model_format.md, Sect. 3.5): elements of a
 /// constructed curve (wrap_path: arc_elements + 2 span_elements; line: elements; helix:
 /// points - 3) and control points of a constructed (refined) surface. Chosen so that the
-/// largest allowed model, analysis included, is set up in a few seconds and some hundred MB:
-/// a rod of 100,000 elements in about 2 s and 0.5 GB, a shell of 40,000 control points (about
-/// 200 x 200 bicubic elements) in about 5 s and 2 GB (a shell costs some 50 KB per control
-/// point: element matrices). Analysis bodies given by explicit NURBS obey the same bounds.
+/// largest allowed model, analysis included, is set up in a few seconds and some hundred MB
+/// per process: a rod of 100,000 elements in about 2 s and 0.5 GB, a shell of 50,000 control
+/// points (about 220 x 220 bicubic elements) in about 6 s and 2.5 GB (a shell costs some 50 KB
+/// per control point: element matrices). The shell's bound is a process's: a shell cut over P
+/// processes (a run under mpirun, docs/parallel.md) may have about P times as many. A surface
+/// itself (its net of points, 24 bytes each) may hold up to kMaxSurfaceNetPoints. Analysis
+/// bodies given by explicit NURBS obey the same bounds.
 inline constexpr int kMaxCurveElements = 100000;
-inline constexpr long kMaxSurfaceControlPoints = 40000;
+inline constexpr long kMaxSurfaceControlPoints = 50000;
+inline constexpr long kMaxSurfaceNetPoints = 1000000;
 /// Smallest element of a fitted curve relative to its whole length: below it the knots are
 /// no longer distinct in double precision (and the fit is ill-conditioned).
 inline constexpr double kMinRelativeElement = 1e-9;

@@ -380,7 +380,7 @@ long refined_count(const KnotVector& K, int k, int parts) {
 }
 
 /// "refine": {"elevate": k or [k_u, k_v], "subdivide": n or [n_u, n_v]} of a constructed
-/// surface, then "normal". The refined net may hold at most kMaxSurfaceControlPoints points.
+/// surface, then "normal". The refined net may hold at most kMaxSurfaceNetPoints points.
 NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
   if (e.has("refine")) {
     const JsonCursor r = e["refine"];
@@ -391,10 +391,10 @@ NurbsSurface finish_surface(const JsonCursor& e, NurbsSurface s) {
         r.has("subdivide") ? parse_count_pair(r["subdivide"], 1, 1024) : std::array{1, 1};
     const long nu = refined_count(s.knots_u(), k[0], n[0]);
     const long nv = refined_count(s.knots_v(), k[1], n[1]);
-    if (nu * nv > kMaxSurfaceControlPoints)
+    if (nu * nv > kMaxSurfaceNetPoints)
       r.fail("makes " + std::to_string(nu) + " x " + std::to_string(nv) + " = " +
              std::to_string(nu * nv) + " control points, above the limit of " +
-             std::to_string(kMaxSurfaceControlPoints) + " for a constructed surface");
+             std::to_string(kMaxSurfaceNetPoints) + " for a constructed surface");
     s = build(e, [&] {
       NurbsSurface t = k[0] > 0 || k[1] > 0 ? elevate_degree(s, k[0], k[1]) : s;
       return n[0] > 1 || n[1] > 1 ? subdivide(t, n[0], n[1]) : t;

@@ -212,7 +212,13 @@ std::string SurfaceContactPair::describe() const {
   s << "STAS contact (rigid "
     << (p.strategy == SurfaceContactStrategy::kRigidMaster ? "master" : "slave")
     << ", mu = " << p.law.mu << ") with a rigid surface of " << rigid().num_patches()
-    << " piece(s), " << contact().points().size() << " contact points";
+    << " piece(s), ";
+  // A shell cut over several processes: its pair's points over the whole patch, and here.
+  const std::size_t whole =
+      (breaks_u_.size() - 1) * (breaks_v_.size() - 1) *
+      static_cast<std::size_t>(p.points_per_direction * p.points_per_direction);
+  s << whole << " contact points";
+  if (contact().points().size() != whole) s << " (" << contact().points().size() << " here)";
   return s.str();
 }
 

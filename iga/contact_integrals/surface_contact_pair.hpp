@@ -27,7 +27,8 @@ class SurfaceContactPair final : public RigidContactPair<SurfaceContact> {
   /// rigid-slave strategy (the ray direction depends on the shell's control points, (5)).
   bool symmetric() const override;
   /// "STAS contact (rigid master, mu = 0.2) with a rigid surface of 1 piece(s), 256 contact
-  /// points".
+  /// points" (those of the whole patch; "..., 256 contact points (128 here)" for a process's
+  /// part of a cut shell).
   std::string describe() const override;
   /// contact_pressure, contact_gap, contact_state, contact_undefined (1 where the gap is unknown,
   /// no point near has a foot, or a value is not finite; such values are written as 0) and

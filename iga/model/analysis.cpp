@@ -90,6 +90,28 @@ std::vector<LoadLimitPoint> load_limit_points(const std::vector<AnalysisStep>& s
 }
 
 Analysis Analysis::from_json(const Json& doc, const std::string& file, const Communicator& comm) {
+  if (comm.size() == 1) return build(doc, file, comm);
+  // Over several processes a model error may be one process's alone (its block of a shell
+  // above the bound): every process throws the first failing process's error, so that none
+  // goes on alone. Its file, pointer and message travel in one string.
+  constexpr char kSep = '\x1f';
+  std::optional<Analysis> built;
+  std::string why;
+  try {
+    built.emplace(build(doc, file, comm));
+  } catch (const ModelError& e) {
+    why = e.file() + kSep + e.pointer() + kSep + e.message();
+  } catch (const std::exception& e) {
+    why = std::string(2, kSep) + e.what();
+  }
+  const std::string first = comm.first_message(why);
+  if (first.empty()) return std::move(*built);
+  const std::size_t i = first.find(kSep), j = first.find(kSep, i + 1);
+  if (i == 0) throw std::runtime_error(first.substr(j + 1));
+  throw ModelError(first.substr(0, i), first.substr(i + 1, j - i - 1), first.substr(j + 1));
+}
+
+Analysis Analysis::build(const Json& doc, const std::string& file, const Communicator& comm) {
   const Model model = parse_model(doc, file);  // format, version, geometry, known sections
   const JsonCursor root(doc, file);
   Analysis a;

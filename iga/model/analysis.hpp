@@ -126,7 +126,8 @@ class Analysis {
   /// reads the whole model and builds every body and tool, shells cut into blocks of elements
   /// (one per process) and the other bodies whole on one process each, balanced by control
   /// points (iga/core/partition.hpp, docs/parallel.md). A shell that cannot be cut into as
-  /// many blocks, or exact enforcement on a cut shell, is a ModelError.
+  /// many blocks, or exact enforcement on a cut shell, is a ModelError. Over several processes
+  /// every process throws the same error (the first failing process's) or none does.
   static Analysis from_json(const Json& doc, const std::string& file,
                             const Communicator& comm = serial_communicator());
   /// read_json_file + from_json.
@@ -269,6 +270,8 @@ class Analysis {
 
  private:
   Analysis() = default;
+  /// from_json's work on this process (from_json agrees on errors over the processes).
+  static Analysis build(const Json& doc, const std::string& file, const Communicator& comm);
   /// Whether every pair in contact slides steadily (ContactPair::sliding_steadily) and some pair
   /// is in contact.
   bool sliding_steadily() const;

@@ -205,6 +205,29 @@ ShellMaterial parse_shell_material(const JsonCursor& m) {
   return s;
 }
 
+/// The bound of a process's part of a shell (kMaxSurfaceControlPoints): the control points its
+/// block of elements touches (the whole surface on one process).
+void check_shell_size(const JsonCursor& sc, const NurbsSurface& S, const ElementBlock& block,
+                      int rank, int processes) {
+  const long n = static_cast<long>(S.num_u()) * S.num_v();
+  if (processes == 1) {
+    if (n > kMaxSurfaceControlPoints)
+      sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
+              std::to_string(kMaxSurfaceControlPoints) +
+              " of a shell body (a process's; run it on several: docs/parallel.md)");
+    return;
+  }
+  const long nu = S.knots_u().breaks().size() - 1, nv = S.knots_v().breaks().size() - 1;
+  const long part = (std::min<long>(block.u1, nu) - block.u0 + S.degree_u()) *
+                    (std::min<long>(block.v1, nv) - block.v0 + S.degree_v());
+  if (part > kMaxSurfaceControlPoints)
+    sc.fail("the surface has " + std::to_string(n) + " control points; the part of process " +
+            std::to_string(rank) + " of " + std::to_string(processes) + " (" + block.describe() +
+            ", " + std::to_string(part) + " control points) is above the limit of " +
+            std::to_string(kMaxSurfaceControlPoints) +
+            " a process sets up: run it on more processes");
+}
+
 /// The shell body, its contact pair, boundary conditions, springs and loads.
 std::unique_ptr<Body> build_shell(const BodyInput& in) {
   const JsonCursor& b = in.b;
@@ -215,12 +238,6 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   const JsonCursor sc = b["surface"];
   const auto* surface = dynamic_cast<const NurbsSurface*>(geometry.surface(sc.as_string()));
   if (surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
-  // A shell costs about 50 KB per control point to set up (its element matrices): the bound
-  // of constructed surfaces holds for explicit ones too (docs/model_format.md).
-  if (const long n = static_cast<long>(surface->num_u()) * surface->num_v();
-      n > kMaxSurfaceControlPoints)
-    sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
-            std::to_string(kMaxSurfaceControlPoints) + " of a shell body");
   const JsonCursor mat = body_material(b, in.materials, {"shell"}, "shell");
   ShellOptions opt;
   opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
@@ -233,6 +250,9 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
       sc.fail(e.what());
     }
   }
+  // A shell costs about 50 KB per control point to set up (its element matrices): a process
+  // sets up at most kMaxSurfaceControlPoints of them (docs/model_format.md).
+  check_shell_size(sc, *surface, opt.block, in.rank, in.processes);
   std::optional<KirchhoffLoveShell> shell;
   try {
     shell.emplace(*surface, parse_shell_material(mat), opt);

@@ -724,7 +724,7 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
       R"({"shell": {"type": "construction", "shape": "sphere", "center": [0, 0, 0],
       "radius": 1, "refine": {"subdivide": 1024}}})");
   CHECK(e.pointer() == "/geometry/shell/refine");
-  CHECK_THAT(e.message(), Catch::Contains(std::to_string(kMaxSurfaceControlPoints)));
+  CHECK_THAT(e.message(), Catch::Contains(std::to_string(kMaxSurfaceNetPoints)));
   e = iga::test::geometry_error(
       R"({"t": {"type": "construction", "shape": "torus", "center": [0, 0, 0],
       "axis": [0, 0, 1], "major_radius": 1, "minor_radius": 2}})");
@@ -749,12 +749,12 @@ TEST_CASE("geometry_io: construction errors name the key at fault and state the 
   const GeometryModel m = parse_geometry(
       parse_json_text(
           R"({"shell": {"type": "construction", "shape": "cylinder", "center": [0, 0, 0],
-      "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [48, 186]}}})",
+      "axis": [0, 0, 1], "radius": 1, "height": 1, "refine": {"subdivide": [235, 1000]}}})",
           "g.json"),
       "g.json", JsonPointer("/geometry"));
   const auto& shell = std::get<NurbsSurface>(m.entities.at(0).second);
-  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() <= kMaxSurfaceControlPoints);
-  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() > kMaxSurfaceControlPoints * 9 / 10);
+  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() <= kMaxSurfaceNetPoints);
+  CHECK(static_cast<long>(shell.num_u()) * shell.num_v() > kMaxSurfaceNetPoints * 9 / 10);
 }
 
 TEST_CASE("construction arc: exact circle in its plane, elevated and split, errors located",

@@ -194,6 +194,23 @@ int main(int argc, char** argv) {
   }
   const fs::path out = argv[1];
   int errors = 0;
+  {
+    // A model error of one process alone (here: rank 1 reads a broken copy) is every
+    // process's: each throws the same ModelError, none goes on into the run alone.
+    Checker c;
+    c.model = "an error of rank 1 alone";
+    iga::Json doc = iga::read_json_file(argv[2]);
+    if (w.rank() == 1) doc["bodies"]["no_such_body_type"] = {{"type", "brick"}};
+    std::string message;
+    try {
+      (void)iga::Analysis::from_json(doc, argv[2], w);
+    } catch (const iga::ModelError& e) {
+      message = e.what();
+    }
+    c.expect(message.find("/bodies/no_such_body_type/type") != std::string::npos,
+             "the error reached this rank as: \"" + message + "\"");
+    errors += c.errors;
+  }
   for (int i = 2; i < argc; ++i) {
     Checker c;
     const std::string file = argv[i];

@@ -191,4 +191,22 @@ TEST_CASE("a shell cut over more processes than it has elements is refused at it
                         Catch::Contains("cannot be cut into 100000 blocks"));
 }
 
+TEST_CASE("the bound of a shell's control points is a process's: a shell too large for one",
+          "[partition]") {
+  // 300 x 300 bicubic elements: 91,809 control points, above the bound of one process, within
+  // it on each of two (their halves touch 153 x 303 = 46,359). 400 x 400: 162,409 control
+  // points, above it on each of three (the first block touches 137 x 403 = 55,211).
+  Json doc = read_json_file(kData + "indented_plate.json");
+  const std::string file = kData + "indented_plate.json";
+  doc["geometry"]["plate"]["refine"]["subdivide"] = 300;
+  CHECK_THROWS_WITH(Analysis::from_json(doc, file),
+                    Catch::Contains("/bodies/plate/surface: the surface has 91809 control points, "
+                                    "above the limit of 50000 of a shell body"));
+  doc["geometry"]["plate"]["refine"]["subdivide"] = 400;
+  const SerialCommunicator first(0, 3);
+  CHECK_THROWS_WITH(Analysis::from_json(doc, file, first),
+                    Catch::Contains("the part of process 0 of 3 (elements [0, 400) x [0, 134), "
+                                    "55211 control points) is above the limit of 50000"));
+}
+
 }  // namespace test_partition_models

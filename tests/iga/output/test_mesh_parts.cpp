@@ -61,8 +61,7 @@ TEST_CASE("meshes are packed into bytes and unpacked unchanged", "[mesh_parts]")
     CHECK(back[k].mesh.fields.vectors == m[k].mesh.fields.vectors);
   }
   std::string bytes = pack_meshes(m);
-  CHECK_THROWS_WITH(unpack_meshes(bytes.substr(0, bytes.size() - 3)),
-                    Catch::Contains("end early"));
+  CHECK_THROWS_WITH(unpack_meshes(bytes.substr(0, bytes.size() - 3)), Catch::Contains("end early"));
   CHECK_THROWS_WITH(unpack_meshes(bytes + "x"), Catch::Contains("left over"));
 }
 
