@@ -82,10 +82,11 @@ Fixture& fixture() {
     x->solver.set_distributed(x->analysis->problem().distributed());
     x->peak_mb = status_mb("VmHWM");
     if (world().root())
-      std::printf("saddle %d x %d bicubic, %d unknowns, %d process(es): %zu steps to t = %g, "
-                  "active contact points %d\n",
-                  n, n, x->analysis->problem().num_dofs(), world().size(), r.steps.size(), x->t,
-                  x->analysis->contact_counts().active);
+      std::printf(
+          "saddle %d x %d bicubic, %d unknowns, %d process(es): %zu steps to t = %g, "
+          "active contact points %d\n",
+          n, n, x->analysis->problem().num_dofs(), world().size(), r.steps.size(), x->t,
+          x->analysis->contact_counts().active);
     return x;
   }();
   return *f;
@@ -96,12 +97,14 @@ void counters(benchmark::State& state, const Fixture& f) {
   state.counters["peak_MB"] = f.peak_mb;
 }
 
-void assemble(Fixture& f) { f.analysis->problem().assemble(f.u, f.t, f.R, &f.K); }
+void assemble(Fixture& f) {
+  f.analysis->problem().assemble(f.u, f.t, f.R, &f.K);
+}
 
 void solve(Fixture& f) {
   VectorXd du;
-  if (f.solver.factorize(f.K) != LinearSolveStatus::success || f.solver.solve(f.R, du) !=
-                                                              LinearSolveStatus::success)
+  if (f.solver.factorize(f.K) != LinearSolveStatus::success ||
+      f.solver.solve(f.R, du) != LinearSolveStatus::success)
     std::fprintf(stderr, "bench_distributed: the solve failed: %s\n", f.solver.message().c_str());
   benchmark::DoNotOptimize(du.data());
 }
