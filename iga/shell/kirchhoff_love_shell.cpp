@@ -301,7 +301,10 @@ KirchhoffLoveShell::KirchhoffLoveShell(NurbsSurface reference, ShellMaterial mat
     }
   }
   X_ = reference_.control_points();
+  build_elements();
+}
 
+void KirchhoffLoveShell::build_elements() {
   const int p = reference_.degree_u(), q = reference_.degree_v();
   const int ngu = options_.quadrature_points > 0 ? options_.quadrature_points : p + 1;
   const int ngv = options_.quadrature_points > 0 ? options_.quadrature_points : q + 1;

@@ -215,6 +215,8 @@ class KirchhoffLoveShell {
 
  private:
   QuadraturePoint make_point(double u, double v, double w_param) const;
+  /// The elements of options_.block with their quadrature points (the constructor's).
+  void build_elements();
   template <int Order>
   void element_kernel(int e, std::span<const Vector3d> x, double* energy, ShellElementVector* f,
                       ShellElementMatrix* K) const;
