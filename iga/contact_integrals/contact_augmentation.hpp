@@ -24,8 +24,11 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -114,19 +117,38 @@ struct NormalAugmentation {
     eps_t_scale = 1.0;
   }
 
-  /// The Uzawa step over `points`: active(cp), gap(cp), N(cp) read the state of the last
-  /// assembly. Friction (slip_tol > 0): sticks(cp) and slip(cp) (|g_T|) of the last assembly,
-  /// T(cp) its tangential force in the form the law carries (Vector3d).
+  /// The integral is one part of a pair spread over several processes (its body is cut into
+  /// blocks, BodySystem::distribute): takes each value to its maximum over the parts, on every
+  /// process alike (a collective operation: every part calls it at the same update). Null: the
+  /// pair is whole here.
+  std::function<void(std::span<double>)> parts_max;
+
+  /// The check after a converged Newton solve: `through`, the integral's pass-through check
+  /// (pass_through.hpp), comes first; then the Uzawa step over `points`: active(cp), gap(cp),
+  /// N(cp) read the state of the last assembly. Friction (slip_tol > 0): sticks(cp) and
+  /// slip(cp) (|g_T|) of the last assembly, T(cp) its tangential force in the form the law
+  /// carries (Vector3d). Over the parts of a spread pair (parts_max) the decisions are the
+  /// whole pair's: the largest |gap| and slip of all parts, and a point through the surface
+  /// on any part stops the update on all (the part that has it reports it).
   template <class Point, class Active, class Gap, class Force, class Sticks, class Slip,
             class Traction>
-  AugmentResult update(std::vector<Point>& points, const ContactEnforcement& e, Active active,
-                       Gap gap, Force N, Sticks sticks, Slip slip, Traction T) {
-    if (!e.augmented) return {};
+  AugmentResult update(std::vector<Point>& points, const ContactEnforcement& e,
+                       const AugmentResult& through, Active active, Gap gap, Force N, Sticks sticks,
+                       Slip slip, Traction T) {
+    const bool through_here = through.status != AugmentStatus::satisfied;
+    if (!e.augmented || (through_here && !parts_max)) return through;
     max_gap = max_slip = 0.0;
     for (const Point& cp : points) {
       if (!active(cp)) continue;
       max_gap = std::max(max_gap, std::abs(gap(cp)));
       if (e.slip_tol > 0.0 && sticks(cp)) max_slip = std::max(max_slip, slip(cp));
+    }
+    if (parts_max) {
+      std::array<double, 3> whole{through_here ? 1.0 : 0.0, max_gap, max_slip};
+      parts_max(whole);
+      if (whole[0] > 0.0) return through;
+      max_gap = whole[1];
+      max_slip = whole[2];
     }
     const bool normal_ok = max_gap <= e.penetration_tol;
     const bool stick_ok = !(e.slip_tol > 0.0) || max_slip <= e.slip_tol;

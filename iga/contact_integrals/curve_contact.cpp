@@ -371,11 +371,10 @@ AugmentResult CurveContact::passed_through() const {
 }
 
 AugmentResult CurveContact::augment() {
-  if (AugmentResult through = passed_through(); through.status != AugmentStatus::satisfied)
-    return through;
   const bool friction = params_.law.friction();
   return augmentation_.update(
-      points_, enforcement_, [](const CurveContactPoint& cp) { return cp.law.active; },
+      points_, enforcement_, passed_through(),
+      [](const CurveContactPoint& cp) { return cp.law.active; },
       [](const CurveContactPoint& cp) { return cp.law.gap; },
       [](const CurveContactPoint& cp) { return cp.law.N; },
       [friction](const CurveContactPoint& cp) {

@@ -142,6 +142,11 @@ class CurveContact {
   void archive(StateArchive& a);
   /// Multiplier updates and the last largest penetration (augmented Lagrange).
   const NormalAugmentation& augmentation() const { return augmentation_; }
+  /// This integral is one part of a pair spread over several processes: the augmentation's
+  /// decisions take the whole pair's maxima through `max` (NormalAugmentation::parts_max).
+  void set_parts_maximum(std::function<void(std::span<double>)> max) {
+    augmentation_.parts_max = std::move(max);
+  }
 
   const std::vector<CurveContactPoint>& points() const { return points_; }
   /// Contact points per element: points_ holds them element by element, in order.

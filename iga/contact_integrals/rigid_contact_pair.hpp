@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "iga/core/contact_pair.hpp"
+#include "iga/parallel/communicator.hpp"
 
 namespace iga {
 
@@ -68,6 +69,11 @@ class RigidContactPair : public ContactPair {
   /// largest |gap| of the points carrying a force in the state of the last assembly (the
   /// solver's converged u) and updates its multipliers (Uzawa); penalty: always satisfied.
   AugmentResult augment() override { return contact_.augment(); }
+  /// One part of the pair on each process (a cut body): the augmentation's decisions are taken
+  /// over all parts (the largest gap and slip of the whole pair).
+  void spread(const Communicator& comm) override {
+    contact_.set_parts_maximum([&comm](std::span<double> v) { comm.max(v); });
+  }
   void restore() override { contact_.restore(); }
   void archive(StateArchive& a) override { contact_.archive(a); }
   double time() const override { return time_; }

@@ -672,11 +672,10 @@ AugmentResult SurfaceContact::passed_through() const {
 }
 
 AugmentResult SurfaceContact::augment() {
-  if (AugmentResult through = passed_through(); through.status != AugmentStatus::satisfied)
-    return through;
   const bool master = params_.strategy == SurfaceContactStrategy::kRigidMaster;
   return augmentation_.update(
-      points_, enforcement_, [](const SurfaceContactPoint& cp) { return cp.active; },
+      points_, enforcement_, passed_through(),
+      [](const SurfaceContactPoint& cp) { return cp.active; },
       [](const SurfaceContactPoint& cp) { return cp.gap; },
       [](const SurfaceContactPoint& cp) { return cp.N; },
       [this](const SurfaceContactPoint& cp) { return sticks(cp); },

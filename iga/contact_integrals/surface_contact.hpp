@@ -199,6 +199,11 @@ class SurfaceContact {
   /// The points' state and the multipliers' bookkeeping for a restart, as CurveContact.
   void archive(StateArchive& a);
   const NormalAugmentation& augmentation() const { return augmentation_; }
+  /// This integral is one part of a pair spread over several processes: the augmentation's
+  /// decisions take the whole pair's maxima through `max` (NormalAugmentation::parts_max).
+  void set_parts_maximum(std::function<void(std::span<double>)> max) {
+    augmentation_.parts_max = std::move(max);
+  }
 
   const std::vector<SurfaceContactPoint>& points() const { return points_; }
   SurfaceContactCounts counts() const;

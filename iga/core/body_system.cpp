@@ -31,6 +31,8 @@ void BodySystem::distribute(const Communicator& comm, std::vector<int> owner) {
                                   std::to_string(comm.size()));
     const bool cut = owner[b] < 0;
     bodies_[b]->set_share({cut || owner[b] == r, cut ? r == 0 : owner[b] == r});
+    if (cut)  // a part of each of its pairs on every process
+      for (int k = 0; k < bodies_[b]->num_pairs(); ++k) bodies_[b]->pair(k).spread(comm);
   }
   comm_ = &comm;
   owner_ = std::move(owner);
@@ -71,14 +73,19 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
   assembler_.assemble(triplets_, n, n, *K);  // the pattern kept while the bodies' are
 }
 
+std::vector<ContactPair*> BodySystem::all_pairs() const {
+  std::vector<ContactPair*> pairs;
+  for (Body* b : bodies_)
+    for (int k = 0; k < b->num_pairs(); ++k) pairs.push_back(&b->pair(k));
+  return pairs;
+}
+
 bool BodySystem::combine_tallies(bool failed) {
   // Per pair: the sums (active, stick, slip, force, moment, round-off) and the maxima (|gap|,
   // 1 where a part with contact does not slide steadily), each in one reduction; the last
   // maximum is 1 where a process failed.
   constexpr int kSums = 10, kMaxima = 2;
-  std::vector<ContactPair*> pairs;
-  for (Body* b : bodies_)
-    for (int k = 0; k < b->num_pairs(); ++k) pairs.push_back(&b->pair(k));
+  const std::vector<ContactPair*> pairs = all_pairs();
   std::vector<double> sums(kSums * pairs.size()), maxima(kMaxima * pairs.size() + 1);
   maxima.back() = failed ? 1.0 : 0.0;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
@@ -126,8 +133,15 @@ AugmentResult BodySystem::augment(const VectorXd& u, double t) {
   for (int b = 0; b < num_bodies(); ++b)
     merge_augment(r, bodies_[static_cast<std::size_t>(b)]->augment(block(u, b), t));
   if (!distributed()) return r;
-  // The worst status over the processes, with the message of the first process that has it.
-  const double worst = comm_->max(static_cast<double>(augment_severity(r.status)));
+  // The worst status over the processes, with the message of the first process that has it;
+  // and each pair's largest gap of this check over its parts (the status line's, which the
+  // assembly's tallies had before the check).
+  const std::vector<ContactPair*> pairs = all_pairs();
+  std::vector<double> maxima{static_cast<double>(augment_severity(r.status))};
+  for (const ContactPair* p : pairs) maxima.push_back(p->local_tally().max_gap);
+  comm_->max(maxima);
+  for (std::size_t k = 0; k < pairs.size(); ++k) pairs[k]->set_total_gap(maxima[k + 1]);
+  const double worst = maxima.front();
   const bool mine = static_cast<double>(augment_severity(r.status)) == worst;
   AugmentResult whole;
   for (AugmentStatus s : {AugmentStatus::satisfied, AugmentStatus::updated, AugmentStatus::failed,

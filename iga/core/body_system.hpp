@@ -60,6 +60,8 @@ class BodySystem : public NonlinearProblem {
   /// After an assembly over several processes: every pair's figures combined (set_total),
   /// unless some process `failed`. Returns whether one did.
   bool combine_tallies(bool failed);
+  /// The pairs of all bodies, in the bodies' order.
+  std::vector<ContactPair*> all_pairs() const;
 
   std::vector<Body*> bodies_;
   const Communicator* comm_ = &serial_communicator();

@@ -65,6 +65,8 @@ struct ContactFoot {
   Vector3d traction;
 };
 
+class Communicator;  // iga/parallel/communicator.hpp
+
 class ContactPair {
  public:
   virtual ~ContactPair() = default;
@@ -103,6 +105,16 @@ class ContactPair {
   /// The whole pair's figures (the parts' tallies combined): counts(), roundoff(), status(),
   /// sliding_steadily(), tool_force() and tool_moment() report them until the next add().
   void set_total(const ContactTally& total) { total_ = total; }
+  /// The whole pair's largest |gap| at the last check of exact enforcement (after the
+  /// assembly's tallies were combined), for status().
+  void set_total_gap(double gap) {
+    if (total_) total_->max_gap = gap;
+  }
+  /// This pair is one part of a pair spread over the processes of `comm` (its body is cut
+  /// into blocks, BodySystem::distribute; comm outlives the pair): what it decides from the
+  /// whole pair (exact enforcement's updates) it decides over all parts, each process calling
+  /// the same collective operations. By default nothing is decided so.
+  virtual void spread(const Communicator& comm) { (void)comm; }
   /// The tallies of parts combined into the whole's.
   static ContactTally combine(const ContactTally& a, const ContactTally& b);
   /// Coulomb coefficient.

@@ -533,6 +533,8 @@ struct Analysis::RunContext {
       error = e.what();
     }
     if (opened && comm.root()) open_sinks();
+    if (opened && !comm.root())
+      for (const std::unique_ptr<OutputSink>& sink : sinks) sink->open_part(out_dir);
     // An output folder or a steps.csv that cannot be written ends the run before it starts, on
     // every process; the other sinks' errors end it after the start (status failed,
     // summary.json written).
@@ -569,17 +571,25 @@ struct Analysis::RunContext {
     }
   }
 
+  // Over several processes, whether the field format writes each process's pieces (else
+  // process 0 writes the meshes whole, gathered).
+  bool pieces() const {
+    return comm.size() > 1 && std::any_of(sinks.begin(), sinks.end(),
+                                          [](const auto& sink) { return sink->writes_pieces(); });
+  }
+
   void snapshot(double key, const std::vector<MeshOutput>& meshes) {
-    if (!comm.root()) return;
+    if (!comm.root() && !pieces()) return;
     for (const std::unique_ptr<OutputSink>& sink : sinks) sink->snapshot(key, meshes);
   }
 
   // The field series' snapshot of (u, t); its key: t, or under arc length (t falls after a
   // limit point and comes back: ParaView orders a series by its times) the step. Every
-  // process takes part (the meshes are gathered to process 0).
+  // process takes part (each writes its pieces, or the meshes are gathered to process 0).
   void fields(const VectorXd& u, double t, const std::string& stem) {
     const bool by_step = an.settings_.control == PathControl::arc_length;
-    snapshot(by_step ? static_cast<double>(step_number()) : t, an.output_meshes(stem, u, t));
+    snapshot(by_step ? static_cast<double>(step_number()) : t,
+             an.output_meshes(stem, u, t, pieces()));
   }
 
   // Over several processes: whether every process goes on after a step, and the first

@@ -241,7 +241,12 @@ class Analysis {
   /// the same seen from the tool (<stem>_tool_contact) and the contact fields on a grid of each
   /// bounded piece of the tool (<stem>_tool, or _tool_<i> per piece); then each moving tool
   /// where it is at t (<stem>_rigid...).
-  std::vector<MeshOutput> output_meshes(const std::string& stem, const VectorXd& u, double t);
+  /// Over several processes every process takes part: with `pieces`, each returns its pieces
+  /// of the bodies' and contact meshes (MeshOutput::pieces; process 0 also the tool grids,
+  /// whose fields are combined over the processes, and the moving tools); without, process 0
+  /// gathers the parts and returns the whole meshes, the others none.
+  std::vector<MeshOutput> output_meshes(const std::string& stem, const VectorXd& u, double t,
+                                        bool pieces = false);
   /// output_meshes written into dir in the field format of the output section
   /// (output().field_format: .vts/.vtu by default, .vtk for "vtk"). File names are relative to
   /// dir.

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <sstream>
 #include <tuple>
+#include <type_traits>
 
 #include "geometry/constructions.hpp"
 #include "iga/model/model.hpp"
@@ -66,7 +67,8 @@ struct FootCells {
 /// (their sum and largest), the weighted pressure and traction, and the state of the foot of
 /// the largest weight.
 struct NodeSums {
-  double wsum = 0.0, wmax = 0.0;
+  double& wsum;
+  double& wmax;
   double& pressure;
   Vector3d& traction;
   double& state;
@@ -101,29 +103,68 @@ struct NodeSums {
 /// the mean keeps the pressure level of a uniform contact, and the field falls to 0 within h of
 /// the contact zone's edge (rods: a band of width about 2h along the rope). The feet are sorted
 /// into cubic cells of the largest h, so a node looks at the 27 cells around its own only.
-VtkPointData tool_fields(const std::vector<Vector3d>& grid, double spacing,
-                         const std::vector<ContactFoot>& feet) {
-  std::vector<double> pressure(grid.size(), 0.0), state(grid.size(), 0.0);
-  std::vector<Vector3d> traction(grid.size(), Vector3d::Zero());
-  const FootCells cells(spacing, feet);
-  for (std::size_t g = 0; g < grid.size(); ++g) {
-    if (cells.sorted.empty() || !grid[g].allFinite()) continue;
-    NodeSums sums{0.0, 0.0, pressure[g], traction[g], state[g]};
-    const FootCells::Cell home = cells.cell_of(grid[g]);
-    for (long long dx = -1; dx <= 1; ++dx)
-      for (long long dy = -1; dy <= 1; ++dy)
-        for (long long dz = -1; dz <= 1; ++dz)
-          sums.add_cell(cells, {home[0] + dx, home[1] + dy, home[2] + dz}, grid[g], spacing, feet);
-    if (sums.wsum > 0.0) {  // a non-finite value (a foot's): 0 and non_finite = 1 (write_vtk_grid)
-      pressure[g] /= sums.wsum;
-      traction[g] /= sums.wsum;
+/// Spread over several processes, each process sums over its own feet and the sums are
+/// combined over the processes (the weights' sums added, the state that of the largest weight
+/// of any process) before the means are taken.
+struct ToolFieldSums {
+  std::vector<double> wsum, wmax, pressure, state;
+  std::vector<Vector3d> traction;
+
+  ToolFieldSums(const std::vector<Vector3d>& grid, double spacing,
+                const std::vector<ContactFoot>& feet)
+      : wsum(grid.size(), 0.0),
+        wmax(grid.size(), 0.0),
+        pressure(grid.size(), 0.0),
+        state(grid.size(), 0.0),
+        traction(grid.size(), Vector3d::Zero()) {
+    const FootCells cells(spacing, feet);
+    for (std::size_t g = 0; g < grid.size(); ++g) {
+      if (cells.sorted.empty() || !grid[g].allFinite()) continue;
+      NodeSums sums{wsum[g], wmax[g], pressure[g], traction[g], state[g]};
+      const FootCells::Cell home = cells.cell_of(grid[g]);
+      for (long long dx = -1; dx <= 1; ++dx)
+        for (long long dy = -1; dy <= 1; ++dy)
+          for (long long dz = -1; dz <= 1; ++dz)
+            sums.add_cell(cells, {home[0] + dx, home[1] + dy, home[2] + dz}, grid[g], spacing,
+                          feet);
     }
   }
-  VtkPointData d;
-  d.scalars = {{"contact_pressure", pressure}, {"contact_state", state}};
-  d.vectors = {{"contact_traction", traction}};
-  return d;
-}
+
+  /// The sums of every process's feet (a collective operation).
+  void combine(const Communicator& comm) {
+    const std::size_t n = wsum.size();
+    std::vector<double> sums(5 * n);
+    for (std::size_t g = 0; g < n; ++g) {
+      sums[5 * g] = wsum[g];
+      sums[5 * g + 1] = pressure[g];
+      for (int k = 0; k < 3; ++k) sums[5 * g + 2 + static_cast<std::size_t>(k)] = traction[g][k];
+    }
+    comm.sum(sums);
+    std::vector<double> largest = wmax;
+    comm.max(largest);
+    for (std::size_t g = 0; g < n; ++g) {
+      wsum[g] = sums[5 * g];
+      pressure[g] = sums[5 * g + 1];
+      traction[g] = Vector3d(sums[5 * g + 2], sums[5 * g + 3], sums[5 * g + 4]);
+      // the state of the process whose foot weighs most (0 where its weight is another's)
+      if (wmax[g] < largest[g]) state[g] = 0.0;
+    }
+    comm.max(state);
+  }
+
+  /// The fields: the weighted means (a non-finite value, a foot's: 0 and non_finite = 1).
+  PointFields fields() && {
+    for (std::size_t g = 0; g < wsum.size(); ++g)
+      if (wsum[g] > 0.0) {
+        pressure[g] /= wsum[g];
+        traction[g] /= wsum[g];
+      }
+    PointFields d;
+    d.scalars = {{"contact_pressure", std::move(pressure)}, {"contact_state", std::move(state)}};
+    d.vectors = {{"contact_traction", std::move(traction)}};
+    return d;
+  }
+};
 
 /// The 41 x 41 grid of a bounded rigid piece (empty for an unbounded one) and its spacing.
 constexpr int kToolGrid = 41;
@@ -190,74 +231,195 @@ std::vector<ContactFoot> take_feet(SampledMesh& m) {
 
 }  // namespace
 
+namespace {
+
+bool has_non_finite(const SampledMesh& m) {
+  const auto bad = [](const auto& v) {
+    return std::any_of(v.begin(), v.end(), [](const auto& x) {
+      if constexpr (std::is_same_v<std::decay_t<decltype(x)>, double>)
+        return !std::isfinite(x);
+      else
+        return !x.allFinite();
+    });
+  };
+  if (bad(m.points)) return true;
+  for (const auto& f : m.fields.scalars)
+    if (bad(f.second)) return true;
+  for (const auto& f : m.fields.vectors)
+    if (bad(f.second)) return true;
+  return false;
+}
+
+/// Each process's meshes become its pieces of the spread meshes (MeshPieces; a collective
+/// operation): which process writes a piece, whether every piece needs the non_finite flag,
+/// and on process 0 the pieces each collection lists, with their places and fields (process 0
+/// gets every process's sizes and field names, never their values). std::runtime_error naming
+/// the mesh, on process 0, if pieces with points have other fields.
+void make_pieces(const Communicator& comm, std::vector<MeshOutput>& meshes) {
+  const std::size_t n = meshes.size();
+  std::vector<long long> points(n);
+  std::vector<double> flags(n);
+  Json headers = Json::array();
+  for (std::size_t i = 0; i < n; ++i) {
+    const SampledMesh& m = meshes[i].mesh;
+    points[i] = static_cast<long long>(m.points.size());
+    flags[i] = has_non_finite(m) ? 1.0 : 0.0;
+    Json scalars = Json::array(), vectors = Json::array();
+    for (const auto& f : m.fields.scalars) scalars.push_back(f.first);
+    for (const auto& f : m.fields.vectors) vectors.push_back(f.first);
+    headers.push_back({{"points", m.points.size()},
+                       {"nu", m.nu},
+                       {"nv", m.nv},
+                       {"i0", m.i0},
+                       {"j0", m.j0},
+                       {"scalars", scalars},
+                       {"vectors", vectors}});
+  }
+  std::vector<long long> total = points;
+  comm.sum(total);
+  comm.max(flags);
+  const std::vector<std::string> all = comm.gather(headers.dump());
+  for (std::size_t i = 0; i < n; ++i) {
+    MeshPieces& p = meshes[i].pieces;
+    p.rank = comm.rank();
+    p.write = points[i] > 0 || (total[i] == 0 && comm.root());
+    p.non_finite = flags[i] > 0.0;
+  }
+  if (!comm.root()) return;
+  std::vector<Json> of_rank;
+  of_rank.reserve(all.size());
+  for (const std::string& h : all) of_rank.push_back(Json::parse(h));
+  for (std::size_t i = 0; i < n; ++i) {
+    MeshPieces& p = meshes[i].pieces;
+    const Json* fields = nullptr;  // those of the first piece listed
+    for (std::size_t r = 0; r < of_rank.size(); ++r) {
+      const Json& h = of_rank[r].at(i);
+      if (h.at("points").get<long long>() == 0 && !(total[i] == 0 && r == 0)) continue;
+      MeshPieces::Piece piece{static_cast<int>(r), h.at("nu").get<int>(), h.at("nv").get<int>(),
+                              h.at("i0").get<int>(), h.at("j0").get<int>()};
+      p.nu = std::max(p.nu, piece.i0 + piece.nu);
+      p.nv = std::max(p.nv, piece.j0 + piece.nv);
+      p.listed.push_back(piece);
+      if (fields == nullptr) {
+        fields = &h;
+      } else if (h.at("scalars") != fields->at("scalars") ||
+                 h.at("vectors") != fields->at("vectors")) {
+        throw std::runtime_error("the output mesh " + meshes[i].stem +
+                                 ": its pieces on processes " +
+                                 std::to_string(p.listed.front().rank) + " and " +
+                                 std::to_string(r) + " have other fields");
+      }
+    }
+    for (const Json& name : fields->at("scalars"))
+      p.fields.scalars.emplace_back(name.get<std::string>(), std::vector<double>{});
+    for (const Json& name : fields->at("vectors"))
+      p.fields.vectors.emplace_back(name.get<std::string>(), std::vector<Vector3d>{});
+  }
+}
+
+/// The parts of every process gathered to process 0 and joined there into whole meshes (a
+/// collective operation; the other processes' parts are left as they are).
+void join_on_root(const Communicator& comm, std::vector<MeshOutput>& parts) {
+  const std::vector<std::string> packed = comm.gather(pack_meshes(parts));
+  if (!comm.root()) return;
+  std::vector<std::vector<MeshOutput>> of_rank;
+  of_rank.reserve(packed.size());
+  for (const std::string& p : packed) of_rank.push_back(unpack_meshes(p));
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    std::vector<MeshOutput> pieces;
+    pieces.reserve(of_rank.size());
+    for (std::vector<MeshOutput>& r : of_rank) pieces.push_back(std::move(r.at(i)));
+    parts[i] = join_parts(std::move(pieces));
+  }
+}
+
+}  // namespace
+
 std::vector<MeshOutput> Analysis::output_meshes(const std::string& stem, const VectorXd& u,
-                                                double t) {
+                                                double t, bool in_pieces) {
   // This process's part: each body sampled (its share), each pair's contact points and feet.
-  std::vector<MeshOutput> parts;
-  parts.reserve(static_cast<std::size_t>(num_bodies() + 2 * num_pairs()));
+  std::vector<MeshOutput> meshes;
+  meshes.reserve(static_cast<std::size_t>(num_bodies() + 3 * num_pairs()));
   for (int b = 0; b < num_bodies(); ++b) {
     const Body& B = body(b);
     const std::string series = num_bodies() == 1 ? B.type() : body_name(b);
     const int n =
         output_.samples_per_element > 0 ? output_.samples_per_element : B.default_samples();
-    parts.push_back({series, stem + "_" + series, name_ + " " + series + ", t = " + fmt(t),
-                     B.sample(system_->block(u, b), t, n)});
+    meshes.push_back({series,
+                      stem + "_" + series,
+                      name_ + " " + series + ", t = " + fmt(t),
+                      B.sample(system_->block(u, b), t, n),
+                      {}});
   }
   for (int k = 0; k < num_pairs(); ++k) {
     const ContactPair& P = pair(k);
     const std::string ps = index_suffix(k, num_pairs());
-    parts.push_back({"contact" + ps, stem + "_contact" + ps,
-                     name_ + " contact points, t = " + fmt(t), P.points()});
+    meshes.push_back({"contact" + ps,
+                      stem + "_contact" + ps,
+                      name_ + " contact points, t = " + fmt(t),
+                      P.points(),
+                      {}});
     // The same contact seen from the rigid tool: its surface points (the feet) with the
     // pressure, the traction the body exerts on the tool, and the state (1 stick, 2 slip).
-    parts.push_back({"", stem + "_tool_contact" + ps,
-                     name_ + " contact on the rigid tool, t = " + fmt(t), feet_mesh(P.feet())});
+    meshes.push_back({"",
+                      stem + "_tool_contact" + ps,
+                      name_ + " contact on the rigid tool, t = " + fmt(t),
+                      feet_mesh(P.feet()),
+                      {}});
   }
-  // Over several processes: the parts gathered to process 0 and joined there.
+  // Over several processes, either each process keeps its parts as its pieces, or process 0
+  // gathers and joins them.
   const Communicator& comm = communicator();
-  if (comm.size() > 1) {
-    const std::vector<std::string> packed = comm.gather(pack_meshes(parts));
+  const bool spread = comm.size() > 1;
+  const bool pieces = spread && in_pieces;
+  if (spread && !pieces) {
+    join_on_root(comm, meshes);
     if (!comm.root()) return {};
-    std::vector<std::vector<MeshOutput>> of_rank;
-    of_rank.reserve(packed.size());
-    for (const std::string& p : packed) of_rank.push_back(unpack_meshes(p));
-    for (std::size_t i = 0; i < parts.size(); ++i) {
-      std::vector<MeshOutput> pieces;
-      pieces.reserve(of_rank.size());
-      for (std::vector<MeshOutput>& r : of_rank) pieces.push_back(std::move(r.at(i)));
-      parts[i] = join_parts(std::move(pieces));
-    }
   }
-  std::vector<MeshOutput> meshes;
-  meshes.reserve(parts.size());
-  auto next = parts.begin();
-  for (int b = 0; b < num_bodies(); ++b) meshes.push_back(std::move(*next++));
+  // The tool grids of each pair: process 0 writes them whole.
+  std::vector<std::vector<MeshOutput>> tools(static_cast<std::size_t>(num_pairs()));
   for (int k = 0; k < num_pairs(); ++k) {
     const ContactPair& P = pair(k);
     const std::string ps = index_suffix(k, num_pairs());
-    meshes.push_back(std::move(*next++));  // the contact points
-    meshes.push_back(std::move(*next++));  // the feet
-    const std::vector<ContactFoot> feet = take_feet(meshes.back().mesh);
-    // ... and as fields on a grid of each bounded piece of the tool (tool_fields).
+    MeshOutput& feet_out = meshes[static_cast<std::size_t>(num_bodies() + 2 * k + 1)];
+    const std::vector<ContactFoot> feet = take_feet(feet_out.mesh);
+    // ... and as fields on a grid of each bounded piece of the tool (ToolFieldSums).
     const RigidSurface& rigid = P.rigid();
     for (int i = 0; i < rigid.num_patches(); ++i) {
       auto [grid, spacing] = tool_grid(rigid.patch(i));
       if (grid.empty()) continue;
       for (Vector3d& x : grid) x = P.pose().to_world(x);  // where the tool is (feet: world)
+      ToolFieldSums sums(grid, spacing, feet);
+      if (pieces) sums.combine(comm);
       const std::string series = "tool" + ps + index_suffix(i, rigid.num_patches());
       SampledMesh gm;
       gm.shape = SampledMesh::Shape::kGrid;
       gm.nu = gm.nv = kToolGrid;
-      gm.fields = tool_fields(grid, spacing, feet);
+      gm.fields = std::move(sums).fields();
       gm.points = std::move(grid);
-      meshes.push_back({series, stem + "_" + series,
-                        name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t),
-                        std::move(gm)});
+      tools[static_cast<std::size_t>(k)].push_back(
+          {series,
+           stem + "_" + series,
+           name_ + " contact on rigid piece " + std::to_string(i) + ", t = " + fmt(t),
+           std::move(gm),
+           {}});
     }
   }
+  if (pieces) make_pieces(comm, meshes);
+  if (!comm.root()) return meshes;  // the pieces of this process
+  // The tool grids after their pair's meshes, as the meshes of one process are ordered.
+  std::vector<MeshOutput> out;
+  out.reserve(meshes.size() + tools.size());
+  auto next = meshes.begin();
+  for (int b = 0; b < num_bodies(); ++b) out.push_back(std::move(*next++));
+  for (std::vector<MeshOutput>& of_pair : tools) {
+    out.push_back(std::move(*next++));  // the contact points
+    out.push_back(std::move(*next++));  // the feet
+    for (MeshOutput& m : of_pair) out.push_back(std::move(m));
+  }
   // Moving tools where they are at t (a .pvd series per tool and piece).
-  for (MeshOutput& m : tool_meshes(stem + "_rigid", t, true)) meshes.push_back(std::move(m));
-  return meshes;
+  for (MeshOutput& m : tool_meshes(stem + "_rigid", t, true)) out.push_back(std::move(m));
+  return out;
 }
 
 std::vector<Analysis::OutputFile> Analysis::write_output(const std::string& dir,
@@ -307,11 +469,13 @@ std::vector<MeshOutput> Analysis::tool_meshes(const std::string& stem, double t,
       m.shape = SampledMesh::Shape::kGrid;
       m.nu = m.nv = kToolGrid;
       const std::string suffix = index_suffix(j, n_tools) + index_suffix(i, rigid.num_patches());
-      meshes.push_back({"rigid" + suffix, stem + suffix,
+      meshes.push_back({"rigid" + suffix,
+                        stem + suffix,
                         name_ + " rigid surface" +
                             (n_tools > 1 ? " " + all[static_cast<std::size_t>(j)].name : "") +
                             (P.motion() ? ", t = " + fmt(t) : std::string()),
-                        std::move(m)});
+                        std::move(m),
+                        {}});
     }
   }
   return meshes;

@@ -87,13 +87,6 @@ void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
         int_or(c, "points_per_direction", cp.points_per_direction, 1, 20, "1..20");
     if (c.has("search_distance")) cp.search_distance = positive(c["search_distance"]);
     const ContactEnforcement enforcement = parse_enforcement(c);
-    // The multipliers' update is decided from the whole pair's largest gap: not yet over the
-    // parts of a body cut over several processes.
-    if (enforcement.augmented && !block.whole())
-      c["enforcement"].fail(
-          "exact enforcement of a " + body_type +
-          " cut over several processes is not available yet: use the penalty (the default) or "
-          "run on one process");
     cp.thickness = thickness;
     try {
       auto pair = std::make_unique<SurfaceContactPair>(surface, rigid, cp, block);

@@ -66,14 +66,34 @@ class JsonSummarySink final : public OutputSink {
   std::string path_;
 };
 
+/// The pieces' format: the collection's extension and the writers of a piece and of a
+/// collection (null: the format keeps no pieces).
+struct PieceFormat {
+  const char* (*collection_extension)(const SampledMesh& mesh) = nullptr;
+  void (*write_piece)(const std::string& path, const SampledMesh& mesh,
+                      const MeshPieces& pieces) = nullptr;
+  void (*write_collection)(const std::string& path, SampledMesh::Shape shape,
+                           const MeshPieces& pieces,
+                           const std::function<std::string(int)>& piece_file) = nullptr;
+};
+
 /// A field series: each mesh a file <stem><extension>; each series a ParaView collection
 /// <series>.pvd rewritten at every snapshot, so that a run that stops midway leaves valid ones.
+/// With a piece format (VTK XML): a spread mesh as each process's piece <stem>_p<r><extension>
+/// and process 0's collection <stem><collection extension>, which the series lists.
 class FieldSeriesSink final : public OutputSink {
  public:
   using Writer = void (*)(const std::string& path, const MeshOutput& m);
   using Extension = const char* (*)(const SampledMesh& mesh);
-  FieldSeriesSink(Writer write, Extension extension) : write_(write), extension_(extension) {}
+  FieldSeriesSink(Writer write, Extension extension, PieceFormat pieces = {})
+      : write_(write), extension_(extension), pieces_(pieces) {}
 
+  bool writes_pieces() const override { return pieces_.collection_extension != nullptr; }
+  void open_part(const std::string& dir) override {
+    dir_ = dir;
+    root_ = false;
+    restored_.clear();  // process 0 keeps the series
+  }
   void open(const std::string& dir, const std::vector<std::string>& /*columns*/) override {
     dir_ = dir;
     for (auto& [series, entries] : restored_) {  // a restarted run's series go on
@@ -85,8 +105,22 @@ class FieldSeriesSink final : public OutputSink {
   std::vector<OutputFileRef> snapshot(double key, const std::vector<MeshOutput>& meshes) override {
     std::vector<OutputFileRef> files;
     for (const MeshOutput& m : meshes) {
-      const std::string file = m.stem + extension_(m.mesh);
-      write_((fs::path(dir_) / file).string(), m);
+      const bool spread = m.pieces.rank >= 0;
+      if (spread && !writes_pieces())
+        throw std::logic_error(m.stem + ": a mesh in pieces handed to a format without pieces");
+      if (spread && m.pieces.write)
+        pieces_.write_piece((fs::path(dir_) / piece_file(m, m.pieces.rank)).string(), m.mesh,
+                            m.pieces);
+      if (!root_) continue;  // process 0 writes the collections and the meshes written whole
+      std::string file;
+      if (spread) {
+        file = m.stem + pieces_.collection_extension(m.mesh);
+        pieces_.write_collection((fs::path(dir_) / file).string(), m.mesh.shape, m.pieces,
+                                 [&](int r) { return piece_file(m, r); });
+      } else {
+        file = m.stem + extension_(m.mesh);
+        write_((fs::path(dir_) / file).string(), m);
+      }
       files.push_back({m.series, file});
       if (m.series.empty()) continue;
       auto it = pvd_.find(m.series);
@@ -117,11 +151,21 @@ class FieldSeriesSink final : public OutputSink {
   }
 
  private:
+  /// The file of process r's piece of a spread mesh (beside its collection).
+  std::string piece_file(const MeshOutput& m, int r) const {
+    std::string file = m.stem;  // (appended: GCC 12 warns falsely of + chains, -Wrestrict)
+    file += "_p";
+    file += std::to_string(r);
+    file += extension_(m.mesh);
+    return file;
+  }
   std::string pvd_path(const std::string& series) const {
     return (fs::path(dir_) / (series + ".pvd")).string();
   }
   Writer write_;
   Extension extension_;
+  PieceFormat pieces_;
+  bool root_ = true;  // process 0 (or the one process): it writes the collections and series
   std::string dir_;
   std::map<std::string, VtkCollection> pvd_;
   std::vector<std::pair<std::string, VtkCollection::Entries>> restored_;
@@ -143,7 +187,13 @@ struct Registry {
       {"csv", [] { return std::make_unique<CsvTableSink>(); }},
       {"summary", [] { return std::make_unique<JsonSummarySink>(); }},
       {"vtk", [] { return std::make_unique<FieldSeriesSink>(write_legacy, legacy_extension); }},
-      {"vtk_xml", [] { return std::make_unique<FieldSeriesSink>(write_xml, vtk_xml_extension); }},
+      {"vtk_xml",
+       [] {
+         return std::make_unique<FieldSeriesSink>(
+             write_xml, vtk_xml_extension,
+             PieceFormat{vtk_xml_collection_extension, write_vtk_xml_piece,
+                         write_vtk_xml_collection});
+       }},
   };
 };
 

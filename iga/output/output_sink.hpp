@@ -23,12 +23,37 @@
 
 namespace iga {
 
+/// A mesh of a run spread over several processes, written as one piece per process and a
+/// collection that lists them (a format that keeps pieces, OutputSink::writes_pieces: VTK XML's
+/// .pvts over .vts pieces for a grid, .pvtu over .vtu pieces otherwise). The piece of process r
+/// is the file <stem>_p<r>, the collection <stem> with the format's parallel extension.
+struct MeshPieces {
+  /// A piece the collection lists: its process and, for a grid, its size and place in the whole
+  /// grid (SampledMesh nu, nv, i0, j0; neighbouring pieces share their border samples).
+  struct Piece {
+    int rank = 0, nu = 0, nv = 0, i0 = 0, j0 = 0;
+  };
+  int rank = -1;  ///< this process's piece; -1: the mesh is whole (written by process 0 alone)
+  /// Whether this process writes its piece: it has points, or no piece has and it is process
+  /// 0's (a collection lists at least one piece).
+  bool write = false;
+  /// Some piece holds a non-finite value: every piece writes the non_finite flag field, so that
+  /// all pieces have the same fields.
+  bool non_finite = false;
+  int nu = 0, nv = 0;  ///< the whole grid's size (grids)
+  /// Process 0 (empty elsewhere): the pieces the collection lists, in rank order, and their
+  /// fields' names (values empty).
+  std::vector<Piece> listed;
+  PointFields fields;
+};
+
 /// One mesh of a snapshot: its series (empty: not in a series), the file stem it is written
-/// under (relative to the output folder, no extension), a title (formats that keep one) and the
-/// mesh with its fields.
+/// under (relative to the output folder, no extension), a title (formats that keep one), the
+/// mesh with its fields and, spread over several processes, this process's piece of it.
 struct MeshOutput {
   std::string series, stem, title;
   SampledMesh mesh;
+  MeshPieces pieces;
 };
 
 /// A file a sink wrote (relative to the output folder) and its series (empty: none).
@@ -48,11 +73,18 @@ class OutputSink {
     (void)dir;
     (void)columns;
   }
+  /// A process other than 0 of a run spread over several: instead of open(), it writes its
+  /// pieces of the meshes into `dir` (a sink that writes_pieces); nothing else.
+  virtual void open_part(const std::string& dir) { (void)dir; }
+  /// Whether the sink writes a spread mesh as pieces (MeshOutput::pieces, on every process)
+  /// rather than whole from process 0 (then the parts are joined before snapshot()).
+  virtual bool writes_pieces() const { return false; }
   /// The row of a converged step, in the columns' order (counts as whole numbers; any value may
   /// be non-finite: no file may hold one).
   virtual void row(const std::vector<double>& values) { (void)values; }
   /// The meshes of one state, with their series' key; returns the files written, in the order of
-  /// the meshes (none: the sink keeps no fields).
+  /// the meshes (none: the sink keeps no fields). A spread mesh's file is its collection, on
+  /// process 0.
   virtual std::vector<OutputFileRef> snapshot(double key, const std::vector<MeshOutput>& meshes) {
     (void)key;
     (void)meshes;
@@ -74,7 +106,8 @@ using OutputSinkFactory = std::function<std::unique_ptr<OutputSink>()>;
 ///   "summary"  the summary as summary.json (indented; non-finite numbers are null);
 ///   "vtk"      the field series as legacy ASCII VTK files (.vtk) and .pvd collections;
 ///   "vtk_xml"  the field series as VTK XML files with raw binary appended data (.vts for
-///              grids, .vtu for points and polylines) and .pvd collections.
+///              grids, .vtu for points and polylines) and .pvd collections; a spread mesh as
+///              pieces and their parallel collection (.pvts, .pvtu).
 void register_output_format(const std::string& name, OutputSinkFactory factory);
 
 /// A sink of the named format; std::invalid_argument naming the known formats if there is none.

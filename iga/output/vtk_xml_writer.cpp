@@ -47,8 +47,9 @@ std::vector<double> flat(const std::vector<Eigen::Vector3d>& v) {
   return out;
 }
 
-/// The point fields as blocks, and the non_finite flag where some point needs it.
-std::vector<Block> point_data(const std::string& path, const SampledMesh& mesh) {
+/// The point fields as blocks, and the non_finite flag where some point needs it (or
+/// everywhere: `flag`, a piece of a collection whose other pieces have it).
+std::vector<Block> point_data(const std::string& path, const SampledMesh& mesh, bool flag_all) {
   const std::size_t n = mesh.points.size();
   std::vector<double> flag(n, 0.0);
   bool flagged = false;
@@ -73,7 +74,7 @@ std::vector<Block> point_data(const std::string& path, const SampledMesh& mesh) 
     for (std::size_t i = 0; i < n; ++i) mark(i, v[i].allFinite());
     blocks.push_back(block("Float64", name, 3, flat(v)));
   }
-  if (flagged) blocks.push_back(block("Float64", "non_finite", 1, flag));
+  if (flagged || flag_all) blocks.push_back(block("Float64", "non_finite", 1, flag));
   return blocks;
 }
 
@@ -94,13 +95,18 @@ void append(std::ostream& os, const std::vector<Block>& blocks) {
   }
 }
 
-}  // namespace
-
-const char* vtk_xml_extension(const SampledMesh& mesh) {
-  return mesh.shape == SampledMesh::Shape::kGrid ? ".vts" : ".vtu";
+std::string extent(int i0, int nu, int j0, int nv) {
+  return std::to_string(i0) + " " + std::to_string(i0 + nu - 1) + " " + std::to_string(j0) + " " +
+         std::to_string(j0 + nv - 1) + " 0 0";
 }
 
-void write_vtk_xml(const std::string& path, const SampledMesh& mesh) {
+/// A grid's extents: the whole grid's and this piece's (the same for a mesh written whole).
+struct GridExtents {
+  std::string whole, piece;
+};
+
+void write_file(const std::string& path, const SampledMesh& mesh, const GridExtents& ext,
+                bool flag_all) {
   const std::size_t n = mesh.points.size();
   const bool grid = mesh.shape == SampledMesh::Shape::kGrid;
   if (grid && (mesh.nu < 2 || mesh.nv < 2 ||
@@ -108,7 +114,7 @@ void write_vtk_xml(const std::string& path, const SampledMesh& mesh) {
     throw std::runtime_error(path + ": a grid of " + std::to_string(mesh.nu) + " x " +
                              std::to_string(mesh.nv) + " needs that many points, got " +
                              std::to_string(n));
-  const std::vector<Block> fields = point_data(path, mesh);
+  const std::vector<Block> fields = point_data(path, mesh, flag_all);
   const std::vector<Block> points{block("Float64", "Points", 3, flat(mesh.points))};
   // Cells of an unstructured grid: one vertex per point, or one poly-line through them all.
   std::vector<Block> cells;
@@ -136,10 +142,8 @@ void write_vtk_xml(const std::string& path, const SampledMesh& mesh) {
      << "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   std::uint64_t offset = 0;
   if (grid) {
-    const std::string extent =
-        "0 " + std::to_string(mesh.nu - 1) + " 0 " + std::to_string(mesh.nv - 1) + " 0 0";
-    os << "  <StructuredGrid WholeExtent=\"" << extent << "\">\n    <Piece Extent=\"" << extent
-       << "\">\n";
+    os << "  <StructuredGrid WholeExtent=\"" << ext.whole << "\">\n    <Piece Extent=\""
+       << ext.piece << "\">\n";
   } else {
     os << "  <UnstructuredGrid>\n    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\""
        << num_cells << "\">\n";
@@ -159,6 +163,78 @@ void write_vtk_xml(const std::string& path, const SampledMesh& mesh) {
   append(os, points);
   append(os, cells);
   os << "\n  </AppendedData>\n</VTKFile>\n";
+  if (!os) throw std::runtime_error("error while writing " + path);
+}
+
+/// The PDataArray elements of the collection's point fields and points.
+void collection_arrays(std::ostream& os, const MeshPieces& pieces) {
+  os << "    <PPointData>\n";
+  const auto array = [&os](const std::string& name, int components) {
+    os << "      <PDataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\""
+       << components << "\"/>\n";
+  };
+  for (const auto& f : pieces.fields.scalars) array(f.first, 1);
+  for (const auto& f : pieces.fields.vectors) array(f.first, 3);
+  if (pieces.non_finite) array("non_finite", 1);
+  os << "    </PPointData>\n    <PPoints>\n"
+     << "      <PDataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"/>\n"
+     << "    </PPoints>\n";
+}
+
+}  // namespace
+
+void write_vtk_xml(const std::string& path, const SampledMesh& mesh) {
+  const std::string e = extent(0, mesh.nu, 0, mesh.nv);
+  write_file(path, mesh, {e, e}, false);
+}
+
+void write_vtk_xml_piece(const std::string& path, const SampledMesh& mesh,
+                         const MeshPieces& pieces) {
+  write_file(path, mesh,
+             {extent(0, pieces.nu, 0, pieces.nv), extent(mesh.i0, mesh.nu, mesh.j0, mesh.nv)},
+             pieces.non_finite);
+}
+
+const char* vtk_xml_extension(const SampledMesh& mesh) {
+  return mesh.shape == SampledMesh::Shape::kGrid ? ".vts" : ".vtu";
+}
+
+const char* vtk_xml_collection_extension(const SampledMesh& mesh) {
+  return mesh.shape == SampledMesh::Shape::kGrid ? ".pvts" : ".pvtu";
+}
+
+void write_vtk_xml_collection(const std::string& path, SampledMesh::Shape shape,
+                              const MeshPieces& pieces,
+                              const std::function<std::string(int)>& piece_file) {
+  const bool grid = shape == SampledMesh::Shape::kGrid;
+  if (pieces.listed.empty()) throw std::runtime_error(path + ": a collection of no pieces");
+  if (grid)
+    for (const MeshPieces::Piece& p : pieces.listed)
+      if (p.nu < 2 || p.nv < 2 || p.i0 < 0 || p.j0 < 0 || p.i0 + p.nu > pieces.nu ||
+          p.j0 + p.nv > pieces.nv)
+        throw std::runtime_error(path + ": the piece of process " + std::to_string(p.rank) +
+                                 " does not fit the grid of " + std::to_string(pieces.nu) + " x " +
+                                 std::to_string(pieces.nv));
+  std::ofstream os(path);
+  if (!os) throw std::runtime_error("cannot write " + path);
+  const char* type = grid ? "PStructuredGrid" : "PUnstructuredGrid";
+  os << "<?xml version=\"1.0\"?>\n<VTKFile type=\"" << type
+     << "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n  <" << type;
+  if (grid) os << " WholeExtent=\"" << extent(0, pieces.nu, 0, pieces.nv) << "\"";
+  os << " GhostLevel=\"0\">\n";
+  collection_arrays(os, pieces);
+  if (!grid)
+    os << "    <PCells>\n"
+       << "      <PDataArray type=\"Int64\" Name=\"connectivity\" NumberOfComponents=\"1\"/>\n"
+       << "      <PDataArray type=\"Int64\" Name=\"offsets\" NumberOfComponents=\"1\"/>\n"
+       << "      <PDataArray type=\"UInt8\" Name=\"types\" NumberOfComponents=\"1\"/>\n"
+       << "    </PCells>\n";
+  for (const MeshPieces::Piece& p : pieces.listed) {
+    os << "    <Piece";
+    if (grid) os << " Extent=\"" << extent(p.i0, p.nu, p.j0, p.nv) << "\"";
+    os << " Source=\"" << piece_file(p.rank) << "\"/>\n";
+  }
+  os << "  </" << type << ">\n</VTKFile>\n";
   if (!os) throw std::runtime_error("error while writing " + path);
 }
 

@@ -9,17 +9,20 @@
 //  - active, stick and slip counts (of all pairs and of each) within 1 %;
 //  - the end time and the number of steps the same, the status converged (or the sliding
 //    plateau reached) in both.
-// And the output: the same files in both output folders, the fields of every VTK XML file (shells
-// joined from their blocks, rods from the rank that owns them, contact points from all) within 1e-8
+// And the output: the same files in both output folders (the spread run's bodies and contact
+// points as parallel collections, .pvts / .pvtu, of one piece per rank at most: a shell's blocks,
+// a rod from the rank that owns it, contact points from every rank that has some), the fields
+// of every VTK XML file (collections joined from their pieces) within 1e-8
 // of each array's largest value (of the file's, for an array that is round-off beside it), but for
 // the contact state (0, 1, 2), which must match; a restart of the spread run from its own restart
 // files (one per rank) ends where the whole run does; the serial analysis refuses those files
 // (another process count). Exit 0 on every rank when all hold. Usage: mpi_models <output folder>
-// <model.json>...
+// <model.json> [--set /pointer=value]... [--as NAME] ...
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -138,20 +141,51 @@ void compare_steps(Checker& c, const AnalysisResult& whole, const AnalysisResult
   }
 }
 
-// The output folders: the same files, the last step's fields alike.
-void compare_files(Checker& c, const fs::path& whole, const fs::path& spread) {
+// A file of the spread run's output folder under the name the run on one process gives it: a
+// collection (.pvts, .pvtu) as the file it joins (.vts, .vtu); a piece (<stem>_p<r>.vts) as
+// none (empty).
+std::string whole_name(const std::string& f) {
+  const fs::path p(f);
+  const std::string ext = p.extension().string(), stem = p.stem().string();
+  if (ext == ".pvts" || ext == ".pvtu") return stem + "." + ext.substr(2);
+  const std::size_t at = stem.rfind("_p");
+  const bool piece = (ext == ".vts" || ext == ".vtu") && at != std::string::npos &&
+                     at + 2 < stem.size() &&
+                     stem.find_first_not_of("0123456789", at + 2) == std::string::npos;
+  return piece ? std::string() : f;
+}
+
+// The output folders: the same files (the spread run's fields as collections of pieces, one
+// per process at most, or whole from process 0), the last step's fields alike.
+void compare_files(Checker& c, const fs::path& whole, const fs::path& spread, int ranks) {
   std::set<std::string> a, b;
+  std::map<std::string, std::string> spread_file;  // by the name on one process
   for (const auto& e : fs::directory_iterator(whole))
     if (e.path().filename().string().rfind("restart", 0) != 0) a.insert(e.path().filename());
-  for (const auto& e : fs::directory_iterator(spread))
-    if (e.path().filename().string().rfind("restart", 0) != 0) b.insert(e.path().filename());
+  for (const auto& e : fs::directory_iterator(spread)) {
+    const std::string f = e.path().filename().string();
+    if (f.rfind("restart", 0) == 0) continue;
+    if (const std::string w = whole_name(f); !w.empty()) {
+      b.insert(w);
+      spread_file[w] = f;
+    }
+  }
   c.expect(a == b, "the output folders hold other files");
-  int compared = 0;
+  int compared = 0, collections = 0;
   for (const std::string& f : a) {
     const std::string ext = fs::path(f).extension().string();
     if ((ext != ".vts" && ext != ".vtu") || !b.count(f)) continue;
+    const std::string g = spread_file[f];
     const iga::test::VtkXmlFile x = iga::test::read_vtk_xml(whole / f);
-    const iga::test::VtkXmlFile y = iga::test::read_vtk_xml(spread / f);
+    int pieces = 0;
+    const bool collection = g != f;
+    const iga::test::VtkXmlFile y = collection
+                                        ? iga::test::read_vtk_xml_collection(spread / g, &pieces)
+                                        : iga::test::read_vtk_xml(spread / g);
+    if (collection) {
+      ++collections;
+      c.expect(pieces >= 1 && pieces <= ranks, g + ": " + std::to_string(pieces) + " pieces");
+    }
     c.expect(y.all_finite(), f + ": a value that is not finite");
     // An array that is round-off next to the file's largest (a straight rope's binormal
     // traction, zero in theory) is compared at the file's scale, any other at its own.
@@ -179,6 +213,29 @@ void compare_files(Checker& c, const fs::path& whole, const fs::path& spread) {
     ++compared;
   }
   c.expect(compared > 0, "no VTK XML file to compare");
+  c.expect(collections > 0, "no collection of pieces");
+}
+
+// A model of the command line: its file, the overrides that follow it ("--set /p=v", as iga
+// run's), and its name in the output ("--as NAME"; by default the file's stem).
+struct ModelArg {
+  std::string file, name;
+  std::vector<std::string> sets;
+};
+
+std::vector<ModelArg> model_args(int argc, char** argv) {
+  std::vector<ModelArg> models;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--set" && i + 1 < argc && !models.empty()) {
+      models.back().sets.emplace_back(argv[++i]);
+    } else if (a == "--as" && i + 1 < argc && !models.empty()) {
+      models.back().name = argv[++i];
+    } else {
+      models.push_back({a, fs::path(a).stem().string(), {}});
+    }
+  }
+  return models;
 }
 
 }  // namespace
@@ -189,7 +246,10 @@ int main(int argc, char** argv) {
   const iga::RoundoffProbeOff probe_off;
   const iga::Communicator& w = iga::world();
   if (argc < 3) {
-    if (w.root()) std::fprintf(stderr, "usage: mpi_models <output folder> <model.json>...\n");
+    if (w.root())
+      std::fprintf(
+          stderr,
+          "usage: mpi_models <output folder> <model.json> [--set /p=v]... [--as NAME] ...\n");
     return 2;
   }
   const fs::path out = argv[1];
@@ -211,11 +271,12 @@ int main(int argc, char** argv) {
              "the error reached this rank as: \"" + message + "\"");
     errors += c.errors;
   }
-  for (int i = 2; i < argc; ++i) {
+  for (const ModelArg& m : model_args(argc, argv)) {
     Checker c;
-    const std::string file = argv[i];
-    c.model = fs::path(file).stem().string();
-    const iga::Json doc = iga::read_json_file(file);
+    const std::string& file = m.file;
+    c.model = m.name;
+    iga::Json doc = iga::read_json_file(file);
+    for (const std::string& set : m.sets) iga::apply_override(doc, file, set);
     const std::string tag = c.model + "_" + std::to_string(w.size()) + "_ranks";
     const fs::path spread_dir = out / tag, whole_dir = out / (tag + "_whole");
     if (w.root()) {
@@ -262,7 +323,7 @@ int main(int argc, char** argv) {
       const AnalysisResult s = whole.run(nullptr, whole_dir.string());
       const iga::NonlinearSolverSettings& set = whole.solver_settings();
       compare_steps(c, s, d, model_size(whole), std::abs(set.t1 - set.t0));
-      compare_files(c, whole_dir, spread_dir);
+      compare_files(c, whole_dir, spread_dir, w.size());
       std::printf("%s: %s\n", c.model.c_str(), c.errors == 0 ? "the same" : "DIFFERENT");
     }
     errors += c.errors;

@@ -1,15 +1,19 @@
 // A small reader of the VTK XML files that iga/output/vtk_xml_writer writes (raw appended data,
 // UInt64 block headers; Float64, Int64 and UInt8 arrays), for tests: the XML header and every
-// DataArray by name ("Points" for the points, "" for an unnamed array), values as doubles.
+// DataArray by name ("Points" for the points, "" for an unnamed array), values as doubles; and
+// a parallel collection (.pvts, .pvtu) joined from its pieces.
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <regex>
+#include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -90,6 +94,101 @@ inline VtkXmlFile read_vtk_xml(const std::filesystem::path& file) {
     out.arrays[(*it)[2].matched ? std::string((*it)[2]) : std::string()] = a;
   }
   out.tail = s.substr(end);
+  return out;
+}
+
+/// A parallel collection (.pvts, .pvtu) read with its pieces and joined into one file's arrays,
+/// as write_vtk_xml writes the mesh whole: a structured grid's pieces placed by their Extent in
+/// the WholeExtent (a sample two pieces share takes the first piece's value, as a grid sampled
+/// whole gives a border sample to the span before it), an unstructured grid's pieces one after
+/// the other (connectivity and offsets renumbered). `pieces` gets the number of pieces listed.
+/// Every array the collection declares (PDataArray) must be in every piece, and no other.
+inline VtkXmlFile read_vtk_xml_collection(const std::filesystem::path& file,
+                                          int* pieces = nullptr) {
+  const std::string s = slurp(file);
+  const auto fail = [&](const std::string& what) {
+    throw std::runtime_error(file.string() + ": " + what);
+  };
+  const bool grid = s.find("type=\"PStructuredGrid\"") != std::string::npos;
+  if (!grid && s.find("type=\"PUnstructuredGrid\"") == std::string::npos)
+    fail("not a PStructuredGrid or PUnstructuredGrid");
+  const auto extent = [&](const std::string& e) {
+    std::array<int, 6> x{};
+    std::istringstream in(e);
+    for (int& v : x) in >> v;
+    if (!in) fail("an extent \"" + e + "\"");
+    return x;
+  };
+  std::set<std::string> declared;
+  const std::regex parray("<PDataArray type=\"\\w+\" Name=\"(\\w+)\"");
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), parray); it != std::sregex_iterator();
+       ++it)
+    declared.insert((*it)[1]);
+  for (const char* cells : {"connectivity", "offsets", "types"}) declared.erase(cells);
+  std::array<int, 6> whole{};
+  if (grid) {
+    std::smatch m;
+    if (!std::regex_search(s, m, std::regex("WholeExtent=\"([-0-9 ]+)\""))) fail("no WholeExtent");
+    whole = extent(m[1]);
+  }
+  const std::regex piece(grid ? "<Piece Extent=\"([-0-9 ]+)\" Source=\"([^\"]+)\"/>"
+                              : "<Piece Source=\"([^\"]+)\"/>");
+  VtkXmlFile out;
+  const std::size_t nu = static_cast<std::size_t>(whole[1] - whole[0] + 1),
+                    nv = static_cast<std::size_t>(whole[3] - whole[2] + 1);
+  std::map<std::string, std::vector<char>> set;  // grids: which samples a piece has written
+  int count = 0;
+  double points_before = 0.0, connectivity_before = 0.0;
+  for (auto it = std::sregex_iterator(s.begin(), s.end(), piece); it != std::sregex_iterator();
+       ++it, ++count) {
+    const std::string source = (*it)[grid ? 2 : 1];
+    const VtkXmlFile p = read_vtk_xml(file.parent_path() / source);
+    std::set<std::string> has;
+    for (const auto& [name, a] : p.arrays)
+      if (name != "connectivity" && name != "offsets" && name != "types") has.insert(name);
+    if (has != declared) fail(source + ": other arrays than the collection declares");
+    if (!grid) {
+      const double n = static_cast<double>(p.field("Points").size() / 3);
+      for (const auto& [name, a] : p.arrays) {
+        VtkXmlArray& o = out.arrays[name];
+        o.type = a.type;
+        o.components = a.components;
+        const double shift = name == "connectivity" ? points_before
+                             : name == "offsets"    ? connectivity_before
+                                                    : 0.0;
+        for (double v : a.values) o.values.push_back(v + shift);
+      }
+      points_before += n;
+      connectivity_before += static_cast<double>(p.field("connectivity").size());
+      continue;
+    }
+    const std::array<int, 6> e = extent((*it)[1]);
+    const std::size_t pu = static_cast<std::size_t>(e[1] - e[0] + 1);
+    for (const auto& [name, a] : p.arrays) {
+      VtkXmlArray& o = out.arrays[name];
+      const auto c = static_cast<std::size_t>(a.components);
+      if (o.values.empty()) {
+        o.type = a.type;
+        o.components = a.components;
+        o.values.assign(nu * nv * c, 0.0);
+        set[name].assign(nu * nv, 0);
+      }
+      std::vector<char>& done = set[name];
+      for (std::size_t k = 0; k < a.values.size() / c; ++k) {
+        const std::size_t i = static_cast<std::size_t>(e[0]) + k % pu,
+                          j = static_cast<std::size_t>(e[2]) + k / pu, at = i + nu * j;
+        if (i >= nu || j >= nv) fail(source + ": a sample outside the whole grid");
+        if (done[at]) continue;  // the earlier piece's (the lower rank's) value stands
+        for (std::size_t q = 0; q < c; ++q) o.values[c * at + q] = a.values[c * k + q];
+        done[at] = 1;
+      }
+    }
+  }
+  if (count == 0) fail("no pieces");
+  for (const auto& [name, done] : set)
+    if (std::find(done.begin(), done.end(), 0) != done.end())
+      fail(name + ": the pieces leave samples of the whole grid out");
+  if (pieces) *pieces = count;
   return out;
 }
 

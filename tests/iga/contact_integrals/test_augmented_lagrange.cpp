@@ -8,8 +8,10 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -392,9 +394,10 @@ TEST_CASE(
   NormalAugmentation aug;
   auto update = [&] {
     return aug.update(
-        pts, e, [](const P& p) { return p.active; }, [](const P& p) { return p.gap; },
-        [](const P& p) { return p.N; }, [](const P& p) { return p.stick; },
-        [](const P& p) { return p.slip; }, [](const P& p) { return p.T; });
+        pts, e, AugmentResult{}, [](const P& p) { return p.active; },
+        [](const P& p) { return p.gap; }, [](const P& p) { return p.N; },
+        [](const P& p) { return p.stick; }, [](const P& p) { return p.slip; },
+        [](const P& p) { return p.T; });
   };
   // |gap| 2e-3 > tol: lambda_N <- N at active points, 0 elsewhere
   pts[2].lambda_n = -7.0;
@@ -471,6 +474,70 @@ TEST_CASE(
   pts[0].lambda_n = 0.0;
   aug.predict(pts, off, 3.0);
   CHECK(pts[0].lambda_n == 0.0);
+}
+
+TEST_CASE(
+    "NormalAugmentation over the parts of a spread pair: the whole pair's largest gap and slip "
+    "decide, and a point through the tool on any part stops every part's update",
+    "[iga][contact][augmented]") {
+  struct P : ContactMultipliers {
+    bool active = true;
+    double gap = 0.0, N = 0.0;
+  };
+  ContactEnforcement e;
+  e.augmented = true;
+  e.penetration_tol = 1e-3;
+  e.max_augmentations = 5;
+  // Two parts of one pair (as on two processes): each part's maxima go through parts_max,
+  // which here takes them to the maximum with the other part's last values.
+  std::vector<P> a(2), b(2);
+  a[0].gap = -2e-4, a[0].N = -1.0, a[1].gap = 1e-4, a[1].N = -0.5;  // within the tolerance
+  b[0].gap = -3e-3, b[0].N = -4.0, b[1].active = false;             // not
+  NormalAugmentation pa, pb;
+  std::array<double, 3> other{};  // the other part's (through, gap, slip)
+  int calls = 0;
+  pa.parts_max = [&](std::span<double> v) {
+    ++calls;
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = std::max(v[k], other[k]);
+  };
+  const auto update = [&](NormalAugmentation& aug, std::vector<P>& pts, AugmentResult through) {
+    return aug.update(
+        pts, e, through, [](const P& p) { return p.active; }, [](const P& p) { return p.gap; },
+        [](const P& p) { return p.N; }, [](const P&) { return false; },
+        [](const P&) { return 0.0; }, [](const P&) { return Vector3d::Zero(); });
+  };
+  // Alone, part a is satisfied; with part b's gap it updates its multipliers as the whole does.
+  REQUIRE(update(pb, b, {}).status == AugmentStatus::updated);
+  other = {0.0, pb.max_gap, 0.0};
+  const AugmentResult r = update(pa, a, {});
+  CHECK(calls == 1);
+  CHECK(r.status == AugmentStatus::updated);
+  CHECK(pa.max_gap == 3e-3);
+  CHECK_THAT(r.message, Catch::Contains("contact gap 3.000e-03"));
+  CHECK(a[0].lambda_n == -1.0);
+  CHECK(a[1].lambda_n == -0.5);
+  CHECK(pa.step_updates == 1);
+  // A point through the surface on the other part: this part is satisfied and keeps its
+  // multipliers (the other reports the pass-through, the step is cut on every part).
+  a[0].N = -9.0;
+  other = {1.0, 0.0, 0.0};
+  CHECK(update(pa, a, {}).status == AugmentStatus::satisfied);
+  CHECK(a[0].lambda_n == -1.0);
+  CHECK(calls == 2);
+  // This part's pass-through comes back as it is, after the same collective call.
+  const AugmentResult through{AugmentStatus::passed_through, "1 contact point(s) went through"};
+  other = {0.0, 0.0, 0.0};
+  CHECK(update(pa, a, through).status == AugmentStatus::passed_through);
+  CHECK(calls == 3);
+  // The penalty decides nothing over the parts: no collective call.
+  ContactEnforcement off;
+  CHECK(pa.update(
+              a, off, through, [](const P& p) { return p.active; },
+              [](const P& p) { return p.gap; }, [](const P& p) { return p.N; },
+              [](const P&) { return false; }, [](const P&) { return 0.0; },
+              [](const P&) { return Vector3d::Zero(); })
+            .status == AugmentStatus::passed_through);
+  CHECK(calls == 3);
 }
 
 namespace {

@@ -22,7 +22,7 @@ namespace {
 /// A grid with fields that are functions of the sample: its parameters and element.
 MeshOutput sampled(const std::vector<double>& bu, const std::vector<double>& bv, int samples,
                    const ElementBlock& block) {
-  MeshOutput o{"shell", "last_shell", "a shell", element_grid(bu, bv, samples, block)};
+  MeshOutput o{"shell", "last_shell", "a shell", element_grid(bu, bv, samples, block), {}};
   std::vector<double> e;
   std::vector<Vector3d> x;
   for (std::size_t i = 0; i < o.mesh.params.size(); ++i) {
@@ -41,11 +41,11 @@ MeshOutput sampled(const std::vector<double>& bu, const std::vector<double>& bv,
 TEST_CASE("meshes are packed into bytes and unpacked unchanged", "[mesh_parts]") {
   std::vector<MeshOutput> m;
   m.push_back(sampled({0, 0.5, 1}, {0, 1, 2, 3}, 2, {}));
-  MeshOutput points{"", "contact", "points", {}};
+  MeshOutput points{"", "contact", "points", {}, {}};
   points.mesh.points = {Vector3d(1, 2, 3)};
   points.mesh.fields.scalars = {{"N", {-4.0}}};
   m.push_back(points);
-  m.push_back({"empty", "e", "", {}});
+  m.push_back({"empty", "e", "", {}, {}});
   const std::vector<MeshOutput> back = unpack_meshes(pack_meshes(m));
   REQUIRE(back.size() == 3);
   for (std::size_t k = 0; k < 3; ++k) {
@@ -87,7 +87,7 @@ TEST_CASE("a grid sampled in blocks and joined is the grid sampled whole", "[mes
 }
 
 TEST_CASE("points join in rank order, and empty parts need no fields", "[mesh_parts]") {
-  MeshOutput a{"contact", "c", "", {}}, b = a, none = a;
+  MeshOutput a{"contact", "c", "", {}, {}}, b = a, none = a;
   a.mesh.points = {Vector3d(0, 0, 0)};
   a.mesh.fields.scalars = {{"N", {1.0}}};
   b.mesh.points = {Vector3d(1, 0, 0), Vector3d(2, 0, 0)};
@@ -99,7 +99,7 @@ TEST_CASE("points join in rank order, and empty parts need no fields", "[mesh_pa
 }
 
 TEST_CASE("parts that cannot be joined are refused with the mesh's name", "[mesh_parts]") {
-  MeshOutput line{"rod", "last_rod", "", {}};
+  MeshOutput line{"rod", "last_rod", "", {}, {}};
   line.mesh.shape = SampledMesh::Shape::kPolyline;
   line.mesh.points = {Vector3d(0, 0, 0), Vector3d(1, 0, 0)};
   CHECK(join_parts({MeshOutput{}, line}).mesh.points.size() == 2);  // a rod on one process

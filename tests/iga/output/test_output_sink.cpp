@@ -1,16 +1,19 @@
 // Output sinks (iga/output/output_sink.hpp): the registry of formats, the steps table's CSV
 // (header, rows, non-finite cells, restart round trip), the field series with their .pvd
-// collections in both VTK formats.
+// collections in both VTK formats, a mesh spread over processes as pieces and a collection.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "iga/core/partition.hpp"
 #include "iga/output/output_sink.hpp"
+#include "iga/output/vtk_xml_writer.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/vtk_xml_read.hpp"
 
@@ -18,6 +21,7 @@
 namespace test_output_sink {
 
 using namespace iga;
+using Eigen::Vector3d;
 namespace fs = std::filesystem;
 
 namespace {
@@ -29,7 +33,7 @@ std::string out_dir(const std::string& name) {
 }
 
 MeshOutput polyline(const std::string& series, const std::string& stem, double shift) {
-  MeshOutput m{series, stem, "a rope", {}};
+  MeshOutput m{series, stem, "a rope", {}, {}};
   m.mesh.shape = SampledMesh::Shape::kPolyline;
   m.mesh.fields.name({"N"}, {});
   for (int k = 0; k < 3; ++k) {
@@ -121,6 +125,145 @@ TEST_CASE(
     CHECK_THAT(pvd3, Catch::Contains("file=\"step1" + ext + "\""));
     CHECK_THAT(pvd3, Catch::Contains("timestep=\"1.5\" part=\"0\" file=\"step3" + ext + "\""));
   }
+}
+
+namespace {
+
+/// A patch's grid (5 x 3 elements, 3 samples a span) sampled whole or in the block of process r
+/// of P, with fields that are functions of the sample; a NaN at (u, v) = (1, 1) with `nan`.
+MeshOutput shell_grid(const ElementBlock& block, bool nan = false) {
+  const std::vector<double> bu{0, 0.1, 0.35, 0.5, 0.8, 1}, bv{0, 0.25, 0.5, 1};
+  MeshOutput o{"shell", "last_shell", "a shell", element_grid(bu, bv, 3, block), {}};
+  o.mesh.fields.name({"element"}, {"x"});
+  for (std::size_t i = 0; i < o.mesh.params.size(); ++i) {
+    const auto [u, v] = o.mesh.params[i];
+    o.mesh.points.emplace_back(u, v, u * v);
+    const double e = nan && u == 1.0 && v == 1.0 ? std::nan("") : o.mesh.elements[i];
+    o.mesh.fields.append({e}, {Vector3d(u, v, 1.0)});
+  }
+  return o;
+}
+
+/// The pieces of a mesh spread over the processes, as Analysis::output_meshes makes them (its
+/// collective make_pieces): every process's piece, the listed ones on process 0 (here every
+/// process's with points).
+void as_pieces(std::vector<MeshOutput>& parts) {
+  MeshPieces all;
+  bool non_finite = false;
+  for (int r = 0; r < static_cast<int>(parts.size()); ++r) {
+    const SampledMesh& m = parts[static_cast<std::size_t>(r)].mesh;
+    for (const auto& f : m.fields.scalars)
+      non_finite = non_finite || std::any_of(f.second.begin(), f.second.end(),
+                                             [](double x) { return !std::isfinite(x); });
+    if (m.points.empty()) continue;
+    all.listed.push_back({r, m.nu, m.nv, m.i0, m.j0});
+    all.nu = std::max(all.nu, m.i0 + m.nu);
+    all.nv = std::max(all.nv, m.j0 + m.nv);
+    if (all.fields.scalars.empty() && all.fields.vectors.empty()) {
+      for (const auto& f : m.fields.scalars)
+        all.fields.scalars.emplace_back(f.first, std::vector<double>{});
+      for (const auto& f : m.fields.vectors)
+        all.fields.vectors.emplace_back(f.first, std::vector<Vector3d>{});
+    }
+  }
+  for (int r = 0; r < static_cast<int>(parts.size()); ++r) {
+    MeshPieces& p = parts[static_cast<std::size_t>(r)].pieces;
+    p.rank = r;
+    p.write = !parts[static_cast<std::size_t>(r)].mesh.points.empty();
+    p.non_finite = non_finite;
+    p.nu = all.nu;
+    p.nv = all.nv;
+    if (r == 0) {
+      p.listed = all.listed;
+      p.fields = all.fields;
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE(
+    "output sinks: a mesh spread over processes is written as pieces and a collection (.pvts, "
+    ".pvtu) that join into the mesh written whole",
+    "[iga][output]") {
+  for (int P : {2, 3, 4}) {
+    CAPTURE(P);
+    for (bool nan : {false, true}) {
+      CAPTURE(nan);
+      const std::string dir = out_dir("pieces_" + std::to_string(P) + (nan ? "_nan" : ""));
+      // one sink a process: process 0 opens the series, the others write their pieces only
+      std::vector<std::unique_ptr<OutputSink>> sinks;
+      for (int r = 0; r < P; ++r) {
+        sinks.push_back(make_output_sink("vtk_xml"));
+        CHECK(sinks.back()->writes_pieces());
+        if (r == 0)
+          sinks.back()->open(dir, {});
+        else
+          sinks.back()->open_part(dir);
+      }
+      std::vector<MeshOutput> grids, points;
+      for (int r = 0; r < P; ++r) {
+        grids.push_back(shell_grid(element_block(r, P, 5, 3), nan));
+        // contact points on the odd processes only; a rope on the last one
+        MeshOutput c = polyline("contact", "last_contact", r);
+        c.mesh.shape = SampledMesh::Shape::kPoints;
+        if (r % 2 == 0) c.mesh = SampledMesh{};
+        points.push_back(c);
+      }
+      as_pieces(grids);
+      as_pieces(points);
+      std::vector<OutputFileRef> files;
+      for (int r = P - 1; r >= 0; --r) {  // process 0's collection lists pieces written or not
+        const auto f = sinks[static_cast<std::size_t>(r)]->snapshot(
+            1.0, {grids[static_cast<std::size_t>(r)], points[static_cast<std::size_t>(r)]});
+        if (r == 0) files = f;
+        if (r > 0) CHECK(f.empty());
+      }
+      REQUIRE(files.size() == 2);
+      CHECK(files[0].file == "last_shell.pvts");
+      CHECK(files[1].file == "last_contact.pvtu");
+      CHECK_THAT(test::slurp(fs::path(dir) / "shell.pvd"), Catch::Contains("last_shell.pvts"));
+      for (int r = 0; r < P; ++r) {
+        CHECK(fs::exists(fs::path(dir) / ("last_shell_p" + std::to_string(r) + ".vts")));
+        CHECK(fs::exists(fs::path(dir) / ("last_contact_p" + std::to_string(r) + ".vtu")) ==
+              (r % 2 == 1));
+      }
+      // joined, the pieces are the grid written whole (border samples: the lower block's)
+      const std::string whole = (fs::path(dir) / "whole.vts").string();
+      write_vtk_xml(whole, shell_grid({}, nan).mesh);
+      const test::VtkXmlFile w = test::read_vtk_xml(whole);
+      int pieces = 0;
+      const test::VtkXmlFile j =
+          test::read_vtk_xml_collection(fs::path(dir) / "last_shell.pvts", &pieces);
+      CHECK(pieces == P);
+      CHECK(w.arrays.count("non_finite") == (nan ? 1U : 0U));
+      REQUIRE(j.arrays.size() == w.arrays.size());
+      for (const auto& [name, a] : w.arrays) {
+        INFO(name);
+        CHECK(j.field(name) == a.values);
+      }
+      const test::VtkXmlFile c =
+          test::read_vtk_xml_collection(fs::path(dir) / "last_contact.pvtu", &pieces);
+      CHECK(pieces == P / 2);
+      std::vector<double> x;  // the odd processes' points in rank order
+      for (int r = 1; r < P; r += 2)
+        for (int k = 0; k < 3; ++k) x.insert(x.end(), {k + 1.0 * r, 0.0, 0.0});
+      CHECK(c.points() == x);
+      CHECK(c.field("connectivity").size() == x.size() / 3);
+      CHECK(c.field("connectivity").back() == static_cast<double>(x.size() / 3 - 1));
+    }
+  }
+  // A format without pieces refuses them; a collection of no pieces is refused.
+  auto legacy = make_output_sink("vtk");
+  CHECK_FALSE(legacy->writes_pieces());
+  const std::string dir = out_dir("pieces_refused");
+  legacy->open(dir, {});
+  std::vector<MeshOutput> one{shell_grid(element_block(0, 2, 5, 3))};
+  one[0].pieces.rank = 0;
+  CHECK_THROWS_AS(legacy->snapshot(0.0, one), std::logic_error);
+  auto xml = make_output_sink("vtk_xml");
+  xml->open(dir, {});
+  CHECK_THROWS_WITH(xml->snapshot(0.0, one), Catch::Contains("no pieces"));
 }
 
 TEST_CASE("output sinks: a format registered by name is made by the registry", "[iga][output]") {
