@@ -258,12 +258,14 @@ bool has_non_finite(const SampledMesh& m) {
 void make_pieces(const Communicator& comm, std::vector<MeshOutput>& meshes) {
   const std::size_t n = meshes.size();
   std::vector<long long> points(n);
-  std::vector<double> flags(n);
+  std::vector<double> maxima(3 * n);  // per mesh: a non-finite value, the whole grid's size
   Json headers = Json::array();
   for (std::size_t i = 0; i < n; ++i) {
     const SampledMesh& m = meshes[i].mesh;
     points[i] = static_cast<long long>(m.points.size());
-    flags[i] = has_non_finite(m) ? 1.0 : 0.0;
+    maxima[3 * i] = has_non_finite(m) ? 1.0 : 0.0;
+    maxima[3 * i + 1] = m.points.empty() ? 0.0 : m.i0 + m.nu;
+    maxima[3 * i + 2] = m.points.empty() ? 0.0 : m.j0 + m.nv;
     Json scalars = Json::array(), vectors = Json::array();
     for (const auto& f : m.fields.scalars) scalars.push_back(f.first);
     for (const auto& f : m.fields.vectors) vectors.push_back(f.first);
@@ -277,13 +279,15 @@ void make_pieces(const Communicator& comm, std::vector<MeshOutput>& meshes) {
   }
   std::vector<long long> total = points;
   comm.sum(total);
-  comm.max(flags);
+  comm.max(maxima);
   const std::vector<std::string> all = comm.gather(headers.dump());
   for (std::size_t i = 0; i < n; ++i) {
     MeshPieces& p = meshes[i].pieces;
     p.rank = comm.rank();
     p.write = points[i] > 0 || (total[i] == 0 && comm.root());
-    p.non_finite = flags[i] > 0.0;
+    p.non_finite = maxima[3 * i] > 0.0;
+    p.nu = static_cast<int>(maxima[3 * i + 1]);
+    p.nv = static_cast<int>(maxima[3 * i + 2]);
   }
   if (!comm.root()) return;
   std::vector<Json> of_rank;
@@ -297,8 +301,6 @@ void make_pieces(const Communicator& comm, std::vector<MeshOutput>& meshes) {
       if (h.at("points").get<long long>() == 0 && !(total[i] == 0 && r == 0)) continue;
       MeshPieces::Piece piece{static_cast<int>(r), h.at("nu").get<int>(), h.at("nv").get<int>(),
                               h.at("i0").get<int>(), h.at("j0").get<int>()};
-      p.nu = std::max(p.nu, piece.i0 + piece.nu);
-      p.nv = std::max(p.nv, piece.j0 + piece.nv);
       p.listed.push_back(piece);
       if (fields == nullptr) {
         fields = &h;

@@ -163,6 +163,12 @@ inline VtkXmlFile read_vtk_xml_collection(const std::filesystem::path& file,
       continue;
     }
     const std::array<int, 6> e = extent((*it)[1]);
+    std::smatch own;  // the piece's own extents: the whole grid's, and its place in it
+    if (!std::regex_search(
+            p.header, own,
+            std::regex("WholeExtent=\"([-0-9 ]+)\">\\s*<Piece Extent=\"([-0-9 ]+)\"")) ||
+        extent(own[1]) != whole || extent(own[2]) != e)
+      fail(source + ": its WholeExtent and Extent are not the collection's");
     const std::size_t pu = static_cast<std::size_t>(e[1] - e[0] + 1);
     for (const auto& [name, a] : p.arrays) {
       VtkXmlArray& o = out.arrays[name];
