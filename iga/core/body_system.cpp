@@ -173,6 +173,24 @@ void BodySystem::archive(StateArchive& a) {
   }
 }
 
+Eigen::MatrixXd BodySystem::near_null_space(const VectorXd& u, double t) const {
+  std::vector<Eigen::MatrixXd> parts;
+  Eigen::Index cols = 0;
+  for (int b = 0; b < num_bodies(); ++b) {
+    parts.push_back(bodies_[static_cast<std::size_t>(b)]->near_null_space(block(u, b), t));
+    cols += parts.back().cols();
+  }
+  Eigen::MatrixXd Z = Eigen::MatrixXd::Zero(num_dofs(), cols);
+  Eigen::Index at = 0;
+  for (int b = 0; b < num_bodies(); ++b) {
+    const Eigen::MatrixXd& P = parts[static_cast<std::size_t>(b)];
+    if (P.cols() == 0) continue;
+    Z.block(offset(b), at, P.rows(), P.cols()) = P;
+    at += P.cols();
+  }
+  return Z;
+}
+
 double BodySystem::residual_roundoff() const {
   double r = 0.0;
   for (const Body* b : bodies_) r = std::max(r, b->residual_roundoff());

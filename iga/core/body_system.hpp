@@ -53,6 +53,8 @@ class BodySystem : public NonlinearProblem {
   /// Each body's state in its section ("body b", with its number of unknowns checked).
   void archive(StateArchive& a) override;
   double residual_roundoff() const override;
+  /// Each body's near null space in its block of rows (its columns beside the others').
+  Eigen::MatrixXd near_null_space(const VectorXd& u, double t) const override;
   /// The bodies' status lines, joined by "; " (empty ones left out).
   std::string status() const override;
 

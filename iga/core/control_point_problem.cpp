@@ -150,6 +150,23 @@ void ControlPointProblem::current_points(const VectorXd& u, double t,
   dofs_.current_points(X_, u, t, x);
 }
 
+Eigen::MatrixXd ControlPointProblem::near_null_space(const VectorXd& u, double t) const {
+  const std::vector<Vector3d> x = current_points(u, t);
+  Vector3d c = Vector3d::Zero();
+  for (const Vector3d& p : x) c += p;
+  if (!x.empty()) c /= static_cast<double>(x.size());
+  Eigen::MatrixXd Z(dofs_.num_free(), 6);
+  VectorXd g = VectorXd::Zero(dofs_.num_cartesian()), z;
+  for (int m = 0; m < 6; ++m) {
+    const Vector3d e = Vector3d::Unit(m % 3);
+    for (std::size_t i = 0; i < x.size(); ++i)
+      g.segment<3>(3 * static_cast<Eigen::Index>(i)) = m < 3 ? e : Vector3d(e.cross(x[i] - c));
+    dofs_.reduce(g, z);
+    Z.col(m) = z;
+  }
+  return Z;
+}
+
 std::vector<Vector3d> ControlPointProblem::current_points(const VectorXd& u, double t) const {
   std::vector<Vector3d> x;
   current_points(u, t, x);

@@ -70,6 +70,10 @@ class ControlPointProblem : public Body {
   double residual_roundoff() const override;
   /// The pairs' status lines, joined by "; ".
   std::string status() const override;
+  /// The body's six rigid-body motions at its current control points x_i (translations e_k and
+  /// rotations e_k x (x_i - c) about their centroid c) in its free unknowns (DofMap::reduce:
+  /// the free components' shares of each motion; scalar unknowns 0).
+  Eigen::MatrixXd near_null_space(const VectorXd& u, double t) const override;
 
   // ---- Body: contact pairs, reactions ----------------------------------------------------------
   int attach(std::unique_ptr<ContactPair> pair) override;

@@ -94,6 +94,14 @@ class NonlinearProblem {
   /// differences of coordinates (contact: eps_N xi3 with xi3 = (r - rho).n - R): Newton cannot
   /// go below it, so the solver accepts |R| at or below it. Default 0.
   virtual double residual_roundoff() const { return 0.0; }
+  /// The near null space of the tangent at (u, t) for an algebraic multigrid preconditioner
+  /// (the Krylov path's, LinearSolver::set_near_null_space): one entry per unknown, in columns
+  /// that span the motions without strain, such as a body's rigid-body motions. Default: none
+  /// (no columns).
+  virtual Eigen::MatrixXd near_null_space(const VectorXd& u, double t) const {
+    (void)u, (void)t;
+    return {};
+  }
   /// A short status for the progress line (e.g. "contact 24 (stick 10, slip 14)").
   virtual std::string status() const { return {}; }
 };

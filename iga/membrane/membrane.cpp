@@ -92,10 +92,11 @@ MembraneResponse membrane_response(const MembraneMaterial& m, const Matrix2d& A,
 }
 
 MembraneProblem::MembraneProblem(NurbsSurface reference, MembraneMaterial material,
-                                 int quadrature_points)
+                                 int quadrature_points, const ElementBlock& block)
     : ControlPointProblem(reference.control_points(), "MembraneProblem", &membrane_fail),
       reference_(std::move(reference)),
-      material_(material) {
+      material_(material),
+      block_(block) {
   check_material(material_);
   const int p = reference_.degree_u(), q = reference_.degree_v();
   if (p < 1 || q < 1 || p > kMaxSurfaceBasisDegree || q > kMaxSurfaceBasisDegree)
@@ -113,6 +114,7 @@ MembraneProblem::MembraneProblem(NurbsSurface reference, MembraneMaterial materi
   const std::vector<Vector3d> X = reference_.control_points();
   for (std::size_t j = 0; j + 1 < bv.size(); ++j)
     for (std::size_t i = 0; i + 1 < bu.size(); ++i) {
+      if (!block_.contains(static_cast<int>(i), static_cast<int>(j))) continue;  // another's
       ++elements_;
       const double hu = 0.5 * (bu[i + 1] - bu[i]), hv = 0.5 * (bv[j + 1] - bv[j]);
       const double mu = 0.5 * (bu[i + 1] + bu[i]), mv = 0.5 * (bv[j + 1] + bv[j]);
@@ -170,7 +172,7 @@ void MembraneProblem::add_surface_load(const Vector3d& q, LoadCurve curve) {
     for (int k = 0; k < pt.basis.count(); ++k)
       f[static_cast<std::size_t>(pt.basis.global_index(k))] +=
           pt.basis.R[static_cast<std::size_t>(k)] * pt.wJ * q;
-  add_nodal_load(f, std::move(curve));
+  add_nodal_load(f, std::move(curve), /*split=*/!block_.whole());
 }
 
 void MembraneProblem::add_pressure(double p, LoadCurve curve) {
@@ -259,7 +261,7 @@ std::string MembraneProblem::describe() const {
 SampledMesh MembraneProblem::sample_model(const VectorXd& u, double t, int samples) const {
   const NurbsSurface current = current_surface(u, t);
   const NurbsSurface& S = reference_;
-  SampledMesh m = element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples);
+  SampledMesh m = element_grid(S.knots_u().breaks(), S.knots_v().breaks(), samples, block_);
   m.fields.name({"stretch_1", "stretch_2", "singular"},
                 {"displacement", "normal", "membrane_force_N11_N22_N12"});
   for (const auto& [pu, pv] : m.params) {

@@ -44,6 +44,7 @@
 #include "geometry/nurbs_surface.hpp"
 #include "geometry/rational_basis.hpp"
 #include "iga/core/control_point_problem.hpp"
+#include "iga/core/partition.hpp"
 
 namespace iga {
 
@@ -80,7 +81,11 @@ class MembraneProblem : public ControlPointProblem {
  public:
   /// Throws MembraneError: a bad material, degree < 1 or > kMaxSurfaceBasisDegree in a
   /// direction, quadrature_points outside [0, 20] (0: p + 1), a singular reference point.
-  MembraneProblem(NurbsSurface reference, MembraneMaterial material, int quadrature_points = 0);
+  /// Only the elements of `block` are built (a process's part of a membrane cut over several,
+  /// iga/core/partition.hpp): its energy, forces, tangent, surface loads, pressure and samples
+  /// are that part's; by default the whole patch.
+  MembraneProblem(NurbsSurface reference, MembraneMaterial material, int quadrature_points = 0,
+                  const ElementBlock& block = {});
 
   const NurbsSurface& reference() const { return reference_; }
   const MembraneMaterial& material() const { return material_; }
@@ -140,6 +145,7 @@ class MembraneProblem : public ControlPointProblem {
   NurbsSurface reference_;
   MembraneMaterial material_;
   int elements_ = 0;
+  ElementBlock block_;         ///< the elements built here
   std::vector<Point> points_;  ///< quadrature points, element by element
   int points_per_element_ = 0;
   std::vector<Pressure> pressures_;

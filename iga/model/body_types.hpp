@@ -73,5 +73,11 @@ BodyShape surface_shape(const NurbsSurface& S);
 void attach_surface_pairs(const BodyInput& in, ControlPointProblem& problem,
                           const NurbsSurface& surface, const std::string& body_type,
                           double thickness, const ElementBlock& block = {});
+/// This process's block of the surface's elements (in.rank of in.processes; the whole patch
+/// on one process), and the bound of the control points it touches (kMaxSurfaceControlPoints a
+/// process); a patch that cannot be cut so, or a block above the bound, fails at `sc` (the
+/// body's "surface"), naming `body_type`.
+ElementBlock surface_block(const BodyInput& in, const JsonCursor& sc, const NurbsSurface& S,
+                           const std::string& body_type);
 
 }  // namespace iga::model_detail

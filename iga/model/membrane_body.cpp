@@ -84,21 +84,18 @@ std::unique_ptr<Body> build_membrane(const BodyInput& in) {
   const JsonCursor sc = b["surface"];
   const auto* surface = dynamic_cast<const NurbsSurface*>(in.geometry.surface(sc.as_string()));
   if (surface == nullptr) sc.fail("names no NURBS surface of the geometry section");
-  if (const long n = static_cast<long>(surface->num_u()) * surface->num_v();
-      n > kMaxSurfaceControlPoints)
-    sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
-            std::to_string(kMaxSurfaceControlPoints) + " of a membrane body");
+  const ElementBlock block = surface_block(in, sc, *surface, "membrane");
   const MembraneMaterial material =
       parse_membrane_material(body_material(b, in.materials, {"membrane"}, "membrane"));
   const int qp = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
   std::unique_ptr<MembraneProblem> problem;
   try {
-    problem = std::make_unique<MembraneProblem>(*surface, material, qp);
+    problem = std::make_unique<MembraneProblem>(*surface, material, qp, block);
   } catch (const MembraneError& e) {
     sc.fail(e.what());
   }
   in.ctx.shape = surface_shape(*surface);
-  attach_surface_pairs(in, *problem, *surface, "membrane", material.thickness);
+  attach_surface_pairs(in, *problem, *surface, "membrane", material.thickness, block);
   for_each_entry(in.root, "boundary_conditions", in.ctx,
                  [&](const JsonCursor& o) { parse_membrane_condition(o, in.ctx, *problem); });
   for_each_entry(in.root, "loads", in.ctx,
@@ -113,6 +110,7 @@ BodyType membrane_body_type() {
   t.material_types = {"membrane"};
   t.check_material = [](const JsonCursor& m) { parse_membrane_material(m); };
   t.build = build_membrane;
+  t.cut = true;
   return t;
 }
 

@@ -198,16 +198,16 @@ ShellMaterial parse_shell_material(const JsonCursor& m) {
   return s;
 }
 
-/// The bound of a process's part of a shell (kMaxSurfaceControlPoints): the control points its
-/// block of elements touches (the whole surface on one process).
-void check_shell_size(const JsonCursor& sc, const NurbsSurface& S, const ElementBlock& block,
-                      int rank, int processes) {
+/// The bound of a process's part of a surface body (kMaxSurfaceControlPoints): the control
+/// points its block of elements touches (the whole surface on one process).
+void check_surface_size(const JsonCursor& sc, const NurbsSurface& S, const ElementBlock& block,
+                        int rank, int processes, const std::string& body_type) {
   const long n = static_cast<long>(S.num_u()) * S.num_v();
   if (processes == 1) {
     if (n > kMaxSurfaceControlPoints)
       sc.fail("the surface has " + std::to_string(n) + " control points, above the limit of " +
-              std::to_string(kMaxSurfaceControlPoints) +
-              " of a shell body (a process's; run it on several: docs/parallel.md)");
+              std::to_string(kMaxSurfaceControlPoints) + " of a " + body_type +
+              " body (a process's; run it on several: docs/parallel.md)");
     return;
   }
   const long nu = S.knots_u().breaks().size() - 1, nv = S.knots_v().breaks().size() - 1;
@@ -220,6 +220,26 @@ void check_shell_size(const JsonCursor& sc, const NurbsSurface& S, const Element
             std::to_string(kMaxSurfaceControlPoints) +
             " a process sets up: run it on more processes");
 }
+
+}  // namespace
+
+ElementBlock surface_block(const BodyInput& in, const JsonCursor& sc, const NurbsSurface& S,
+                           const std::string& body_type) {
+  ElementBlock block;
+  if (in.processes > 1) {  // this process's block of the patch's elements
+    const int nu = static_cast<int>(S.knots_u().breaks().size()) - 1;
+    const int nv = static_cast<int>(S.knots_v().breaks().size()) - 1;
+    try {
+      block = element_block(in.rank, in.processes, nu, nv);
+    } catch (const std::invalid_argument& e) {
+      sc.fail(e.what());
+    }
+  }
+  check_surface_size(sc, S, block, in.rank, in.processes, body_type);
+  return block;
+}
+
+namespace {
 
 /// The shell body, its contact pair, boundary conditions, springs and loads.
 std::unique_ptr<Body> build_shell(const BodyInput& in) {
@@ -234,18 +254,9 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   const JsonCursor mat = body_material(b, in.materials, {"shell"}, "shell");
   ShellOptions opt;
   opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
-  if (in.processes > 1) {  // this process's block of the patch's elements
-    const int nu = static_cast<int>(surface->knots_u().breaks().size()) - 1;
-    const int nv = static_cast<int>(surface->knots_v().breaks().size()) - 1;
-    try {
-      opt.block = element_block(in.rank, in.processes, nu, nv);
-    } catch (const std::invalid_argument& e) {
-      sc.fail(e.what());
-    }
-  }
   // A shell costs about 50 KB per control point to set up (its element matrices): a process
   // sets up at most kMaxSurfaceControlPoints of them (docs/model_format.md).
-  check_shell_size(sc, *surface, opt.block, in.rank, in.processes);
+  opt.block = surface_block(in, sc, *surface, "shell");
   std::optional<KirchhoffLoveShell> shell;
   try {
     shell.emplace(*surface, parse_shell_material(mat), opt);

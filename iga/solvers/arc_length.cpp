@@ -171,6 +171,8 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
   const NonlinearSolverSettings& s = settings_;
   linear_.set_symmetric(problem.symmetric());
   linear_.set_distributed(problem.distributed());
+  if (linear_.method() == LinearMethod::krylov)  // the step's start (Newton's, there)
+    linear_.set_near_null_space(problem.near_null_space(arc.u_last, arc.t));
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   std::string error;
   const auto finish = [&a](NewtonOutcome outcome, std::string message) {

@@ -37,6 +37,10 @@ class DistributedLinearSolver {
   /// Collective: x = K^-1 b with b (size n) the same on every rank; x, the whole solution, on
   /// every rank.
   [[nodiscard]] LinearSolveStatus solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// The Krylov method's near null space for the next factorize()s: columns of the whole
+  /// matrix's rows, the same on every rank (NonlinearProblem::near_null_space); ignored by
+  /// MUMPS.
+  void set_near_null_space(const Eigen::MatrixXd& Z);
   const std::string& message() const;
   /// The inertia's negative count after a symmetric MUMPS factorization, else -1.
   int negative_pivots() const;

@@ -174,6 +174,7 @@ struct LinearSolver::Impl {
   LinearMethod method = LinearMethod::suitesparse;
   std::unique_ptr<PetscEngine> engine;            ///< PETSc's solvers (method mumps or krylov)
   std::unique_ptr<DistributedLinearSolver> dist;  ///< the same over the ranks (distributed)
+  Eigen::MatrixXd modes;  ///< the Krylov method's near null space (set_near_null_space)
   LinearSolveStatus status = LinearSolveStatus::not_factorized;
   std::string message;
   bool fell_back = false;
@@ -185,6 +186,7 @@ struct LinearSolver::Impl {
   LinearSolveStatus factorize_petsc() {
     const Clock::time_point t0 = Clock::now();
     std::string why;
+    if (method == LinearMethod::krylov) engine->set_near_null_space(modes);
     const bool ok = engine->factorize(A, symmetric, why);
     return petsc_factorized(t0, ok ? LinearSolveStatus::success : LinearSolveStatus::singular, why,
                             engine->reused_analysis(), engine->negative_pivots());
@@ -218,6 +220,7 @@ struct LinearSolver::Impl {
     for (Eigen::Index j = 0; j < A_local.outerSize(); ++j)
       for (SparseMatrix::InnerIterator it(A_local, j); it; ++it)
         t.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+    if (method == LinearMethod::krylov) dist->set_near_null_space(modes);
     const LinearSolveStatus s = dist->factorize(static_cast<int>(A_local.rows()), t, symmetric);
     return petsc_factorized(t0, s, dist->message(), dist->reused_analysis(),
                             dist->negative_pivots());
@@ -416,6 +419,10 @@ void LinearSolver::set_distributed(bool distributed) {
   m.dist = distributed ? std::make_unique<DistributedLinearSolver>(m.method) : nullptr;
   m.backend = LinearBackend::none;
   m.status = LinearSolveStatus::not_factorized;
+}
+
+void LinearSolver::set_near_null_space(const Eigen::MatrixXd& Z) {
+  impl_->modes = Z;
 }
 
 bool LinearSolver::distributed() const {

@@ -97,6 +97,11 @@ class LinearSolver {
   void set_distributed(bool distributed);
   bool distributed() const;
   bool symmetric() const;
+  /// The Krylov method's near null space (the columns of Z, one entry per unknown: the
+  /// bodies' rigid-body motions, NonlinearProblem::near_null_space) for its algebraic
+  /// multigrid preconditioner (PETSc's GAMG), used from the next factorize() on; the direct
+  /// solvers ignore it. Empty: none.
+  void set_near_null_space(const Eigen::MatrixXd& Z);
 
   /// Analyzes (if the pattern changed) and factorizes A. Throws std::invalid_argument if A is
   /// not square; every numerical failure is a status, with a message.

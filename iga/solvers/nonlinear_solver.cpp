@@ -290,6 +290,9 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
   linear_.set_symmetric(problem.symmetric());
   linear_.set_distributed(problem.distributed());
+  // The Krylov path's multigrid gets the bodies' rigid-body motions at the step's start.
+  if (linear_.method() == LinearMethod::krylov)
+    linear_.set_near_null_space(problem.near_null_space(u, t));
 
   // Returns |R|, or -1 with `error` set when the problem threw.
   std::string error;

@@ -39,6 +39,9 @@ class PetscEngine {
   virtual int negative_pivots() const = 0;
   /// Whether the last factorize() kept the matrix's pattern (and MUMPS its analysis).
   virtual bool reused_analysis() const = 0;
+  /// The Krylov method's near null space for the next factorize()s (algebraic multigrid: the
+  /// rigid-body motions of the bodies, NonlinearProblem::near_null_space); ignored by MUMPS.
+  virtual void set_near_null_space(const Eigen::MatrixXd& Z) { (void)Z; }
 };
 
 /// The engine of `method` (mumps or krylov; PETSc is started on first use, ensure_petsc).

@@ -29,6 +29,7 @@ struct DistributedLinearSolver::Impl {
   int negative = -1;
   bool reused = false;
   bool ready = false;
+  Eigen::MatrixXd modes;  ///< the Krylov method's near null space (empty: none)
 
   ~Impl() { destroy(); }
   Impl() = default;
@@ -72,6 +73,7 @@ struct DistributedLinearSolver::Impl {
 
   bool setup(std::string& why) {
     return call(MatSetValuesCOO(A, cv.data(), INSERT_VALUES), "MatSetValuesCOO", why) &&
+           (method != LinearMethod::krylov || petsc::set_near_null_space(A, modes, why)) &&
            call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
            call(KSPSetUp(ksp), "KSPSetUp", why) &&
            petsc::check_factorization(ksp, method, symmetric, negative, why);
@@ -166,6 +168,10 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
     return LinearSolveStatus::success;
   m.message = why.empty() ? "the solution is not finite" : why;
   return LinearSolveStatus::singular;
+}
+
+void DistributedLinearSolver::set_near_null_space(const Eigen::MatrixXd& Z) {
+  impl_->modes = Z;
 }
 
 const std::string& DistributedLinearSolver::message() const {

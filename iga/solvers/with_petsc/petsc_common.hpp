@@ -7,6 +7,9 @@
 #include <petscksp.h>
 
 #include <string>
+#include <vector>
+
+#include <Eigen/Core>
 
 #include "iga/solvers/petsc_engine.hpp"
 
@@ -51,6 +54,45 @@ inline bool configure(KSP ksp, LinearMethod method, bool symmetric, std::string&
     return false;
   }
   return call(KSPSetFromOptions(ksp), "KSPSetFromOptions", why);
+}
+
+/// The near null space of A for an algebraic multigrid preconditioner (GAMG reads it:
+/// MatSetNearNullSpace): the columns of Z (A's rows; the same Z on every rank of A's
+/// communicator), orthonormalized by modified Gram-Schmidt, columns that add less than 1e-10
+/// of their norm left out. Nothing for an empty Z.
+inline bool set_near_null_space(Mat A, const Eigen::MatrixXd& Z, std::string& why) {
+  if (Z.cols() == 0) return true;
+  Eigen::MatrixXd Q(Z.rows(), 0);
+  for (Eigen::Index c = 0; c < Z.cols(); ++c) {
+    Eigen::VectorXd v = Z.col(c);
+    const double before = v.norm();
+    for (Eigen::Index k = 0; k < Q.cols(); ++k) v -= Q.col(k).dot(v) * Q.col(k);
+    if (!(v.norm() > 1e-10 * before)) continue;
+    Q.conservativeResize(Eigen::NoChange, Q.cols() + 1);
+    Q.col(Q.cols() - 1) = v / v.norm();
+  }
+  PetscInt lo = 0, hi = 0;
+  if (!call(MatGetOwnershipRange(A, &lo, &hi), "MatGetOwnershipRange", why)) return false;
+  std::vector<Vec> vecs(static_cast<std::size_t>(Q.cols()), nullptr);
+  bool ok = true;
+  for (std::size_t k = 0; ok && k < vecs.size(); ++k) {
+    PetscScalar* a = nullptr;
+    ok = call(MatCreateVecs(A, &vecs[k], nullptr), "MatCreateVecs", why) &&
+         call(VecGetArray(vecs[k], &a), "VecGetArray", why);
+    if (!ok) break;
+    for (PetscInt i = lo; i < hi; ++i) a[i - lo] = Q(i, static_cast<Eigen::Index>(k));
+    ok = call(VecRestoreArray(vecs[k], &a), "VecRestoreArray", why);
+  }
+  MatNullSpace space = nullptr;
+  ok = ok &&
+       call(MatNullSpaceCreate(PetscObjectComm(reinterpret_cast<PetscObject>(A)), PETSC_FALSE,
+                               static_cast<PetscInt>(vecs.size()), vecs.data(), &space),
+            "MatNullSpaceCreate", why) &&
+       call(MatSetNearNullSpace(A, space), "MatSetNearNullSpace", why);
+  if (space) MatNullSpaceDestroy(&space);
+  for (Vec& v : vecs)
+    if (v) VecDestroy(&v);
+  return ok;
 }
 
 /// After KSPSetUp: the preconditioner's failure, MUMPS's null pivots (INFOG(28)) as a singular

@@ -59,9 +59,13 @@ class SeqEngine final : public PetscEngine {
           !call(KSPSetOperators(ksp_, mat_, mat_), "KSPSetOperators", why))
         return false;
     }
+    if (method_ == LinearMethod::krylov && !petsc::set_near_null_space(mat_, modes_, why))
+      return false;
     return call(KSPSetUp(ksp_), "KSPSetUp", why) &&
            petsc::check_factorization(ksp_, method_, symmetric, negative_, why);
   }
+
+  void set_near_null_space(const Eigen::MatrixXd& Z) override { modes_ = Z; }
 
   bool solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, std::string& why) override {
     x.resize(b.size());
@@ -112,6 +116,7 @@ class SeqEngine final : public PetscEngine {
   std::vector<PetscScalar> values_;  ///< the matrix's values, which PETSc reads in place
   int negative_ = -1;
   bool reused_ = false;
+  Eigen::MatrixXd modes_;  ///< the Krylov method's near null space (empty: none)
 };
 
 }  // namespace

@@ -21,6 +21,7 @@ LinearSolveStatus DistributedLinearSolver::factorize(int,
 LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd&, Eigen::VectorXd&) {
   return LinearSolveStatus::not_factorized;
 }
+void DistributedLinearSolver::set_near_null_space(const Eigen::MatrixXd& /*Z*/) {}
 const std::string& DistributedLinearSolver::message() const {
   static const std::string none = "no PETSc";
   return none;

@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include <Eigen/SVD>
 #include <catch2/catch.hpp>
 
 #include "geometry/analytic_surfaces.hpp"
@@ -158,6 +159,50 @@ TEST_CASE("ControlPointProblem: two contact pairs add up (two half-stiffness pai
   VectorXd R3;
   copy.assemble(u, 1.0, R3, nullptr);
   CHECK(rel(R2, R3) == 0.0);
+}
+
+TEST_CASE(
+    "BodySystem: the near null space is each body's rigid-body motions, in the tangent's kernel "
+    "where the body is free and unstressed",
+    "[iga][core][body]") {
+  // A free straight rod, oblique to the axes (no supports: all six motions are free), and a rod
+  // clamped at its start, side by side. (Straight: the torsion-free reduced model is the one of
+  // initially straight rods, [MPW15] in kirchhoff_rod.hpp; its tangent at a curved reference
+  // does not annihilate rotations out of the curve's plane.)
+  NurbsCurve line = make_line(Vector3d(0.1, -0.2, 0.3), Vector3d(1.3, 0.7, -0.4));
+  line = subdivide(elevate_degree(line, 2), 6);
+  RodProblem free_rod(KirchhoffRod(line, {kEA, kEI, kEI, Vector3d::Zero()}));
+  RodProblem clamped = cantilever(0.0);
+  BodySystem S;
+  S.add(free_rod);
+  S.add(clamped);
+  const VectorXd u = VectorXd::Zero(S.num_dofs());
+  const Eigen::MatrixXd Z = S.near_null_space(u, 0.0);
+  REQUIRE(Z.rows() == S.num_dofs());
+  REQUIRE(Z.cols() == 12);
+  const int n0 = free_rod.num_dofs();
+  // Each body's columns in its own rows only; five independent motions of the centre line (a
+  // turn about the rod's own axis moves none of its control points).
+  CHECK(Z.block(n0, 0, clamped.num_dofs(), 6).cwiseAbs().maxCoeff() == 0.0);
+  CHECK(Z.block(0, 6, n0, 6).cwiseAbs().maxCoeff() == 0.0);
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Z.topLeftCorner(n0, 6));
+  const VectorXd sv = svd.singularValues();  // descending
+  CHECK(sv[4] > 1e-3 * sv[0]);
+  CHECK(sv[5] < 1e-12 * sv[0]);
+  // A translation along y moves every free component by 1 along y.
+  const Eigen::MatrixXd Zf = free_rod.near_null_space(VectorXd::Zero(n0), 0.0);
+  for (int i = 0; i < free_rod.num_control_points(); ++i) CHECK(Zf(free_rod.dof(i, 1), 1) == 1.0);
+  // The free rod's tangent at rest annihilates its six motions (to round-off); the clamped
+  // rod's does not annihilate its translations (its supports hold them).
+  VectorXd R;
+  SparseMatrix K;
+  S.assemble(u, 0.0, R, &K);
+  const double scale = Eigen::MatrixXd(K).cwiseAbs().maxCoeff();
+  for (int m = 0; m < 6; ++m) {
+    CAPTURE(m);
+    CHECK((K * Z.col(m)).norm() <= 1e-10 * scale * Z.col(m).norm());
+  }
+  CHECK((K * Z.col(8)).norm() > 1e-6 * scale * Z.col(8).norm());  // the clamped rod along z
 }
 
 }  // namespace test_body_system

@@ -3,7 +3,8 @@
 // r of P standing alone (SerialCommunicator(r, P): it says so but sums nothing), assembled at a
 // state of the serial run. Its residual and tangent are then its own share; summed over r they must
 // be the model's (every shell element, contact point, load and spring once: a shell's surface load
-// split with its elements, point loads and springs on process 0 only, a rod whole on one process),
+// split with its elements, point loads and springs on process 0 only, a rod whole on one process,
+// a membrane cut like a shell),
 // and so must the pairs' counts and tool forces. The processor grid and the parts' sizes are
 // checked too. The same analyses run under mpirun in tests/mpi/mpi_models.cpp; this test needs
 // neither MPI nor PETSc, so it runs in every build (the sanitizers' too).
@@ -12,9 +13,11 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "iga/core/partition.hpp"
+#include "iga/membrane/membrane.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/parallel/communicator.hpp"
 #include "iga/shell/shell_problem.hpp"
@@ -66,12 +69,35 @@ Assembly assemble(Analysis& a, const State& s) {
   return out;
 }
 
+/// The elements built of the surface bodies (shells and membranes) of a model or part, and
+/// their patches' elements.
+std::pair<int, int> surface_elements(const Analysis& a) {
+  int built = 0, patch = 0;
+  for (int b = 0; b < a.num_bodies(); ++b) {
+    if (const auto* shell = dynamic_cast<const ShellProblem*>(&a.body(b))) {
+      built += shell->shell().num_elements();
+      patch += shell->shell().num_patch_elements();
+    } else if (const auto* m = dynamic_cast<const MembraneProblem*>(&a.body(b))) {
+      built += m->num_elements();
+      patch += static_cast<int>((m->reference().knots_u().breaks().size() - 1) *
+                                (m->reference().knots_v().breaks().size() - 1));
+    }
+  }
+  return {built, patch};
+}
+
+void check_parts_of(const Json& doc, const std::string& path, int steps, int P);
+
 /// The parts of the model on P processes, assembled at s, summed; against the whole.
 void check_parts(const std::string& file, int steps, int P, const Json& loads = Json()) {
   CAPTURE(file, P);
   const std::string path = kData + file;
   Json doc = read_json_file(path);
   if (!loads.is_null()) doc["loads"] = loads;
+  check_parts_of(doc, path, steps, P);
+}
+
+void check_parts_of(const Json& doc, const std::string& path, int steps, int P) {
   const State s = serial_state(doc, path, steps);
   Analysis whole = Analysis::from_json(doc, path);
   const Assembly w = assemble(whole, s);
@@ -80,7 +106,7 @@ void check_parts(const std::string& file, int steps, int P, const Json& loads = 
   sum.K.resize(w.K.rows(), w.K.cols());
   sum.counts.resize(w.counts.size());
   sum.forces.assign(w.forces.size(), Vector3d::Zero());
-  int built = 0;  // shell elements built over the parts
+  int built = 0;  // surface elements built over the parts
   for (int r = 0; r < P; ++r) {
     const SerialCommunicator comm(r, P);
     Analysis part = Analysis::from_json(doc, path, comm);
@@ -94,14 +120,10 @@ void check_parts(const std::string& file, int steps, int P, const Json& loads = 
       sum.counts[k].slip += p.counts[k].slip;
       sum.forces[k] += p.forces[k];
     }
-    for (int b = 0; b < part.num_bodies(); ++b)
-      if (const auto* shell = dynamic_cast<const ShellProblem*>(&part.body(b)))
-        built += shell->shell().num_elements();
+    built += surface_elements(part).first;
   }
-  int patch = 0;
-  for (int b = 0; b < whole.num_bodies(); ++b)
-    if (const auto* shell = dynamic_cast<const ShellProblem*>(&whole.body(b)))
-      patch += shell->shell().num_patch_elements();
+  const auto [whole_built, patch] = surface_elements(whole);
+  CHECK(whole_built == patch);
   CHECK(built == patch);
   CHECK((sum.R - w.R).norm() <= 1e-12 * w.K.norm() * std::max(1.0, s.u.norm()));
   CHECK(SparseMatrix(sum.K - w.K).norm() <= 1e-12 * w.K.norm());
@@ -181,6 +203,32 @@ TEST_CASE("a model's parts over 2 and 4 processes add up to it: plate indented b
     {"type": "edge_load", "body": "plate", "edge": "u_min", "q": [0, 0, -0.01], "curve": "press"},
     {"type": "surface_load", "body": "plate", "q": [0, 0, -0.002], "curve": "press"}])");
   for (int P : {2, 3}) check_parts("indented_plate.json", 3, P, loads);
+}
+
+TEST_CASE(
+    "a model's parts over 2 and 3 processes add up to it: a membrane tube inflated against a "
+    "rigid wall",
+    "[partition]") {
+  // data/balloon.json (a quarter tube, follower pressure, symmetry edges) refined, with a
+  // rigid plane 1.05 from its axis across the 45 degree line that the tube reaches at t ~ 0.3.
+  const std::string path = kData + "balloon.json";
+  Json doc = read_json_file(path);
+  doc["geometry"]["tube"]["refine"]["subdivide"] = Json::array({8, 4});
+  const double c = 1.05 / std::sqrt(2.0);
+  doc["geometry"]["wall"] = {{"type", "plane"},
+                             {"center", {c, c, 0.25}},
+                             {"axis", {-1.0 / std::sqrt(2.0), -1.0 / std::sqrt(2.0), 0.0}}};
+  doc["contact"] = Json::array({{{"type", "surface_to_rigid"},
+                                 {"body", "tube"},
+                                 {"rigid", "wall"},
+                                 {"eps_N", 1000.0},
+                                 {"face", "mid"},
+                                 {"search_distance", 0.2}}});
+  doc["loads"].push_back({{"type", "surface_load"}, {"body", "tube"}, {"q", {0.0, 0.0, -0.01}}});
+  for (int P : {2, 3}) {
+    CAPTURE(P);
+    check_parts_of(doc, path, 2, P);
+  }
 }
 
 TEST_CASE("a model's parts over 2 and 3 processes add up to it: two ropes, each whole on one",

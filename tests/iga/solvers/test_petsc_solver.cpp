@@ -1,7 +1,8 @@
 // Tests of PETSc's solvers behind LinearSolver (iga/solvers/petsc_engine.hpp): MUMPS's LDL^T
 // and LU against SuiteSparse on the same systems, the inertia of a shifted Laplacian against
 // its eigenvalues in closed form, the pattern kept with new values, a singular matrix as a
-// status, a Krylov solver (GMRES with GAMG) on a 2-D Laplacian. In a build without PETSc the
+// status, a Krylov solver (GMRES with GAMG) on a 2-D Laplacian, with and without a near null
+// space. In a build without PETSc the
 // methods are refused with a clear message.
 #include <catch2/catch.hpp>
 
@@ -166,6 +167,16 @@ TEST_CASE("LinearSolver with PETSc: GMRES with GAMG solves a 2-D Laplacian",
   REQUIRE(s.solve(A, b, x) == LinearSolveStatus::success);
   CHECK(s.backend() == LinearBackend::krylov);
   CHECK(relative_residual(A, x, b) < 1e-9);  // the default relative tolerance, 1e-10
+  // With a near null space for GAMG (the Laplacian's: the constants), given with a dependent
+  // and a zero column that the orthonormalization leaves out: solved as well.
+  Eigen::MatrixXd Z(n, 3);
+  Z.col(0).setOnes();
+  Z.col(1).setConstant(2.0);
+  Z.col(2).setZero();
+  s.set_near_null_space(Z);
+  VectorXd y;
+  REQUIRE(s.solve(A, b, y) == LinearSolveStatus::success);
+  CHECK(relative_residual(A, y, b) < 1e-9);
 }
 
 }  // namespace test_petsc_solver
