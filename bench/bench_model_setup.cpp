@@ -7,10 +7,16 @@
 //   - make_wrap_path (geometry/constructions.hpp) alone, N arc elements (banded fit);
 //   - parse_json_text (geometry/json_reader.hpp) of an object of N keys (ordered insertion
 //     was quadratic) and of N unclosed brackets (the error's pointer was quadratic).
+//   - the memory of a shell contact model: data/saddle.json with its plate refined to N x N
+//     quadratic elements (7 x 7 contact points per element, as the paper's), the heap the model
+//     holds after its construction and after one assembly of residual and tangent at the start
+//     (the assembly's kept buffers and the matrix; no contact point active there), in bytes per
+//     control point of the plate (glibc's mallinfo2: the heap in use, not the resident pages).
 // These sizes were timed tests once; a loaded machine made them fail, so they are measured here.
 // Run: build/release/bench/bench_model_setup --benchmark_repetitions=5
-//   --benchmark_report_aggregates_only=true
+//   --benchmark_report_aggregates_only=true (the memory alone: --benchmark_filter=saddle_memory)
 #include <benchmark/benchmark.h>
+#include <malloc.h>
 
 #include <numbers>
 #include <string>
@@ -73,8 +79,39 @@ void BM_json_unclosed_brackets(benchmark::State& state) {
   state.SetComplexityN(state.range(0));
 }
 
+double heap_in_use() {
+  return static_cast<double>(mallinfo2().uordblks);
+}
+
+void BM_saddle_memory(benchmark::State& state) {
+  const auto n = static_cast<int>(state.range(0));
+  Json doc = read_json_file(std::string(IGA_SOURCE_DIR) + "/data/saddle.json");
+  doc["geometry"]["plate"]["refine"]["subdivide"] = n;
+  const double cps = static_cast<double>((n + 2) * (n + 2));  // quadratic: n + 2 per direction
+  for (auto _ : state) {
+    const double h0 = heap_in_use();
+    Analysis a = Analysis::from_json(doc, "saddle_fine.json");
+    const double h1 = heap_in_use();
+    BodySystem& sys = a.problem();
+    VectorXd u = VectorXd::Zero(sys.num_dofs()), R;
+    SparseMatrix K;
+    sys.assemble(u, 0.0, R, &K);
+    const double h2 = heap_in_use();
+    state.counters["setup_B_per_cp"] = (h1 - h0) / cps;
+    state.counters["assembled_B_per_cp"] = (h2 - h0) / cps;
+    state.counters["control_points"] = cps;
+  }
+  state.SetComplexityN(n * n);
+}
+
 }  // namespace
 
+BENCHMARK(BM_saddle_memory)
+    ->RangeMultiplier(2)
+    ->Range(20, 160)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->Complexity();
 BENCHMARK(BM_capstan_setup)
     ->RangeMultiplier(2)
     ->Range(7500, 60000)

@@ -35,23 +35,41 @@ RationalBasis rational_basis(const NurbsCurve& c, double xi) {
   return B;
 }
 
+SpanBasis span_basis(const KnotVector& U, int p, double t) {
+  const std::span<const double> k = U.span();
+  t = std::clamp(t, k[static_cast<std::size_t>(p)], k[k.size() - 1 - static_cast<std::size_t>(p)]);
+  SpanBasis b;
+  b.span = U.find_span(t);
+  ders_basis_funs(b.span, t, p, 2, k, b.N);
+  return b;
+}
+
+SpanBasisTable::SpanBasisTable(const KnotVector& U, int p, std::span<const double> params) {
+  rows_.reserve(params.size());
+  for (const double t : params) rows_.push_back(span_basis(U, p, t));
+}
+
 void rational_basis(const NurbsSurface& s, double u, double v, SurfaceBasis& B) {
+  const Domain2 dom = s.domain();
+  u = std::clamp(u, dom.u.lo, dom.u.hi);
+  v = std::clamp(v, dom.v.lo, dom.v.hi);
+  rational_basis(s, span_basis(s.knots_u(), s.degree_u(), u),
+                 span_basis(s.knots_v(), s.degree_v(), v), B);
+}
+
+void rational_basis(const NurbsSurface& s, const SpanBasis& bu, const SpanBasis& bv,
+                    SurfaceBasis& B) {
   const int p = s.degree_u(), q = s.degree_v();
   if (p > kMaxSurfaceBasisDegree || q > kMaxSurfaceBasisDegree)
     throw GeometryError("rational_basis: surface degree " + std::to_string(p) + " x " +
                         std::to_string(q) + " above the supported " +
                         std::to_string(kMaxSurfaceBasisDegree));
-  const Domain2 dom = s.domain();
-  u = std::clamp(u, dom.u.lo, dom.u.hi);
-  v = std::clamp(v, dom.v.lo, dom.v.hi);
-  B.span_u = s.knots_u().find_span(u);
-  B.span_v = s.knots_v().find_span(v);
+  B.span_u = bu.span;
+  B.span_v = bv.span;
   B.nu = p + 1;
   B.nv = q + 1;
   B.num_u_total = s.num_u();
-  BasisDerivs Nu, Nv;
-  ders_basis_funs(B.span_u, u, p, 2, s.knots_u().span(), Nu);
-  ders_basis_funs(B.span_v, v, q, 2, s.knots_v().span(), Nv);
+  const BasisDerivs &Nu = bu.N, &Nv = bv.N;
   // Weighted tensor products and the weight function W with its derivatives ([PT97] eq. 4.20).
   double W = 0, Wu = 0, Wv = 0, Wuu = 0, Wvv = 0, Wuv = 0;
   const int fu = B.span_u - p, fv = B.span_v - q;
@@ -85,6 +103,30 @@ void rational_basis(const NurbsSurface& s, double u, double v, SurfaceBasis& B) 
     B.R[l] = R;
     B.d1[l] = Ru;
     B.d2[l] = Rv;
+  }
+}
+
+void rational_basis_first(const SpanBasis& bu, const SpanBasis& bv, int p, int q, const double* w,
+                          double* rows) {
+  const BasisDerivs &Nu = bu.N, &Nv = bv.N;
+  double W = 0, Wu = 0, Wv = 0;
+  for (int j = 0, k = 0; j <= q; ++j)
+    for (int i = 0; i <= p; ++i, ++k) {
+      double* r = rows + 3 * k;
+      r[0] = Nu[0][i] * Nv[0][j] * w[k];
+      r[1] = Nu[1][i] * Nv[0][j] * w[k];
+      r[2] = Nu[0][i] * Nv[1][j] * w[k];
+      W += r[0];
+      Wu += r[1];
+      Wv += r[2];
+    }
+  const double iW = 1.0 / W;  // one division (these rows are formed at every assembly)
+  for (int k = 0; k < (p + 1) * (q + 1); ++k) {
+    double* r = rows + 3 * k;
+    const double R = r[0] * iW;
+    r[1] = (r[1] - R * Wu) * iW;
+    r[2] = (r[2] - R * Wv) * iW;
+    r[0] = R;
   }
 }
 

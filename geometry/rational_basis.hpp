@@ -16,6 +16,7 @@
 
 #include <array>
 #include <span>
+#include <vector>
 
 #include "geometry/bspline_basis.hpp"
 #include "geometry/nurbs_curve.hpp"
@@ -55,6 +56,42 @@ struct SurfaceBasis {
 /// (u, v) is clamped to the domain. Throws GeometryError for a degree above
 /// kMaxSurfaceBasisDegree.
 void rational_basis(const NurbsSurface& s, double u, double v, SurfaceBasis& B);
+
+/// The B-spline basis of one direction at one parameter: its knot span and N, N', N'' (A2.3).
+/// A surface's basis at (u, v) is the rational combination of the two directions' (below), so
+/// a tensor-product rule evaluates each direction once per point of its rule and span instead
+/// of once per point of the surface (quadrature and contact points keep no basis of their own).
+struct SpanBasis {
+  int span = 0;
+  BasisDerivs N{};  ///< rows 0..2; rows past the degree's are 0
+};
+/// t is clamped to the knots' domain [U_p, U_n].
+SpanBasis span_basis(const KnotVector& U, int p, double t);
+/// The surface basis from the directions' (bu for u, bv for v): the same numbers, bit for bit,
+/// as rational_basis(s, u, v, B) at the parameters bu and bv were made at. Throws GeometryError
+/// for a degree above kMaxSurfaceBasisDegree.
+void rational_basis(const NurbsSurface& s, const SpanBasis& bu, const SpanBasis& bv,
+                    SurfaceBasis& B);
+
+/// The values and first derivatives only, for k = i + (p+1) j: rows[3k] = R_k, rows[3k+1] =
+/// R_k,u, rows[3k+2] = R_k,v (rational_basis' to round-off: 1/W is taken once), with w[k] the
+/// weights of the (p+1)(q+1) control points (span_u - p + i, span_v - q + j): an element's
+/// points share them.
+void rational_basis_first(const SpanBasis& bu, const SpanBasis& bv, int p, int q, const double* w,
+                          double* rows);
+
+/// span_basis at a list of parameters of one direction (a tensor-product rule's points, the
+/// same n in each non-empty span, in order): the table a surface's grid of points is formed from.
+class SpanBasisTable {
+ public:
+  SpanBasisTable() = default;
+  SpanBasisTable(const KnotVector& U, int p, std::span<const double> params);
+  const SpanBasis& operator[](std::size_t i) const { return rows_[i]; }
+  std::size_t size() const { return rows_.size(); }
+
+ private:
+  std::vector<SpanBasis> rows_;
+};
 
 /// sum_k dR[k] x_k over the basis functions of B (x: the patch's control points, global
 /// indices): with dR = B.d1 or B.d2 the base vector a_1 or a_2 of the surface of points x.

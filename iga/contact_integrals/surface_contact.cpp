@@ -317,52 +317,84 @@ SurfaceContact::SurfaceContact(const NurbsSurface& reference, const RigidSurface
   const int np = params.points_per_direction;
   const int p = ref_.degree_u(), q = ref_.degree_v();
   nen_ = (p + 1) * (q + 1);
+  if (p > kMaxSurfaceBasisDegree || q > kMaxSurfaceBasisDegree)
+    throw GeometryError("SurfaceContact: surface degree " + std::to_string(p) + " x " +
+                        std::to_string(q) + " above the supported " +
+                        std::to_string(kMaxSurfaceBasisDegree));
   std::array<double, kMaxGaussPoints> gx{}, gw{};
   gauss_legendre(np, gx, gw);
   const std::vector<double> bu = ref_.knots_u().breaks(), bv = ref_.knots_v().breaks();
   const std::vector<Vector3d> X = ref_.control_points();
+  // The Gauss points of every span per direction, and their B-spline basis (the points keep
+  // none of their own: element_basis forms it).
+  const auto rule_points = [&](const std::vector<double>& b) {
+    std::vector<double> t;
+    for (std::size_t e = 0; e + 1 < b.size(); ++e) {
+      const double h = 0.5 * (b[e + 1] - b[e]);
+      for (int i = 0; i < np; ++i) t.push_back(b[e] + h * (1.0 + gx[static_cast<std::size_t>(i)]));
+    }
+    return t;
+  };
+  const std::vector<double> tu = rule_points(bu), tv = rule_points(bv);
+  table_u_ = SpanBasisTable(ref_.knots_u(), p, tu);
+  table_v_ = SpanBasisTable(ref_.knots_v(), q, tv);
+  std::size_t n_block = 0;
+  for (std::size_t ev = 0; ev + 1 < bv.size(); ++ev)
+    for (std::size_t eu = 0; eu + 1 < bu.size(); ++eu)
+      if (block.contains(static_cast<int>(eu), static_cast<int>(ev))) ++n_block;
+  elements_.reserve(n_block);
+  points_.reserve(n_block * static_cast<std::size_t>(np * np));
   std::vector<int> cps(static_cast<std::size_t>(nen_));
+  std::vector<double> rows(static_cast<std::size_t>(np * np * 3 * nen_));
   for (std::size_t ev = 0; ev + 1 < bv.size(); ++ev)
     for (std::size_t eu = 0; eu + 1 < bu.size(); ++eu) {
       if (!block.contains(static_cast<int>(eu), static_cast<int>(ev))) continue;
       const double hu = 0.5 * (bu[eu + 1] - bu[eu]), hv = 0.5 * (bv[ev + 1] - bv[ev]);
       Element el;
+      el.row_u = static_cast<int>(eu) * np;
+      el.row_v = static_cast<int>(ev) * np;
+      el.first_u = table_u_[static_cast<std::size_t>(el.row_u)].span - p;
+      el.first_v = table_v_[static_cast<std::size_t>(el.row_v)].span - q;
+      elements_.push_back(el);
+      element_basis(elements_.back(), rows.data());
+      for (int b = 0, k = 0; b <= q; ++b)
+        for (int a = 0; a <= p; ++a, ++k)
+          cps[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
       const int e = static_cast<int>(eu + (bu.size() - 1) * ev);  // over the whole patch
-      for (int jv = 0; jv < np; ++jv)
-        for (int iu = 0; iu < np; ++iu) {
+      for (int jv = 0, i = 0; jv < np; ++jv)
+        for (int iu = 0; iu < np; ++iu, ++i) {
           SurfaceContactPoint cp;
           cp.element = e;
-          cp.uv = Vector2d(bu[eu] + hu * (1.0 + gx[static_cast<std::size_t>(iu)]),
-                           bv[ev] + hv * (1.0 + gx[static_cast<std::size_t>(jv)]));
+          cp.uv = Vector2d(tu[static_cast<std::size_t>(el.row_u + iu)],
+                           tv[static_cast<std::size_t>(el.row_v + jv)]);
           cp.foot.patch = -1;
           cp.foot.status = ProjectionStatus::far;
-          basis_.resize(basis_.size() + 3 * static_cast<std::size_t>(nen_));
-          double* B = basis_.data() + basis_.size() - 3 * static_cast<std::size_t>(nen_);
-          // (R_k, R_k,u, R_k,v) for k = a + (p+1) b, control point (first_u + a, first_v + b)
-          SurfaceBasis sb;
-          rational_basis(ref_, cp.uv[0], cp.uv[1], sb);
-          el.first_u = sb.first_u();
-          el.first_v = sb.first_v();
-          for (int k = 0; k < nen_; ++k) {
-            const auto l = static_cast<std::size_t>(k);
-            B[3 * k] = sb.R[l];
-            B[3 * k + 1] = sb.d1[l];
-            B[3 * k + 2] = sb.d2[l];
-          }
-          for (int b = 0, k = 0; b <= q; ++b)
-            for (int a = 0; a <= p; ++a, ++k)
-              cps[static_cast<std::size_t>(k)] = ref_.index(el.first_u + a, el.first_v + b);
-          PointGeometry g;
-          point_geometry(B, nen_, cps.data(), X, 0.0, g);  // reference area element |A1 x A2|
+          PointGeometry g;  // reference area element |A1 x A2|
+          point_geometry(rows.data() + static_cast<std::size_t>(i) * 3 * nen_, nen_, cps.data(), X,
+                         0.0, g);
           cp.weight =
               gw[static_cast<std::size_t>(iu)] * gw[static_cast<std::size_t>(jv)] * hu * hv * g.j;
           points_.push_back(cp);
         }
-      elements_.push_back(el);
     }
   dofs_.resize(static_cast<std::size_t>(nen_));
   cold_.reserve(points_.size());
   cold_x_.reserve(points_.size());
+}
+
+void SurfaceContact::element_basis(const Element& el, double* rows) const {
+  // (R_k, R_k,u, R_k,v) for k = a + (p+1) b, control point (first_u + a, first_v + b), per
+  // point of the element (u fastest).
+  const int np = params_.points_per_direction;
+  const int p = ref_.degree_u(), q = ref_.degree_v();
+  std::array<double, kMaxSurfaceBasisPoints> w{};
+  for (int b = 0, k = 0; b <= q; ++b)
+    for (int a = 0; a <= p; ++a, ++k)
+      w[static_cast<std::size_t>(k)] = ref_.weight(el.first_u + a, el.first_v + b);
+  for (int jv = 0; jv < np; ++jv)
+    for (int iu = 0; iu < np; ++iu, rows += 3 * nen_)
+      rational_basis_first(table_u_[static_cast<std::size_t>(el.row_u + iu)],
+                           table_v_[static_cast<std::size_t>(el.row_v + jv)], p, q, w.data(), rows);
 }
 
 void SurfaceContact::check(const SurfaceContactParameters& p) const {
@@ -514,9 +546,7 @@ void SurfaceContact::assemble(std::span<const Vector3d> x, Eigen::VectorXd& R,
 SurfaceContact::Layout SurfaceContact::layout() const {
   return {params_.strategy == SurfaceContactStrategy::kRigidMaster,
           params_.points_per_direction * params_.points_per_direction,
-          basis_.data(),
-          3 * static_cast<std::size_t>(nen_),
-          static_cast<int>(elements_.size()),
+          3 * static_cast<std::size_t>(nen_), static_cast<int>(elements_.size()),
           static_cast<int>(points_.size()) >= kParallelContactPoints};
 }
 
@@ -528,7 +558,6 @@ void SurfaceContact::locate(std::span<const Vector3d> x, double c) {
   const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
   const bool master = lay.master, parallel = lay.parallel;
   const int per_element = lay.per_element, n_el = lay.n_el;
-  const double* const B0 = lay.B0;
   const std::size_t stride = lay.stride;
 
   // 1. Contact points on the face and warm-started projections; the rest is searched at once.
@@ -536,15 +565,17 @@ void SurfaceContact::locate(std::span<const Vector3d> x, double c) {
 #pragma omp parallel if (parallel)
   {
     std::vector<int> dofs(static_cast<std::size_t>(nen_));
+    std::vector<double> rows(static_cast<std::size_t>(per_element) * stride);
     PointGeometry g;
 #pragma omp for schedule(static)
     for (int e = 0; e < n_el; ++e) {
-      element_dofs(ref_, elements_[static_cast<std::size_t>(e)].first_u,
-                   elements_[static_cast<std::size_t>(e)].first_v, dofs);
-      for (std::size_t i = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
-           i < static_cast<std::size_t>(e + 1) * static_cast<std::size_t>(per_element); ++i) {
+      const Element& el = elements_[static_cast<std::size_t>(e)];
+      element_dofs(ref_, el.first_u, el.first_v, dofs);
+      element_basis(el, rows.data());
+      const std::size_t i0 = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
+      for (std::size_t i = i0; i < i0 + static_cast<std::size_t>(per_element); ++i) {
         SurfaceContactPoint& cp = points_[i];
-        point_geometry(B0 + i * stride, nen_, dofs.data(), x, c, g);
+        point_geometry(rows.data() + (i - i0) * stride, nen_, dofs.data(), x, c, g);
         cp.x = g.x;
         cp.normal = g.n;
         warm_[i] = warm_project(cp) ? 1 : 0;
@@ -577,7 +608,6 @@ void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::Vect
   const Layout lay = layout();  // plain locals: clang's OpenMP takes no structured bindings
   const bool master = lay.master, parallel = lay.parallel;
   const int per_element = lay.per_element, n_el = lay.n_el;
-  const double* const B0 = lay.B0;
   const std::size_t stride = lay.stride;
 
   // 2. Point laws, residual and element tangents.
@@ -601,19 +631,23 @@ void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::Vect
     // per element: Nall = [.. N_p ..], N_p = (R, R_,1, R_,2); Z: rows nen (3 k + l) + a,
     // [.. N_p M_p^kl ..]; Ke: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
     Eigen::MatrixXd Nall(nen_, 3 * per_element), Z(9 * nen_, 3 * per_element), Ke;
+    std::vector<double> rows(static_cast<std::size_t>(per_element) * stride);
     PointGeometry g;
 #pragma omp for schedule(static)
     for (int e = 0; e < n_el; ++e) {
-      element_dofs(ref_, elements_[static_cast<std::size_t>(e)].first_u,
-                   elements_[static_cast<std::size_t>(e)].first_v, dofs);
+      const Element& el = elements_[static_cast<std::size_t>(e)];
+      element_dofs(ref_, el.first_u, el.first_v, dofs);
       double* Re = element_R_.data() + static_cast<std::size_t>(e) * re_size;
-      int n_active = 0;  // points of this element with a tangent contribution
-      for (std::size_t i = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
-           i < static_cast<std::size_t>(e + 1) * static_cast<std::size_t>(per_element); ++i) {
+      int n_active = 0;        // points of this element with a tangent contribution
+      bool have_rows = false;  // the element's basis is formed at its first point with a foot
+      const std::size_t i0 = static_cast<std::size_t>(e) * static_cast<std::size_t>(per_element);
+      for (std::size_t i = i0; i < i0 + static_cast<std::size_t>(per_element); ++i) {
         SurfaceContactPoint& cp = points_[i];
         clear_law_state(cp);
         if (!found(cp.foot.status)) continue;
-        const double* B = B0 + i * stride;
+        if (!have_rows) element_basis(el, rows.data());
+        have_rows = true;
+        const double* B = rows.data() + (i - i0) * stride;
         point_geometry(B, nen_, dofs.data(), x, c, g);
         polish(cp.foot, g.x, g.n);
         const Surface& rigid_patch = rigid_->patch(cp.foot.patch);

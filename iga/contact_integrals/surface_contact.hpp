@@ -102,6 +102,7 @@
 #include "contact/contact_law.hpp"
 #include "contact/rigid_surface.hpp"
 #include "geometry/nurbs_surface.hpp"
+#include "geometry/rational_basis.hpp"
 #include "iga/contact_integrals/contact_augmentation.hpp"
 #include "iga/core/contact_pair.hpp"
 #include "iga/core/partition.hpp"
@@ -230,7 +231,11 @@ class SurfaceContact {
  private:
   struct Element {
     int first_u = 0, first_v = 0;  ///< index of the first non-zero basis function in u and v
+    int row_u = 0, row_v = 0;      ///< the element's first rows of table_u_, table_v_
   };
+  /// The element's basis rows: per point (u fastest), nen_ rows (R_a, R_a,1, R_a,2), row-major:
+  /// rows[(point * nen_ + a) * 3 + k] (per_element * 3 nen_ values).
+  void element_basis(const Element& el, double* rows) const;
   /// Local (warm) projection from the point's last foot; true if it stays inside its patch.
   bool warm_project(SurfaceContactPoint& cp) const;
   /// One more Newton step on a NURBS foot (to round-off).
@@ -242,7 +247,6 @@ class SurfaceContact {
   struct Layout {
     bool master;
     int per_element;
-    const double* B0;
     std::size_t stride;
     int n_el;
     bool parallel;
@@ -263,8 +267,9 @@ class SurfaceContact {
   int nen_ = 0;  ///< control points per element (p+1)(q+1)
   std::vector<Element> elements_;
   std::vector<SurfaceContactPoint> points_;
-  /// Per point, nen_ rows (R_a, R_a,1, R_a,2), row-major: basis_[(point * nen_ + a) * 3 + k].
-  std::vector<double> basis_;
+  /// The B-spline basis at the Gauss points of every span (span after span), in u and in v:
+  /// point (a, b) of an element is row row_u + a and row_v + b (element_basis).
+  SpanBasisTable table_u_, table_v_;
   // Rigid element boxes of all NURBS pieces, and their (piece, element) tags (broad phase).
   // Workspace (allocated once).
   std::vector<int> cold_;        ///< points needing a search in this assemble

@@ -221,10 +221,9 @@ void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, Spa
   assemble_cartesian(u, t, K != nullptr);
   dofs_.reduce(g_, R);  // R = P^T g
   if (!K) return;
-  free_triplets_.clear();
-  dofs_.reduce(cart_triplets_, free_triplets_);  // K_free = P^T K_cart P
+  dofs_.reduce_in_place(cart_triplets_);  // K_free = P^T K_cart P
   // the pattern is built again only when the triplets' sequence changed (the active set)
-  assembler_.assemble(free_triplets_, dofs_.num_free(), dofs_.num_free(), *K);
+  assembler_.assemble(cart_triplets_, dofs_.num_free(), dofs_.num_free(), *K);
 }
 
 std::vector<Vector3d> ControlPointProblem::nodal_residual(const VectorXd& u, double t) {

@@ -161,8 +161,8 @@ class ControlPointProblem : public Body {
   std::vector<Vector3d> x_;
   std::vector<double> s_;
   VectorXd g_;
-  std::vector<Triplet> cart_triplets_, free_triplets_;
-  PatternAssembler assembler_;  // K from free_triplets_, its pattern kept
+  std::vector<Triplet> cart_triplets_;  // the tangent's, reduced in place to the free unknowns
+  PatternAssembler assembler_;          // K from them, its pattern kept
 };
 
 }  // namespace iga

@@ -326,35 +326,61 @@ void DofMap::reduce(const VectorXd& g, VectorXd& R) const {
 void DofMap::reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const {
   refresh();
   free.reserve(free.size() + cart.size());
+  for (const Triplet& tr : cart) reduce_triplet(tr, free);
+}
+
+void DofMap::reduce_triplet(const Triplet& tr, std::vector<Triplet>& free) const {
   const int n3 = 3 * num_points();
-  for (const Triplet& tr : cart) {
-    if (tr.row() >= n3 || tr.col() >= n3) {  // a scalar's row or column
-      reduce_scalar_triplet(tr, free);
-      continue;
-    }
-    const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
-    const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
-    const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
-    if (!Pi.rotated && !Pj.rotated) {
-      const Component& ci = Pi.c[static_cast<std::size_t>(a)];
-      const Component& cj = Pj.c[static_cast<std::size_t>(b)];
-      if (ci.free >= 0 && cj.free >= 0)
-        free.emplace_back(ci.free, cj.free, ci.sign * cj.sign * tr.value());
-      continue;
-    }
-    for (int ki = 0; ki < 3; ++ki) {
-      const Component& ci = Pi.c[static_cast<std::size_t>(ki)];
-      if (ci.free < 0) continue;
-      const double qi = ci.sign * axis(Pi, a, ki);
-      if (qi == 0.0) continue;
-      for (int kj = 0; kj < 3; ++kj) {
-        const Component& cj = Pj.c[static_cast<std::size_t>(kj)];
-        if (cj.free < 0) continue;
-        const double qj = cj.sign * axis(Pj, b, kj);
-        if (qj != 0.0) free.emplace_back(ci.free, cj.free, qi * tr.value() * qj);
-      }
+  if (tr.row() >= n3 || tr.col() >= n3) {  // a scalar's row or column
+    reduce_scalar_triplet(tr, free);
+    return;
+  }
+  const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
+  const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
+  const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
+  if (!Pi.rotated && !Pj.rotated) {
+    const Component& ci = Pi.c[static_cast<std::size_t>(a)];
+    const Component& cj = Pj.c[static_cast<std::size_t>(b)];
+    if (ci.free >= 0 && cj.free >= 0)
+      free.emplace_back(ci.free, cj.free, ci.sign * cj.sign * tr.value());
+    return;
+  }
+  for (int ki = 0; ki < 3; ++ki) {
+    const Component& ci = Pi.c[static_cast<std::size_t>(ki)];
+    if (ci.free < 0) continue;
+    const double qi = ci.sign * axis(Pi, a, ki);
+    if (qi == 0.0) continue;
+    for (int kj = 0; kj < 3; ++kj) {
+      const Component& cj = Pj.c[static_cast<std::size_t>(kj)];
+      if (cj.free < 0) continue;
+      const double qj = cj.sign * axis(Pj, b, kj);
+      if (qj != 0.0) free.emplace_back(ci.free, cj.free, qi * tr.value() * qj);
     }
   }
+}
+
+void DofMap::reduce_in_place(std::vector<Triplet>& t) const {
+  refresh();
+  const int n3 = 3 * num_points();
+  std::vector<Triplet> spread;  // of rotated points and scalars
+  std::size_t w = 0;
+  for (std::size_t r = 0; r < t.size(); ++r) {
+    const Triplet tr = t[r];
+    if (tr.row() < n3 && tr.col() < n3) {
+      const PointDofs& Pi = points_[static_cast<std::size_t>(tr.row() / 3)];
+      const PointDofs& Pj = points_[static_cast<std::size_t>(tr.col() / 3)];
+      if (!Pi.rotated && !Pj.rotated) {
+        const Component& ci = Pi.c[static_cast<std::size_t>(tr.row() % 3)];
+        const Component& cj = Pj.c[static_cast<std::size_t>(tr.col() % 3)];
+        if (ci.free >= 0 && cj.free >= 0)
+          t[w++] = Triplet(ci.free, cj.free, ci.sign * cj.sign * tr.value());
+        continue;
+      }
+    }
+    reduce_triplet(tr, spread);
+  }
+  t.resize(w);
+  t.insert(t.end(), spread.begin(), spread.end());
 }
 
 void DofMap::reduce_scalar_triplet(const Triplet& tr, std::vector<Triplet>& free) const {

@@ -107,6 +107,11 @@ class DofMap {
   /// K_free = P^T K_cart P, triplet by triplet (appended to `free`; rows and columns of the
   /// Cartesian numbering, scalars at 3 n + k).
   void reduce(const std::vector<Triplet>& cart, std::vector<Triplet>& free) const;
+  /// The same in place: `t` holds P^T K_cart P's triplets after the call. A triplet between two
+  /// points without local axes gives at most one (kept in its place); those of rotated points
+  /// and scalars, spread over several, come after them (so no second list of the whole size is
+  /// kept: the tangent's triplets are most of an assembly's memory).
+  void reduce_in_place(std::vector<Triplet>& t) const;
 
  private:
   struct Prescribed {
@@ -132,6 +137,8 @@ class DofMap {
 
   void check_point(int point, const char* what) const;
   void check_scalar(int k, const char* what) const;
+  /// reduce() of one triplet (appended to `free`).
+  void reduce_triplet(const Triplet& tr, std::vector<Triplet>& free) const;
   /// reduce() of a triplet whose row or column is a scalar's.
   void reduce_scalar_triplet(const Triplet& tr, std::vector<Triplet>& free) const;
   void check_component(int component) const;

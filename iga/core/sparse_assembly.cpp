@@ -8,10 +8,17 @@ namespace iga {
 bool PatternAssembler::same_sequence(const std::vector<Triplet>& triplets, Eigen::Index rows,
                                      Eigen::Index cols) const {
   if (builds_ == 0 || pattern_.rows() != rows || pattern_.cols() != cols ||
-      triplets.size() != rows_.size())
+      triplets.size() != slot_.size())
     return false;
-  for (std::size_t k = 0; k < triplets.size(); ++k)
-    if (triplets[k].row() != rows_[k] || triplets[k].col() != cols_[k]) return false;
+  // Triplet k still belongs at slot_k: its row is the row index there, and slot_k lies in its
+  // column's range (the columns' ranges are disjoint, so the entry is (i_k, j_k)).
+  const auto* outer = pattern_.outerIndexPtr();
+  const auto* inner = pattern_.innerIndexPtr();
+  for (std::size_t k = 0; k < triplets.size(); ++k) {
+    const Eigen::Index j = triplets[k].col(), s = slot_[k];
+    if (j < 0 || j >= cols || inner[s] != triplets[k].row() || s < outer[j] || s >= outer[j + 1])
+      return false;
+  }
   return true;
 }
 
@@ -19,25 +26,23 @@ void PatternAssembler::build(const std::vector<Triplet>& triplets, Eigen::Index 
                              Eigen::Index cols) {
   // The pattern (the entries setFromTriplets makes, explicit zeros kept), then each triplet's
   // place in it by a search in its column's sorted row indices.
-  std::vector<Triplet> zeros;
-  zeros.reserve(triplets.size());
-  rows_.resize(triplets.size());
-  cols_.resize(triplets.size());
-  for (std::size_t k = 0; k < triplets.size(); ++k) {
-    rows_[k] = static_cast<int>(triplets[k].row());
-    cols_[k] = static_cast<int>(triplets[k].col());
-    zeros.emplace_back(rows_[k], cols_[k], 0.0);
+  {
+    std::vector<Triplet> zeros;
+    zeros.reserve(triplets.size());
+    for (const Triplet& t : triplets) zeros.emplace_back(t.row(), t.col(), 0.0);
+    pattern_.resize(rows, cols);
+    pattern_.setFromTriplets(zeros.begin(), zeros.end());
   }
-  pattern_.resize(rows, cols);
-  pattern_.setFromTriplets(zeros.begin(), zeros.end());
   pattern_.makeCompressed();
   slot_.resize(triplets.size());
   const auto* outer = pattern_.outerIndexPtr();
   const auto* inner = pattern_.innerIndexPtr();
   for (std::size_t k = 0; k < triplets.size(); ++k) {
-    const auto* first = inner + outer[cols_[k]];
-    const auto* last = inner + outer[cols_[k] + 1];
-    slot_[k] = std::lower_bound(first, last, rows_[k]) - inner;
+    const auto* first = inner + outer[triplets[k].col()];
+    const auto* last = inner + outer[triplets[k].col() + 1];
+    slot_[k] = static_cast<Matrix::StorageIndex>(
+        std::lower_bound(first, last, static_cast<Matrix::StorageIndex>(triplets[k].row())) -
+        inner);
   }
   ++builds_;
 }

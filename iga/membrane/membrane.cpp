@@ -112,20 +112,35 @@ MembraneProblem::MembraneProblem(NurbsSurface reference, MembraneMaterial materi
   gauss_legendre(ngv, xv, wv);
   const std::vector<double> bu = reference_.knots_u().breaks(), bv = reference_.knots_v().breaks();
   const std::vector<Vector3d> X = reference_.control_points();
+  // The Gauss points of every span per direction and their B-spline basis.
+  const auto rule_points = [](const std::vector<double>& br, int ng,
+                              const std::array<double, kMaxGaussPoints>& x) {
+    std::vector<double> t;
+    for (std::size_t e = 0; e + 1 < br.size(); ++e) {
+      const double h = 0.5 * (br[e + 1] - br[e]), m = 0.5 * (br[e + 1] + br[e]);
+      for (int a = 0; a < ng; ++a) t.push_back(m + h * x[static_cast<std::size_t>(a)]);
+    }
+    return t;
+  };
+  const std::vector<double> tu = rule_points(bu, ngu, xu), tv = rule_points(bv, ngv, xv);
+  table_u_ = SpanBasisTable(reference_.knots_u(), p, tu);
+  table_v_ = SpanBasisTable(reference_.knots_v(), q, tv);
+  SurfaceBasis B;
   for (std::size_t j = 0; j + 1 < bv.size(); ++j)
     for (std::size_t i = 0; i + 1 < bu.size(); ++i) {
       if (!block_.contains(static_cast<int>(i), static_cast<int>(j))) continue;  // another's
       ++elements_;
       const double hu = 0.5 * (bu[i + 1] - bu[i]), hv = 0.5 * (bv[j + 1] - bv[j]);
-      const double mu = 0.5 * (bu[i + 1] + bu[i]), mv = 0.5 * (bv[j + 1] + bv[j]);
       for (int b = 0; b < ngv; ++b)
         for (int a = 0; a < ngu; ++a) {
           Point pt;
-          const double u = mu + hu * xu[static_cast<std::size_t>(a)];
-          const double v = mv + hv * xv[static_cast<std::size_t>(b)];
-          rational_basis(reference_, u, v, pt.basis);
+          pt.row_u = static_cast<int>(i) * ngu + a;
+          pt.row_v = static_cast<int>(j) * ngv + b;
+          const double u = tu[static_cast<std::size_t>(pt.row_u)];
+          const double v = tv[static_cast<std::size_t>(pt.row_v)];
+          basis(pt, B);
           pt.w_param = hu * wu[static_cast<std::size_t>(a)] * hv * wv[static_cast<std::size_t>(b)];
-          const auto [A1, A2] = base(pt.basis, X);
+          const auto [A1, A2] = base(B, X);
           const double J = A1.cross(A2).norm();
           if (!(J > 0.0))
             membrane_fail("membrane: the reference surface is singular at (u, v) = (" +
@@ -144,8 +159,10 @@ std::pair<Vector3d, Vector3d> MembraneProblem::base(const SurfaceBasis& B,
 
 double MembraneProblem::energy(std::span<const Vector3d> x) const {
   double W = 0.0;
+  SurfaceBasis B;
   for (const Point& pt : points_) {
-    const auto [a1, a2] = base(pt.basis, x);
+    basis(pt, B);
+    const auto [a1, a2] = base(B, x);
     W += membrane_response(material_, pt.A, metric(a1, a2)).W * pt.wJ;
   }
   return W;
@@ -168,10 +185,13 @@ void MembraneProblem::symmetry(SurfaceEdge edge, const Vector3d& plane_normal) {
 
 void MembraneProblem::add_surface_load(const Vector3d& q, LoadCurve curve) {
   std::vector<Vector3d> f(static_cast<std::size_t>(num_control_points()), Vector3d::Zero());
-  for (const Point& pt : points_)
-    for (int k = 0; k < pt.basis.count(); ++k)
-      f[static_cast<std::size_t>(pt.basis.global_index(k))] +=
-          pt.basis.R[static_cast<std::size_t>(k)] * pt.wJ * q;
+  SurfaceBasis B;
+  for (const Point& pt : points_) {
+    basis(pt, B);
+    for (int k = 0; k < B.count(); ++k)
+      f[static_cast<std::size_t>(B.global_index(k))] +=
+          B.R[static_cast<std::size_t>(k)] * pt.wJ * q;
+  }
   add_nodal_load(f, std::move(curve), /*split=*/!block_.whole());
 }
 
@@ -187,13 +207,13 @@ void MembraneProblem::assemble_model(std::span<const Vector3d> x,
   const int n_el = points_per_element_;
   g.setZero(3 * num_control_points());
   Eigen::MatrixXd Ke;
+  SurfaceBasis B;
   for (int e = 0; e < elements_; ++e) {
-    const SurfaceBasis& B0 = points_[static_cast<std::size_t>(e * n_el)].basis;
-    const int np = B0.count();
+    const int np = (reference_.degree_u() + 1) * (reference_.degree_v() + 1);
     if (K) Ke.setZero(3 * np, 3 * np);
     for (int q = 0; q < n_el; ++q) {
       const Point& pt = points_[static_cast<std::size_t>(e * n_el + q)];
-      const SurfaceBasis& B = pt.basis;
+      basis(pt, B);
       const auto [a1, a2] = base(B, x);
       const MembraneResponse r = membrane_response(material_, pt.A, metric(a1, a2));
       std::array<Eigen::Matrix3d, kMaxSurfaceBasisPoints> BI;
@@ -226,7 +246,7 @@ void MembraneProblem::assemble_model(std::span<const Vector3d> x,
       for (int l = 0; l < np; ++l)
         for (int a = 0; a < 3; ++a)
           for (int b = 0; b < 3; ++b)
-            K->emplace_back(3 * B0.global_index(k) + a, 3 * B0.global_index(l) + b,
+            K->emplace_back(3 * B.global_index(k) + a, 3 * B.global_index(l) + b,
                             Ke(3 * k + a, 3 * l + b));
   }
   add_pressure_terms(x, t, g, K);
@@ -237,7 +257,11 @@ void MembraneProblem::add_pressure_terms(std::span<const Vector3d> x, double t, 
   double p = 0.0;
   for (const Pressure& pr : pressures_) p += pr.p * pr.curve(t);
   if (p == 0.0) return;
-  for (const Point& pt : points_) add_follower_pressure(pt.basis, p * pt.w_param, x, g, K);
+  SurfaceBasis B;
+  for (const Point& pt : points_) {
+    basis(pt, B);
+    add_follower_pressure(B, p * pt.w_param, x, g, K);
+  }
 }
 
 NurbsSurface MembraneProblem::current_surface(const VectorXd& u, double t) const {

@@ -128,9 +128,9 @@ class MembraneProblem : public ControlPointProblem {
 
  private:
   struct Point {
-    SurfaceBasis basis;
-    double w_param = 0.0;  ///< Gauss weight * parametric Jacobian (integrates du dv)
-    double wJ = 0.0;       ///< w_param |A_1 x A_2|
+    int row_u = 0, row_v = 0;  ///< its rows of table_u_, table_v_ (basis)
+    double w_param = 0.0;      ///< Gauss weight * parametric Jacobian (integrates du dv)
+    double wJ = 0.0;           ///< w_param |A_1 x A_2|
     Matrix2d A = Matrix2d::Zero();
   };
   struct Pressure {
@@ -147,6 +147,13 @@ class MembraneProblem : public ControlPointProblem {
   int elements_ = 0;
   ElementBlock block_;         ///< the elements built here
   std::vector<Point> points_;  ///< quadrature points, element by element
+  /// The B-spline basis in u at the Gauss points of every span (span after span), and in v.
+  SpanBasisTable table_u_, table_v_;
+  /// The rational basis at a quadrature point (the points keep none of their own).
+  void basis(const Point& pt, SurfaceBasis& B) const {
+    rational_basis(reference_, table_u_[static_cast<std::size_t>(pt.row_u)],
+                   table_v_[static_cast<std::size_t>(pt.row_v)], B);
+  }
   int points_per_element_ = 0;
   std::vector<Pressure> pressures_;
 };

@@ -308,45 +308,82 @@ void KirchhoffLoveShell::build_elements() {
   const int p = reference_.degree_u(), q = reference_.degree_v();
   const int ngu = options_.quadrature_points > 0 ? options_.quadrature_points : p + 1;
   const int ngv = options_.quadrature_points > 0 ? options_.quadrature_points : q + 1;
+  ngu_ = ngu;
   std::array<double, kMaxGaussPoints> xu{}, wu{}, xv{}, wv{};
   gauss_legendre(ngu, xu, wu);
   gauss_legendre(ngv, xv, wv);
   const KnotVector& U = reference_.knots_u();
   const KnotVector& V = reference_.knots_v();
+  // The Gauss points of every non-empty span, per direction: the basis tables.
+  const auto rule_points = [](const KnotVector& K, int deg, int n_basis, int ng,
+                              const std::array<double, kMaxGaussPoints>& x) {
+    std::vector<double> t;
+    for (int i = deg; i < n_basis; ++i) {
+      if (!(K[i + 1] > K[i])) continue;
+      const double m = 0.5 * (K[i] + K[i + 1]), h = 0.5 * (K[i + 1] - K[i]);
+      for (int a = 0; a < ng; ++a) t.push_back(m + h * x[static_cast<std::size_t>(a)]);
+    }
+    return t;
+  };
+  table_u_ = SpanBasisTable(U, p, rule_points(U, p, reference_.num_u(), ngu, xu));
+  table_v_ = SpanBasisTable(V, q, rule_points(V, q, reference_.num_v(), ngv, xv));
+  std::size_t n_block = 0;
+  for (int jv = q, ev = 0; jv < reference_.num_v(); ++jv) {
+    if (!(V[jv + 1] > V[jv])) continue;
+    for (int iu = p, eu = 0; iu < reference_.num_u(); ++iu)
+      if (U[iu + 1] > U[iu] && options_.block.contains(eu++, ev)) ++n_block;
+    ++ev;
+  }
+  elements_.reserve(n_block);
+  qps_.reserve(n_block * static_cast<std::size_t>(ngu * ngv));
+  SurfaceBasis B;
   for (int jv = q, ev = 0; jv < reference_.num_v(); ++jv) {
     if (!(V[jv + 1] > V[jv])) continue;
     for (int iu = p, eu = 0; iu < reference_.num_u(); ++iu) {
       if (!(U[iu + 1] > U[iu])) continue;
       ++patch_elements_;
+      const int col = eu;
       if (!options_.block.contains(eu++, ev)) continue;
       elements_.push_back({static_cast<int>(qps_.size()),
                            ngu * ngv,
                            iu,
                            jv,
+                           col * ngu,
+                           ev * ngv,
                            {{U[iu], U[iu + 1]}, {V[jv], V[jv + 1]}}});
       // Tensor-product Gauss rule mapped to the element (u fastest).
-      const double mu = 0.5 * (U[iu] + U[iu + 1]), hu = 0.5 * (U[iu + 1] - U[iu]);
-      const double mv = 0.5 * (V[jv] + V[jv + 1]), hv = 0.5 * (V[jv + 1] - V[jv]);
+      const double hu = 0.5 * (U[iu + 1] - U[iu]), hv = 0.5 * (V[jv + 1] - V[jv]);
       for (int b = 0; b < ngv; ++b)
         for (int a = 0; a < ngu; ++a) {
           const std::size_t ia = static_cast<std::size_t>(a), ib = static_cast<std::size_t>(b);
-          qps_.push_back(make_point(mu + hu * xu[ia], mv + hv * xv[ib], hu * wu[ia] * hv * wv[ib]));
+          const std::size_t ru = static_cast<std::size_t>(col * ngu + a),
+                            rv = static_cast<std::size_t>(ev * ngv + b);
+          rational_basis(reference_, table_u_[ru], table_v_[rv], B);
+          const double u = 0.5 * (U[iu] + U[iu + 1]) + hu * xu[ia];
+          const double v = 0.5 * (V[jv] + V[jv + 1]) + hv * xv[ib];
+          qps_.push_back(make_point(u, v, hu * wu[ia] * hv * wv[ib], B));
         }
     }
     ++ev;
   }
 }
 
+void KirchhoffLoveShell::basis(int e, int g, SurfaceBasis& B) const {
+  const Element& el = elements_[static_cast<std::size_t>(e)];
+  rational_basis(reference_, table_u_[static_cast<std::size_t>(el.row_u + g % ngu_)],
+                 table_v_[static_cast<std::size_t>(el.row_v + g / ngu_)], B);
+}
+
 KirchhoffLoveShell::QuadraturePoint KirchhoffLoveShell::make_point(double u, double v,
-                                                                   double w_param) const {
+                                                                   double w_param,
+                                                                   const SurfaceBasis& B) const {
   QuadraturePoint q;
   q.u = u;
   q.v = v;
   q.w_param = w_param;
-  rational_basis(reference_, u, v, q.basis);
   Kinematics k;
-  kinematics(q.basis, X_, q.basis.span_u - reference_.degree_u(),
-             q.basis.span_v - reference_.degree_v(), reference_.num_u(), k);
+  kinematics(B, X_, B.span_u - reference_.degree_u(), B.span_v - reference_.degree_v(),
+             reference_.num_u(), k);
   const Vector3d A3t = k.y[0].cross(k.y[1]);
   const double J = A3t.norm();
   if (!(J > 0.0))
@@ -409,9 +446,10 @@ void KirchhoffLoveShell::element_kernel(int e, std::span<const Vector3d> x, doub
   Kinematics kin;
   Density d;
   Eigen::Matrix<double, 15, 3> G;
+  SurfaceBasis B;
   for (int g = 0; g < el.qp_count; ++g) {
     const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + g)];
-    const SurfaceBasis& B = q.basis;
+    basis(e, g, B);
     kinematics(B, x, fu, fv, reference_.num_u(), kin);
     density<Order>(q, material_, thickness_rule_, kin, d);
     if (energy) *energy += q.wJ * d.W;  // Pi_e = int W dA
@@ -528,10 +566,12 @@ Vector3d KirchhoffLoveShell::normal(double u, double v, std::span<const Vector3d
 }
 
 ShellStresses KirchhoffLoveShell::stresses(double u, double v, std::span<const Vector3d> x) const {
-  const QuadraturePoint q = make_point(u, v, 0.0);
+  SurfaceBasis B;
+  rational_basis(reference_, u, v, B);
+  const QuadraturePoint q = make_point(u, v, 0.0, B);
   Kinematics k;
-  kinematics(q.basis, x, q.basis.span_u - reference_.degree_u(),
-             q.basis.span_v - reference_.degree_v(), reference_.num_u(), k);
+  kinematics(B, x, B.span_u - reference_.degree_u(), B.span_v - reference_.degree_v(),
+             reference_.num_u(), k);
   Density d;
   density<0>(q, material_, thickness_rule_, k, d);
   ShellStresses s;
@@ -542,8 +582,8 @@ ShellStresses KirchhoffLoveShell::stresses(double u, double v, std::span<const V
   s.energy_density = d.W;
   // Local frame of the reference: e1 = A1/|A1|, e2 = A3 x e1; N_ij = (e_i.A_a)(e_j.A_b) n^ab.
   Kinematics K0;
-  kinematics(q.basis, X_, q.basis.span_u - reference_.degree_u(),
-             q.basis.span_v - reference_.degree_v(), reference_.num_u(), K0);
+  kinematics(B, X_, B.span_u - reference_.degree_u(), B.span_v - reference_.degree_v(),
+             reference_.num_u(), K0);
   const Vector3d e1 = K0.y[0].normalized();
   const Vector3d e2 = K0.y[0].cross(K0.y[1]).normalized().cross(e1);
   Matrix2d T;

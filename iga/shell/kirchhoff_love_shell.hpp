@@ -209,12 +209,14 @@ class KirchhoffLoveShell {
     Matrix2d Aab = Matrix2d::Zero();  ///< A_ab
     Vector3d Bv = Vector3d::Zero();   ///< B_11, B_22, B_12
     Eigen::Matrix3d D = Eigen::Matrix3d::Zero();  ///< C in Voigt form (without h)
-    SurfaceBasis basis;
   };
   const QuadraturePoint& quadrature_point(int e, int q) const;
+  /// The rational basis at quadrature point q of element e (formed from the rule's per-span
+  /// tables, SpanBasisTable: the points keep no basis of their own).
+  void basis(int e, int q, SurfaceBasis& B) const;
 
  private:
-  QuadraturePoint make_point(double u, double v, double w_param) const;
+  QuadraturePoint make_point(double u, double v, double w_param, const SurfaceBasis& B) const;
   /// The elements of options_.block with their quadrature points (the constructor's).
   void build_elements();
   template <int Order>
@@ -224,6 +226,7 @@ class KirchhoffLoveShell {
   struct Element {
     int qp_begin = 0, qp_count = 0;
     int span_u = 0, span_v = 0;
+    int row_u = 0, row_v = 0;  ///< the element's first rows of table_u_, table_v_
     Domain2 range;
   };
   NurbsSurface reference_;
@@ -233,6 +236,10 @@ class KirchhoffLoveShell {
   std::vector<Element> elements_;
   int patch_elements_ = 0;
   std::vector<QuadraturePoint> qps_;
+  /// The B-spline basis in u at the Gauss points of every non-empty span (u-span after
+  /// u-span), and in v: quadrature point (a, b) of an element is row row_u + a and row_v + b.
+  SpanBasisTable table_u_, table_v_;
+  int ngu_ = 0;  ///< Gauss points per element in u
   ShellThicknessRule thickness_rule_;
 };
 

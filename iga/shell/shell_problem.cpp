@@ -117,12 +117,14 @@ void ShellProblem::add_spring(int point, double stiffness, LoadCurve curve,
 
 void ShellProblem::add_surface_load(const Vector3d& q, LoadCurve curve) {
   std::vector<Vector3d> f(static_cast<std::size_t>(num_control_points()), Vector3d::Zero());
+  SurfaceBasis B;
   for (int e = 0; e < shell_.num_elements(); ++e)
     for (int g = 0; g < shell_.num_quadrature_points(e); ++g) {
       const KirchhoffLoveShell::QuadraturePoint& qp = shell_.quadrature_point(e, g);
-      for (int k = 0; k < qp.basis.count(); ++k)  // f_I = int R_I q dA
-        f[static_cast<std::size_t>(qp.basis.global_index(k))] +=
-            (qp.wJ * qp.basis.R[static_cast<std::size_t>(k)]) * q;
+      shell_.basis(e, g, B);
+      for (int k = 0; k < B.count(); ++k)  // f_I = int R_I q dA
+        f[static_cast<std::size_t>(B.global_index(k))] +=
+            (qp.wJ * B.R[static_cast<std::size_t>(k)]) * q;
     }
   add_nodal_load(f, std::move(curve), /*split=*/!shell_.options().block.whole());
 }
@@ -179,10 +181,11 @@ void ShellProblem::add_pressure_terms(std::span<const Vector3d> x, double t, Vec
   double p = 0.0;
   for (const Pressure& pr : pressures_) p += pr.p * pr.curve(t);
   if (pressures_.empty() || p == 0.0) return;
+  SurfaceBasis B;
   for (int e = 0; e < shell_.num_elements(); ++e)
     for (int q = 0; q < shell_.num_quadrature_points(e); ++q) {
-      const KirchhoffLoveShell::QuadraturePoint& qp = shell_.quadrature_point(e, q);
-      add_follower_pressure(qp.basis, p * qp.w_param, x, g, K);
+      shell_.basis(e, q, B);
+      add_follower_pressure(B, p * shell_.quadrature_point(e, q).w_param, x, g, K);
     }
 }
 

@@ -1,6 +1,12 @@
 // The rational basis of curves and surfaces (geometry/rational_basis.hpp) against the NURBS
 // evaluation of geometry/nurbs_*: sum_j R_j P_j and its derivatives reproduce the point and
-// derivatives of a rational curve (circle) and surface (torus), and sum_j R_j = 1.
+// derivatives of a rational curve (circle) and surface (torus), and sum_j R_j = 1; the basis
+// formed from per-direction tables (SpanBasisTable, rational_basis_first) is the same.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
 #include <catch2/catch.hpp>
 
 #include "geometry/constructions.hpp"
@@ -72,6 +78,62 @@ TEST_CASE("rational_basis: a torus's point and derivatives up to the second from
       CHECK((xvv - d.Svv).norm() < 1e-11 * (1.0 + d.Svv.norm()));
       CHECK((xuv - d.Suv).norm() < 1e-11 * (1.0 + d.Suv.norm()));
     }
+}
+
+TEST_CASE(
+    "rational_basis: formed from a tensor-product rule's per-direction tables, the torus's "
+    "basis is the one evaluated at each point, bit for bit, and its first derivatives to round-off",
+    "[geometry][basis]") {
+  // A rational surface with distinct weights in both directions, refined so that it has many
+  // spans; the rule's points of every span per direction, as the shell and contact build them.
+  const NurbsSurface s = make_torus(Vector3d(0.2, 0.0, -0.1), Vector3d(0.0, 0.0, 1.0), 2.0, 0.5);
+  const std::vector<double> bu = s.knots_u().breaks(), bv = s.knots_v().breaks();
+  const std::array<double, 3> rule{-0.7745966692414834, 0.0, 0.7745966692414834};
+  const auto points = [&](const std::vector<double>& b) {
+    std::vector<double> t;
+    for (std::size_t e = 0; e + 1 < b.size(); ++e)
+      for (const double x : rule)
+        t.push_back(0.5 * (b[e] + b[e + 1]) + 0.5 * (b[e + 1] - b[e]) * x);
+    return t;
+  };
+  const std::vector<double> tu = points(bu), tv = points(bv);
+  const SpanBasisTable TU(s.knots_u(), s.degree_u(), tu), TV(s.knots_v(), s.degree_v(), tv);
+  REQUIRE(TU.size() == tu.size());
+  REQUIRE(TV.size() == tv.size());
+  SurfaceBasis A, B;
+  std::array<double, 3 * kMaxSurfaceBasisPoints> rows{};
+  std::array<double, kMaxSurfaceBasisPoints> w{};
+  int differ = 0;
+  double worst = 0.0;
+  for (std::size_t j = 0; j < tv.size(); ++j)
+    for (std::size_t i = 0; i < tu.size(); ++i) {
+      rational_basis(s, tu[i], tv[j], A);
+      rational_basis(s, TU[i], TV[j], B);
+      REQUIRE(B.span_u == A.span_u);
+      REQUIRE(B.span_v == A.span_v);
+      for (int k = 0; k < A.count(); ++k) {
+        const auto q = static_cast<std::size_t>(k);
+        differ += A.R[q] != B.R[q] || A.d1[q] != B.d1[q] || A.d2[q] != B.d2[q] ||
+                  A.d11[q] != B.d11[q] || A.d22[q] != B.d22[q] || A.d12[q] != B.d12[q];
+        w[q] = s.weight(A.first_u() + k % A.nu, A.first_v() + k / A.nu);
+      }
+      rational_basis_first(TU[i], TV[j], s.degree_u(), s.degree_v(), w.data(), rows.data());
+      for (int k = 0; k < A.count(); ++k) {
+        const auto q = static_cast<std::size_t>(k);
+        worst = std::max({worst, std::abs(rows[3 * q] - A.R[q]),
+                          std::abs(rows[3 * q + 1] - A.d1[q]) / (1.0 + std::abs(A.d1[q])),
+                          std::abs(rows[3 * q + 2] - A.d2[q]) / (1.0 + std::abs(A.d2[q]))});
+      }
+    }
+  CHECK(differ == 0);
+  CHECK(worst <= 1e-14);
+  // Parameters outside the domain are clamped as rational_basis(s, u, v) clamps them.
+  rational_basis(s, -1.0, 10.0, A);
+  rational_basis(s, span_basis(s.knots_u(), s.degree_u(), -1.0),
+                 span_basis(s.knots_v(), s.degree_v(), 10.0), B);
+  CHECK(A.span_u == B.span_u);
+  CHECK(A.span_v == B.span_v);
+  CHECK(A.R == B.R);
 }
 
 }  // namespace test_rational_basis

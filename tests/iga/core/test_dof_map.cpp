@@ -1,8 +1,8 @@
 // Tests of DofMap (iga/core/dof_map.hpp) with scalar unknowns beside the points: the free
 // numbering (points first, then the scalars), prescribed values along load curves, and the
-// reductions R = P^T g and K = P^T K_cart P against the dense map P read off current_points /
-// current_scalars, with rotated, fixed, tied and prescribed components and rows and columns of
-// scalars; bad indices and sizes fail.
+// reductions R = P^T g and K = P^T K_cart P (appended or in place) against the dense map P read
+// off current_points / current_scalars, with rotated, fixed, tied and prescribed components and
+// rows and columns of scalars; bad indices and sizes fail.
 #include <catch2/catch.hpp>
 
 #include <random>
@@ -124,6 +124,13 @@ TEST_CASE("DofMap: R = P^T g and K = P^T K_cart P with scalar rows and columns",
   K.setFromTriplets(free.begin(), free.end());
   const Eigen::MatrixXd expected = P.transpose() * Kc * P;
   CHECK((Eigen::MatrixXd(K) - expected).cwiseAbs().maxCoeff() < 1e-13);
+  // In place: the same triplets, those of plain points in their places, the spread ones after.
+  std::vector<Triplet> in_place = cart;
+  d.reduce_in_place(in_place);
+  CHECK(in_place.size() == free.size());
+  Eigen::SparseMatrix<double> Ki(nf, nf);
+  Ki.setFromTriplets(in_place.begin(), in_place.end());
+  CHECK((Eigen::MatrixXd(Ki) - expected).cwiseAbs().maxCoeff() < 1e-13);
 }
 
 TEST_CASE("DofMap: bad scalar indices and residual sizes fail with the owner's message",

@@ -76,11 +76,25 @@ TEST_CASE("PatternAssembler: setFromTriplets' matrix, the pattern kept while the
   check_same(K, ref);
   CHECK(assembler.builds() == 3);
 
+  // a triplet moved to another column, its row kept: the row index at its place still matches,
+  // its column's range does not: built again
+  t[5] = Triplet(t[5].row(), (t[5].col() + 1) % 50, t[5].value());
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 4);
+  // ... and moved within its column: built again
+  t[6] = Triplet((t[6].row() + 1) % 50, t[6].col(), t[6].value());
+  ref.setFromTriplets(t.begin(), t.end());
+  assembler.assemble(t, 50, 50, K);
+  check_same(K, ref);
+  CHECK(assembler.builds() == 5);
+
   // another size: built again; no triplets: an empty matrix of that size
   assembler.assemble({}, 7, 7, K);
   CHECK(K.rows() == 7);
   CHECK(K.nonZeros() == 0);
-  CHECK(assembler.builds() == 4);
+  CHECK(assembler.builds() == 6);
 }
 
 }  // namespace test_sparse_assembly
