@@ -397,6 +397,17 @@ void SurfaceContact::element_basis(const Element& el, double* rows) const {
                            table_v_[static_cast<std::size_t>(el.row_v + jv)], p, q, w.data(), rows);
 }
 
+std::size_t SurfaceContact::elements_with_foot() const {
+  const std::size_t per_element = static_cast<std::size_t>(params_.points_per_direction) *
+                                  static_cast<std::size_t>(params_.points_per_direction);
+  std::size_t n = 0;
+  for (std::size_t i0 = 0; i0 < points_.size(); i0 += per_element)
+    n += std::any_of(points_.begin() + static_cast<std::ptrdiff_t>(i0),
+                     points_.begin() + static_cast<std::ptrdiff_t>(i0 + per_element),
+                     [](const SurfaceContactPoint& cp) { return found(cp.foot.status); });
+  return n;
+}
+
 void SurfaceContact::check(const SurfaceContactParameters& p) const {
   auto fail = [](const std::string& what, double v) {
     throw std::invalid_argument("SurfaceContactParameters: " + what + ", got " + std::to_string(v));
@@ -621,12 +632,16 @@ void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::Vect
   const std::size_t re_size = 3 * static_cast<std::size_t>(nen_);
   element_R_.assign(static_cast<std::size_t>(n_el) * re_size, 0.0);
   element_active_.assign(static_cast<std::size_t>(n_el), 0);
-  thread_K_.resize(static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1));
-#pragma omp parallel if (parallel)
+  // On one thread the triplets go straight into K, after what is there (no second list of the
+  // contact's tangent is kept).
+  const bool direct = K != nullptr && (!parallel || omp_get_max_threads() == 1);
+  thread_K_.resize(direct ? 0 : static_cast<std::size_t>(parallel ? omp_get_max_threads() : 1));
+  if (direct) reserve_tangent(*K);
+#pragma omp parallel if (parallel && !direct)
   {
     std::vector<Eigen::Triplet<double>>& Kt =
-        thread_K_[static_cast<std::size_t>(omp_get_thread_num())];
-    Kt.clear();
+        direct ? *K : thread_K_[static_cast<std::size_t>(omp_get_thread_num())];
+    if (!direct) Kt.clear();
     std::vector<int> dofs(static_cast<std::size_t>(nen_));
     // per element: Nall = [.. N_p ..], N_p = (R, R_,1, R_,2); Z: rows nen (3 k + l) + a,
     // [.. N_p M_p^kl ..]; Ke: rows nen (3 k + l) + a, column b: K(3a+k, 3b+l)
@@ -677,9 +692,21 @@ void SurfaceContact::evaluate(std::span<const Vector3d> x, double c, Eigen::Vect
       R.segment<3>(3 * dofs_[static_cast<std::size_t>(k)]) +=
           Eigen::Map<const Vector3d>(Re + 3 * k);
   }
-  if (K)
-    for (const std::vector<Eigen::Triplet<double>>& Kt : thread_K_)
-      K->insert(K->end(), Kt.begin(), Kt.end());
+  if (K && !direct) join_tangents(*K);
+}
+
+void SurfaceContact::reserve_tangent(std::vector<Eigen::Triplet<double>>& K) const {
+  // Room for the elements with a foot (a bound of those with an active point).
+  const std::size_t n = K.size() + elements_with_foot() * 9 * static_cast<std::size_t>(nen_ * nen_);
+  if (n > K.capacity()) K.reserve(n);
+}
+
+void SurfaceContact::join_tangents(std::vector<Eigen::Triplet<double>>& K) const {
+  std::size_t n = K.size();
+  for (const std::vector<Eigen::Triplet<double>>& Kt : thread_K_) n += Kt.size();
+  if (n > K.capacity()) K.reserve(n);  // exactly: the tangent's list does not double
+  for (const std::vector<Eigen::Triplet<double>>& Kt : thread_K_)
+    K.insert(K.end(), Kt.begin(), Kt.end());
 }
 
 void SurfaceContact::commit() {

@@ -236,6 +236,12 @@ class SurfaceContact {
   /// The element's basis rows: per point (u fastest), nen_ rows (R_a, R_a,1, R_a,2), row-major:
   /// rows[(point * nen_ + a) * 3 + k] (per_element * 3 nen_ values).
   void element_basis(const Element& el, double* rows) const;
+  /// Elements with a point that has a foot (a bound of those with an active point).
+  std::size_t elements_with_foot() const;
+  /// evaluate's tangent on one thread: K's room for it, reserved at once (no doubling).
+  void reserve_tangent(std::vector<Eigen::Triplet<double>>& K) const;
+  /// evaluate's tangent on several threads: their lists appended to K in thread order.
+  void join_tangents(std::vector<Eigen::Triplet<double>>& K) const;
   /// Local (warm) projection from the point's last foot; true if it stays inside its patch.
   bool warm_project(SurfaceContactPoint& cp) const;
   /// One more Newton step on a NURBS foot (to round-off).

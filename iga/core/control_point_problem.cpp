@@ -197,6 +197,15 @@ VectorXd ControlPointProblem::dead_load(double t) const {
 
 void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool tangent) {
   cart_triplets_.clear();
+  // The tangent's list is most of an assembly's memory: it is kept at the last assembly's size
+  // and an eighth more (a list that doubled as it grew, or one too small, is replaced: it is
+  // empty here, nothing is copied), so that it does not double while it is filled.
+  const std::size_t want = cart_size_ + cart_size_ / 8;
+  if (tangent && (cart_triplets_.capacity() < cart_size_ ||
+                  cart_triplets_.capacity() > cart_size_ + cart_size_ / 4)) {
+    std::vector<Triplet>().swap(cart_triplets_);  // the old one freed first
+    cart_triplets_.reserve(want);
+  }
   if (!share().assembles) {  // another process assembles the body
     g_.setZero(dofs_.num_cartesian());
     return;
@@ -215,6 +224,7 @@ void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool t
   }
   const BodyState state{x_, s_, section_frames()};
   for (const auto& p : pairs_) p->add(state, t, g_, K);
+  if (K) cart_size_ = K->size();
 }
 
 void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {

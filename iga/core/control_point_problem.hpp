@@ -162,6 +162,7 @@ class ControlPointProblem : public Body {
   std::vector<double> s_;
   VectorXd g_;
   std::vector<Triplet> cart_triplets_;  // the tangent's, reduced in place to the free unknowns
+  std::size_t cart_size_ = 0;           // their number at the last assembly (before reduction)
   PatternAssembler assembler_;          // K from them, its pattern kept
 };
 

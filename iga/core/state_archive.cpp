@@ -19,6 +19,15 @@ StateArchive StateArchive::writer() {
   return a;
 }
 
+StateArchive StateArchive::file_writer(const std::string& path) {
+  StateArchive a;
+  a.out_path_ = path;
+  a.out_ = std::make_unique<std::ofstream>(path + ".part", std::ios::binary | std::ios::trunc);
+  if (!*a.out_) throw RestartError(path + ": cannot write the restart file");
+  a.out_->write(kMagic, sizeof kMagic - 1);
+  return a;
+}
+
 StateArchive StateArchive::reader(const std::string& path) {
   StateArchive a;
   a.loading_ = true;
@@ -41,7 +50,10 @@ void StateArchive::fail(const std::string& what) const {
 void StateArchive::raw(void* p, std::size_t n) {
   if (!loading_) {
     const auto* c = static_cast<const char*>(p);
-    data_.insert(data_.end(), c, c + n);
+    if (out_)
+      out_->write(c, static_cast<std::streamsize>(n));
+    else
+      data_.insert(data_.end(), c, c + n);
     return;
   }
   if (data_.size() - pos_ < n) fail("the file ends early (truncated, or of another model)");
@@ -92,7 +104,7 @@ void StateArchive::io(std::string& x) {
     pos_ += static_cast<std::size_t>(n);
     return;
   }
-  data_.insert(data_.end(), x.begin(), x.end());
+  raw(x.data(), x.size());
 }
 
 void StateArchive::io(Eigen::VectorXd& x) {
@@ -120,10 +132,17 @@ void StateArchive::finish() const {
          " bytes left unread after the last section (a restart file of another model)");
 }
 
-void StateArchive::save(const std::string& path) const {
+void StateArchive::save(const std::string& path) {
   namespace fs = std::filesystem;
   const std::string tmp = path + ".part";
-  {
+  if (out_) {
+    if (path != out_path_)
+      throw RestartError(path + ": this archive writes " + out_path_ + ", not this file");
+    out_->close();
+    const bool ok = !out_->fail();
+    out_.reset();
+    if (!ok) throw RestartError(path + ": writing the restart file failed");
+  } else {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw RestartError(path + ": cannot write the restart file");
     out.write(data_.data(), static_cast<std::streamsize>(data_.size()));

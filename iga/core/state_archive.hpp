@@ -11,6 +11,8 @@
 #pragma once
 
 #include <cstdint>
+#include <fstream>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,8 +29,12 @@ class RestartError : public std::runtime_error {
 
 class StateArchive {
  public:
-  /// An empty archive to write into.
+  /// An empty archive to write into (in memory, until save()).
   static StateArchive writer();
+  /// An archive that writes as it goes into `path`.part, renamed to `path` by save(path): the
+  /// state is never held whole in memory (a shell's contact points are hundreds of bytes each).
+  /// RestartError if the file cannot be opened.
+  static StateArchive file_writer(const std::string& path);
   /// The archive of a file, to read from; RestartError if it cannot be read or is not a
   /// restart file of this version.
   static StateArchive reader(const std::string& path);
@@ -70,8 +76,9 @@ class StateArchive {
   /// A reader: checks that everything was read (else the model reads less than was written).
   void finish() const;
   /// A writer: writes the file (through a temporary file renamed at the end: a run killed while
-  /// it writes leaves the previous restart file whole). RestartError if it cannot.
-  void save(const std::string& path) const;
+  /// it writes leaves the previous restart file whole). RestartError if it cannot, or if a
+  /// file_writer is saved under another path than its own.
+  void save(const std::string& path);
 
   /// RestartError naming the file and the section being read.
   [[noreturn]] void fail(const std::string& what) const;
@@ -82,7 +89,9 @@ class StateArchive {
   std::string file_;
   std::string current_;  // the section being read or written
   std::vector<char> data_;
-  std::size_t pos_ = 0;  // reader: next byte
+  std::size_t pos_ = 0;                 // reader: next byte
+  std::unique_ptr<std::ofstream> out_;  // file_writer: the temporary file written into
+  std::string out_path_;                // file_writer: the path save() renames it to
 };
 
 }  // namespace iga

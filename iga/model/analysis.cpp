@@ -615,7 +615,7 @@ struct Analysis::RunContext {
     w.u = u;
     w.steps = step_number();
     w.sliding_steps = sliding_steps;
-    StateArchive a = StateArchive::writer();
+    StateArchive a = StateArchive::file_writer(restart_path);  // written as it goes
     an.archive_run(a, w, sinks);
     a.save(restart_path);
     res.restart_file = restart_base;  // the name a restart is given (each process adds its own)

@@ -254,7 +254,7 @@ std::unique_ptr<Body> build_shell(const BodyInput& in) {
   const JsonCursor mat = body_material(b, in.materials, {"shell"}, "shell");
   ShellOptions opt;
   opt.quadrature_points = int_or(b, "quadrature_points", 0, 0, 20, "0..20 (0: p + 1)");
-  // A shell with its contact points costs about 26 KB per control point set up and 58 KB with
+  // A shell with its contact points costs about 26 KB per control point set up and 48 KB with
   // its tangent assembled: a process sets up at most kMaxSurfaceControlPoints of them
   // (docs/model_format.md).
   opt.block = surface_block(in, sc, *surface, "shell");

@@ -517,7 +517,13 @@ void KirchhoffLoveShell::assemble(std::span<const Vector3d> x, Eigen::VectorXd& 
   const int np = (reference_.degree_u() + 1) * (reference_.degree_v() + 1);
   const std::size_t per_element = static_cast<std::size_t>(9 * np * np);
   const std::size_t base = K ? K->size() : 0;
-  if (K) K->resize(base + static_cast<std::size_t>(ne) * per_element);
+  if (K) {
+    // An eighth more room for what the caller appends (springs, contact), so that the list,
+    // most of an assembly's memory, does not double for a few more triplets.
+    const std::size_t n = static_cast<std::size_t>(ne) * per_element;
+    if (K->capacity() < base + n) K->reserve(base + n + n / 8);
+    K->resize(base + n);
+  }
   std::vector<ShellElementVector> fe_all(static_cast<std::size_t>(ne));
   // Small meshes stay on one thread (the pool's start costs more than they do).
 #pragma omp parallel for schedule(static) if (ne >= kParallelElements)

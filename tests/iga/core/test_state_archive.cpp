@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -83,6 +85,23 @@ TEST_CASE("StateArchive: the same routine writes and reads, bit for bit", "[iga]
   CHECK(r.w == s.w);
   CHECK(r.points == s.points);
 
+  SECTION("an archive written as it goes into its file is the same file") {
+    const std::string streamed = path + ".streamed";
+    fs::remove(streamed);  // of an earlier run
+    StateArchive f = StateArchive::file_writer(streamed);
+    State copy = s;
+    copy.archive(f);
+    CHECK(fs::exists(streamed + ".part"));  // written into the temporary file
+    CHECK_FALSE(fs::exists(streamed));
+    CHECK_THROWS_WITH(f.save(path), Catch::Contains("this archive writes " + streamed));
+    f.save(streamed);
+    CHECK_FALSE(fs::exists(streamed + ".part"));
+    std::ifstream a(path, std::ios::binary), b(streamed, std::ios::binary);
+    const std::string da((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
+    const std::string db((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    CHECK(da.size() > 100);
+    CHECK(da == db);
+  }
   SECTION("a model with another number of points is refused") {
     State other;
     other.points.resize(3);
