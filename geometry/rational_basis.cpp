@@ -44,6 +44,17 @@ SpanBasis span_basis(const KnotVector& U, int p, double t) {
   return b;
 }
 
+std::vector<double> span_rule_points(std::span<const double> breaks, std::span<const double> x) {
+  std::vector<double> t;
+  if (breaks.size() < 2) return t;
+  t.reserve((breaks.size() - 1) * x.size());
+  for (std::size_t e = 0; e + 1 < breaks.size(); ++e) {
+    const double m = 0.5 * (breaks[e] + breaks[e + 1]), h = 0.5 * (breaks[e + 1] - breaks[e]);
+    for (const double xi : x) t.push_back(m + h * xi);
+  }
+  return t;
+}
+
 SpanBasisTable::SpanBasisTable(const KnotVector& U, int p, std::span<const double> params) {
   rows_.reserve(params.size());
   for (const double t : params) rows_.push_back(span_basis(U, p, t));

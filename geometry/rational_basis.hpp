@@ -80,6 +80,11 @@ void rational_basis(const NurbsSurface& s, const SpanBasis& bu, const SpanBasis&
 void rational_basis_first(const SpanBasis& bu, const SpanBasis& bv, int p, int q, const double* w,
                           double* rows);
 
+/// A rule's points x (on [-1, 1]) mapped into each span between consecutive breaks, span after
+/// span: m + h x, with m and h the span's midpoint and half length (the parameters a
+/// tensor-product quadrature's SpanBasisTable is made at).
+std::vector<double> span_rule_points(std::span<const double> breaks, std::span<const double> x);
+
 /// span_basis at a list of parameters of one direction (a tensor-product rule's points, the
 /// same n in each non-empty span, in order): the table a surface's grid of points is formed from.
 class SpanBasisTable {

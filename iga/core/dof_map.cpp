@@ -335,16 +335,19 @@ void DofMap::reduce_triplet(const Triplet& tr, std::vector<Triplet>& free) const
     reduce_scalar_triplet(tr, free);
     return;
   }
+  Triplet plain;
+  switch (reduce_plain(tr, plain)) {
+    case 1:
+      free.push_back(plain);
+      return;
+    case 0:
+      return;
+    default:
+      break;  // a rotated point
+  }
   const int i = tr.row() / 3, a = tr.row() % 3, j = tr.col() / 3, b = tr.col() % 3;
   const PointDofs& Pi = points_[static_cast<std::size_t>(i)];
   const PointDofs& Pj = points_[static_cast<std::size_t>(j)];
-  if (!Pi.rotated && !Pj.rotated) {
-    const Component& ci = Pi.c[static_cast<std::size_t>(a)];
-    const Component& cj = Pj.c[static_cast<std::size_t>(b)];
-    if (ci.free >= 0 && cj.free >= 0)
-      free.emplace_back(ci.free, cj.free, ci.sign * cj.sign * tr.value());
-    return;
-  }
   for (int ki = 0; ki < 3; ++ki) {
     const Component& ci = Pi.c[static_cast<std::size_t>(ki)];
     if (ci.free < 0) continue;
@@ -359,25 +362,28 @@ void DofMap::reduce_triplet(const Triplet& tr, std::vector<Triplet>& free) const
   }
 }
 
+int DofMap::reduce_plain(const Triplet& tr, Triplet& out) const {
+  const int n3 = 3 * num_points();
+  if (tr.row() >= n3 || tr.col() >= n3) return -1;  // a scalar's row or column
+  const PointDofs& Pi = points_[static_cast<std::size_t>(tr.row() / 3)];
+  const PointDofs& Pj = points_[static_cast<std::size_t>(tr.col() / 3)];
+  if (Pi.rotated || Pj.rotated) return -1;
+  const Component& ci = Pi.c[static_cast<std::size_t>(tr.row() % 3)];
+  const Component& cj = Pj.c[static_cast<std::size_t>(tr.col() % 3)];
+  if (ci.free < 0 || cj.free < 0) return 0;
+  out = Triplet(ci.free, cj.free, ci.sign * cj.sign * tr.value());
+  return 1;
+}
+
 void DofMap::reduce_in_place(std::vector<Triplet>& t) const {
   refresh();
-  const int n3 = 3 * num_points();
   std::vector<Triplet> spread;  // of rotated points and scalars
   std::size_t w = 0;
   for (std::size_t r = 0; r < t.size(); ++r) {
     const Triplet tr = t[r];
-    if (tr.row() < n3 && tr.col() < n3) {
-      const PointDofs& Pi = points_[static_cast<std::size_t>(tr.row() / 3)];
-      const PointDofs& Pj = points_[static_cast<std::size_t>(tr.col() / 3)];
-      if (!Pi.rotated && !Pj.rotated) {
-        const Component& ci = Pi.c[static_cast<std::size_t>(tr.row() % 3)];
-        const Component& cj = Pj.c[static_cast<std::size_t>(tr.col() % 3)];
-        if (ci.free >= 0 && cj.free >= 0)
-          t[w++] = Triplet(ci.free, cj.free, ci.sign * cj.sign * tr.value());
-        continue;
-      }
-    }
-    reduce_triplet(tr, spread);
+    const int kept = reduce_plain(tr, t[w]);  // w <= r: t[r] has been read
+    if (kept > 0) ++w;
+    if (kept < 0) reduce_triplet(tr, spread);
   }
   t.resize(w);
   t.insert(t.end(), spread.begin(), spread.end());

@@ -137,6 +137,9 @@ class DofMap {
 
   void check_point(int point, const char* what) const;
   void check_scalar(int k, const char* what) const;
+  /// reduce() of a triplet between two points without local axes: 1 and its image in `out`, or
+  /// 0 if a side is constrained (no image); -1 for a rotated point's or a scalar's (several).
+  int reduce_plain(const Triplet& tr, Triplet& out) const;
   /// reduce() of one triplet (appended to `free`).
   void reduce_triplet(const Triplet& tr, std::vector<Triplet>& free) const;
   /// reduce() of a triplet whose row or column is a scalar's.

@@ -113,16 +113,10 @@ MembraneProblem::MembraneProblem(NurbsSurface reference, MembraneMaterial materi
   const std::vector<double> bu = reference_.knots_u().breaks(), bv = reference_.knots_v().breaks();
   const std::vector<Vector3d> X = reference_.control_points();
   // The Gauss points of every span per direction and their B-spline basis.
-  const auto rule_points = [](const std::vector<double>& br, int ng,
-                              const std::array<double, kMaxGaussPoints>& x) {
-    std::vector<double> t;
-    for (std::size_t e = 0; e + 1 < br.size(); ++e) {
-      const double h = 0.5 * (br[e + 1] - br[e]), m = 0.5 * (br[e + 1] + br[e]);
-      for (int a = 0; a < ng; ++a) t.push_back(m + h * x[static_cast<std::size_t>(a)]);
-    }
-    return t;
-  };
-  const std::vector<double> tu = rule_points(bu, ngu, xu), tv = rule_points(bv, ngv, xv);
+  const std::vector<double> tu =
+      span_rule_points(bu, std::span<const double>(xu.data(), static_cast<std::size_t>(ngu)));
+  const std::vector<double> tv =
+      span_rule_points(bv, std::span<const double>(xv.data(), static_cast<std::size_t>(ngv)));
   table_u_ = SpanBasisTable(reference_.knots_u(), p, tu);
   table_v_ = SpanBasisTable(reference_.knots_v(), q, tv);
   SurfaceBasis B;

@@ -315,18 +315,12 @@ void KirchhoffLoveShell::build_elements() {
   const KnotVector& U = reference_.knots_u();
   const KnotVector& V = reference_.knots_v();
   // The Gauss points of every non-empty span, per direction: the basis tables.
-  const auto rule_points = [](const KnotVector& K, int deg, int n_basis, int ng,
-                              const std::array<double, kMaxGaussPoints>& x) {
-    std::vector<double> t;
-    for (int i = deg; i < n_basis; ++i) {
-      if (!(K[i + 1] > K[i])) continue;
-      const double m = 0.5 * (K[i] + K[i + 1]), h = 0.5 * (K[i + 1] - K[i]);
-      for (int a = 0; a < ng; ++a) t.push_back(m + h * x[static_cast<std::size_t>(a)]);
-    }
-    return t;
-  };
-  table_u_ = SpanBasisTable(U, p, rule_points(U, p, reference_.num_u(), ngu, xu));
-  table_v_ = SpanBasisTable(V, q, rule_points(V, q, reference_.num_v(), ngv, xv));
+  const std::vector<double> tu = span_rule_points(
+      U.breaks(), std::span<const double>(xu.data(), static_cast<std::size_t>(ngu)));
+  const std::vector<double> tv = span_rule_points(
+      V.breaks(), std::span<const double>(xv.data(), static_cast<std::size_t>(ngv)));
+  table_u_ = SpanBasisTable(U, p, tu);
+  table_v_ = SpanBasisTable(V, q, tv);
   std::size_t n_block = 0;
   for (int jv = q, ev = 0; jv < reference_.num_v(); ++jv) {
     if (!(V[jv + 1] > V[jv])) continue;
@@ -359,9 +353,7 @@ void KirchhoffLoveShell::build_elements() {
           const std::size_t ru = static_cast<std::size_t>(col * ngu + a),
                             rv = static_cast<std::size_t>(ev * ngv + b);
           rational_basis(reference_, table_u_[ru], table_v_[rv], B);
-          const double u = 0.5 * (U[iu] + U[iu + 1]) + hu * xu[ia];
-          const double v = 0.5 * (V[jv] + V[jv + 1]) + hv * xv[ib];
-          qps_.push_back(make_point(u, v, hu * wu[ia] * hv * wv[ib], B));
+          qps_.push_back(make_point(tu[ru], tv[rv], hu * wu[ia] * hv * wv[ib], B));
         }
     }
     ++ev;
