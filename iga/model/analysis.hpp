@@ -270,8 +270,12 @@ class Analysis {
   /// The distinct tools of the pairs, in the order the pairs name them.
   std::vector<Tool> tools() const;
 
-  /// Reactions (f_int - f_ext + contact, Cartesian) at the output's reaction points.
+  /// Reactions (f_int - f_ext + contact, Cartesian) at the output's reaction points; in a
+  /// linear analysis (solver "analysis": "linear") those of linear theory, r(0) + K_0 u.
   std::vector<Vector3d> reactions(const VectorXd& u, double t);
+  /// The diagonal of the bodies' bounding box at the start (the scale of the linear
+  /// analysis's reactions; 1 for a point-like model).
+  double model_size();
 
  private:
   Analysis() = default;
@@ -303,6 +307,8 @@ class Analysis {
                     const std::vector<std::unique_ptr<OutputSink>>& sinks);
   /// The record of a converged step at (u, t): counts, reactions, monitored displacements.
   AnalysisStep record_step(const VectorXd& u, double t, int iterations);
+  /// The bodies' reactions r(u, t) at the output's reaction points, summed over the processes.
+  std::vector<Vector3d> body_reactions(const VectorXd& u, double t);
   /// The load factor lambda of time t: (t - t0) / (t1 - t0) (steps.csv, summary.json).
   double load_factor(double t) const { return (t - settings_.t0) / (settings_.t1 - settings_.t0); }
   /// The summary of a run (summary.json).
@@ -329,6 +335,7 @@ class Analysis {
   std::unique_ptr<BodySystem> system_;  ///< on the heap: it points to the bodies
   std::vector<std::pair<std::string, LoadCurve>> curves_;
   NonlinearSolverSettings settings_;
+  double model_size_ = 0.0;  ///< model_size() once computed
   AnalysisOutput output_;
   double stop_full_slip_after_ = -1.0;
   int full_slip_steps_ = 1;

@@ -380,6 +380,25 @@ LinearMethod linear_method(const JsonCursor& c) {
 }
 }  // namespace
 
+namespace {
+/// "analysis": "auto" (default): the linear path while certified by the residual test
+/// (AnalysisKind), Newton for arc length and (Analysis::from_json) for contact; "linear": linear
+/// theory (load control only); "nonlinear": Newton.
+AnalysisKind analysis_kind(const JsonCursor& s, PathControl control) {
+  const bool arc = control == PathControl::arc_length;
+  if (!s.has("analysis")) return arc ? AnalysisKind::nonlinear : AnalysisKind::certified;
+  const JsonCursor c = s["analysis"];
+  const std::string kind = one_of(c, {"auto", "linear", "nonlinear"});
+  if (kind == "nonlinear" || (kind == "auto" && arc)) return AnalysisKind::nonlinear;
+  if (kind == "auto") return AnalysisKind::certified;
+  if (arc)
+    c.fail(
+        "\"linear\" needs load control: arc length follows a nonlinear path (\"control\": "
+        "\"arc_length\")");
+  return AnalysisKind::linear;
+}
+}  // namespace
+
 NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, int& slip_steps) {
   s.expect_object({"t_end",
                    "initial_step",
@@ -404,6 +423,7 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
                    "desired_iterations",
                    "max_turn_deg",
                    "linear_solver",
+                   "analysis",
                    "description"});
   NonlinearSolverSettings n;
   if (s.has("linear_solver")) n.linear_method = linear_method(s["linear_solver"]);
@@ -449,6 +469,7 @@ NonlinearSolverSettings parse_solver(const JsonCursor& s, double& stop_after, in
     n.max_turn_deg = c.as_number();
     if (!(n.max_turn_deg > 0.0 && n.max_turn_deg <= 180.0)) c.fail("must be in (0, 180]");
   }
+  n.analysis = analysis_kind(s, n.control);
   if (s.has("predictor"))
     n.secant_predictor = one_of(s["predictor"], {"none", "secant"}) == "secant";
   if (s.has("cutback_factor")) n.cutback_factor = positive(s["cutback_factor"]);

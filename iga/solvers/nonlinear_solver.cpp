@@ -58,6 +58,23 @@ void NonlinearSolverSettings::validate() const {
   if (desired_iterations < 1) bad_setting("desired_iterations", ">= 1", desired_iterations);
   if (!(max_turn_deg > 0.0 && max_turn_deg <= 180.0))
     bad_setting("max_turn_deg", "in (0, 180]", max_turn_deg);
+  if (analysis != AnalysisKind::nonlinear && control == PathControl::arc_length)
+    throw std::invalid_argument(std::string("NonlinearSolverSettings.analysis: must be nonlinear "
+                                            "with arc length (a linear path has no limit "
+                                            "points to follow), got ") +
+                                to_string(analysis));
+}
+
+const char* to_string(AnalysisKind k) {
+  switch (k) {
+    case AnalysisKind::nonlinear:
+      return "nonlinear";
+    case AnalysisKind::linear:
+      return "linear";
+    case AnalysisKind::certified:
+      return "certified";
+  }
+  return "?";
 }
 
 const char* to_string(PathControl c) {
@@ -128,6 +145,27 @@ double assemble_residual(NonlinearProblem& problem, const VectorXd& u, double t,
                            std::to_string(R.size()) + " and tangent of size " +
                            std::to_string(K.rows()) + " x " + std::to_string(K.cols()) + " for " +
                            std::to_string(n) + " unknowns");
+  return R.norm();
+}
+
+/// R(u, t) alone (no tangent) into R, timed and counted in r. Returns |R|, or -1 with `error`
+/// set when the problem threw.
+double assemble_rhs(NonlinearProblem& problem, const VectorXd& u, double t, int n, VectorXd& R,
+                    NonlinearSolverResult& r, std::string& error) {
+  const Clock::time_point t0 = Clock::now();
+  ++r.assemblies;
+  ++r.residual_assemblies;
+  try {
+    problem.assemble(u, t, R, nullptr);
+  } catch (const std::exception& e) {
+    r.time_assembly += seconds_since(t0);
+    error = e.what();
+    return -1.0;
+  }
+  r.time_assembly += seconds_since(t0);
+  if (R.size() != n)
+    throw std::logic_error("NonlinearProblem::assemble: residual of size " +
+                           std::to_string(R.size()) + " for " + std::to_string(n) + " unknowns");
   return R.norm();
 }
 
@@ -248,11 +286,58 @@ bool report_failed_step(std::ostream* log, NonlinearSolverResult& r, const StepA
   return true;
 }
 
+/// Load control: a converged step's jump ratio (StepAttempt::jump_ratio) from the norm of its
+/// increment, a jump counted in r.
+void record_jump(StepAttempt& a, NonlinearSolverResult& r, double increment) {
+  if (a.predicted > 0.0) a.jump_ratio = increment / a.predicted;
+  if (a.jump_ratio > kJumpRatio) ++r.jumps;
+}
+
+/// Whether a run takes the linear path (AnalysisKind) from its start; a linear analysis does not
+/// resume (std::invalid_argument), a certified one resumes with Newton.
+bool linear_start(AnalysisKind kind, bool resumed) {
+  if (resumed && kind == AnalysisKind::linear)
+    throw std::invalid_argument(
+        "NonlinearSolver::solve: a linear analysis does not resume a restart (its steps solve "
+        "from the start state on one factorization): run it from the start");
+  return kind != AnalysisKind::nonlinear && !resumed;
+}
+
+/// After an attempt of the given size: the round-off probe (not on the linear analysis's steps,
+/// which have no convergence test to be at the edge of) and the linear path's count.
+void settle_attempt(StepAttempt& a, NonlinearSolverResult& r, AnalysisKind kind, double size,
+                    double min_size) {
+  if (!a.linear || kind == AnalysisKind::certified) probe_refusal(a, size, min_size);
+  if (a.outcome != NewtonOutcome::converged) a.linear = false;
+  if (a.linear) ++r.linear_steps;
+}
+
+/// A failed step of the linear analysis ends the run (a smaller step has the same tangent),
+/// the state that of the last solved step, at t.
+void end_linear_run(std::ostream* log, NonlinearSolverResult& r, StepAttempt&& a, double t) {
+  r.status = NonlinearSolverStatus::failed;
+  r.message = format(
+      "linear analysis: the step to t = %.9g failed (%s: %s); the state is the last solved one, "
+      "t = %.9g",
+      a.t, to_string(a.outcome), a.message.c_str(), t);
+  if (log) *log << "  " << r.message << '\n';
+  r.attempts.push_back(std::move(a));
+}
+
 /// The progress line of converged step r.steps, at time t, lambda the fraction of the span done.
 void log_converged_step(std::ostream& log, const NonlinearSolverResult& r, const StepAttempt& a,
                         double t, double lambda, const NonlinearProblem& problem) {
   const double rn = a.residual_norms.back();
   const double en = a.energy_norms.empty() ? 0.0 : a.energy_norms.back();
+  if (a.linear) {  // one solve on the start tangent; |R| after it only when certified
+    log << format("step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  linear  |R(u_0)| = %.3e",
+                  r.steps, t, a.dt, lambda, a.residual_norms.front());
+    if (a.residual_norms.size() > 1) log << format("  certified |R| = %.3e", rn);
+    const std::string status = problem.status();
+    if (!status.empty()) log << "  " << status;
+    log << '\n';
+    return;
+  }
   log << format(
       "step %4d  t = %-11.6g dt = %.3e  lambda = %.4f  it = %2d  "
       "|R0| = %.3e  |R| = %.3e  E = %.3e",
@@ -284,7 +369,7 @@ void NonlinearSolver::set_settings(const NonlinearSolverSettings& settings) {
 
 void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w,
                              StepAttempt& a, NonlinearSolverResult& r, bool break_cycles,
-                             double r0_step) {
+                             double r0_step, double e1_step) {
   const NonlinearSolverSettings& s = settings_;
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
@@ -339,7 +424,7 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
     a.energy_norms.push_back(e);
     if (!std::isfinite(e))
       return finish(NewtonOutcome::not_finite, format("iteration %d: E is not finite", k));
-    if (k == 1) e1 = e;
+    if (k == 1) e1 = std::max(e, e1_step);
 
     u += w.du;
     double rk = assemble();
@@ -369,6 +454,68 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
          format("no convergence in %d iterations (|R| = %.3e, |R|/|R_0| = %.3e, E/E_1 = %.3e)",
                 s.max_iterations, a.residual_norms.back(), a.residual_norms.back() / r0,
                 e1 > 0.0 ? e_last / e1 : 0.0));
+}
+
+bool NonlinearSolver::linear_step(NonlinearProblem& problem, VectorXd& u, const VectorXd& u_ref,
+                                  double t, Workspace& w, StepAttempt& a, NonlinearSolverResult& r,
+                                  bool& factorized, bool certify) {
+  const NonlinearSolverSettings& s = settings_;
+  std::string error;
+  // R(u_0, t) (first step: with K_0, factorized below; later steps: R alone).
+  double r0 = -1.0;
+  if (!factorized) {
+    linear_.set_symmetric(problem.symmetric());
+    linear_.set_distributed(problem.distributed());
+    if (linear_.method() == LinearMethod::krylov)
+      linear_.set_near_null_space(problem.near_null_space(u_ref, t));
+    r0 = assemble_residual(problem, u_ref, t, w.n, w.R, w.K, r, error);
+  } else {
+    r0 = assemble_rhs(problem, u_ref, t, w.n, w.R, r, error);
+  }
+  if (!record_residual(r0, 0, error, a)) return true;
+  w.r0_max = std::max(w.r0_max, r0);
+  w.rhs = -w.R;
+  LinearSolveStatus ls = LinearSolveStatus::success;
+  if (!factorized) {
+    ls = solve_correction(linear_, w.K, w.rhs, w.du, a, r);
+    factorized = ls == LinearSolveStatus::success;
+  } else {
+    const Clock::time_point t0 = Clock::now();
+    ls = linear_.solve(w.rhs, w.du);
+    roundoff_probe_perturb(w.du);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
+    r.time_linear_solve += seconds_since(t0);
+  }
+  if (ls != LinearSolveStatus::success) {
+    a.outcome = NewtonOutcome::linear_solve_failed;
+    a.message =
+        format("linear path: linear solve %s: %s", to_string(ls), linear_.message().c_str());
+    return true;
+  }
+  a.iterations = 1;
+  a.predicted = w.du.norm();
+  a.energy_norms.push_back(std::abs(w.du.dot(w.R)));
+  u = u_ref + w.du;
+  if (!w.du.allFinite()) {
+    a.outcome = NewtonOutcome::not_finite;
+    a.message = "linear path: the solution is not finite";
+    return true;
+  }
+  if (!certify) {
+    a.outcome = NewtonOutcome::converged;
+    return true;
+  }
+  // The residual test of a Newton iteration (newton()) on R(u, t).
+  const double rk = assemble_rhs(problem, u, t, w.n, w.R, r, error);
+  if (!record_residual(rk, 1, error, a)) return true;
+  const double r_abs =
+      std::max({s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
+  if (rk <= r_abs || rk <= s.tol_residual_rel * r0) {
+    a.outcome = NewtonOutcome::converged;
+    return true;
+  }
+  a.message = format("|R| = %.3e after the linear solve, above the residual test's %.3e", rk,
+                     std::max(r_abs, s.tol_residual_rel * r0));
+  return false;
 }
 
 namespace detail {
@@ -438,6 +585,43 @@ void SolverCheckpoint::archive(StateArchive& a) {
   a.io(dt_flat);
 }
 
+int NonlinearSolver::attempt_step(NonlinearProblem& problem, VectorXd& u, const VectorXd& u_ref,
+                                  double t, Workspace& w, StepAttempt& a, NonlinearSolverResult& r,
+                                  bool& linear_path, bool& factorized) {
+  // Newton, then exact enforcement: multiplier updates and re-solves until they hold.
+  if (!linear_path) return solve_fixed(problem, u, t, w, a, r);
+  const bool certify = settings_.analysis == AnalysisKind::certified;
+  if (linear_step(problem, u, u_ref, t, w, a, r, factorized, certify)) {
+    a.linear = a.outcome == NewtonOutcome::converged;
+    // A failure of the certified path leaves the step to Newton (cut back as any other).
+    if (!a.linear && certify) linear_path = false;
+    return 1;
+  }
+  // Not linear to the residual test: Newton from the linear state (the linear solve was its
+  // first correction), in this step and the rest of the run.
+  linear_path = false;
+  r.linear_until = a.step;
+  r.linear_message = a.message;
+  if (log_)
+    *log_ << format(
+        "  step %d at t = %.9g: the linear path is not certified (%s); Newton from here on\n",
+        a.step, t, a.message.c_str());
+  // Its tests are those of the step's: against |R(u_0, t)| and the linear correction's
+  // energy (from the linear state its own first ones are round-off).
+  StepAttempt b;
+  newton(problem, u, t, w, b, r, false, a.residual_norms.front(), a.energy_norms.front());
+  const auto resolve = [&](StepAttempt& c, double r0) {
+    newton(problem, u, t, w, c, r, /*break_cycles=*/true, r0);
+  };
+  const int hardest =
+      1 + std::max(b.iterations, augment_until_satisfied(problem, u, t, b, resolve));
+  append_resolve(a, b);
+  a.augmentations += b.augmentations;
+  a.outcome = b.outcome;
+  a.message = b.message;
+  return hardest;
+}
+
 NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd& u,
                                              const StepCallback& on_step,
                                              const SolverCheckpoint* resume) {
@@ -463,6 +647,10 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
   double dt = std::clamp(s.initial_step, s.min_step, s.max_step);
   int attempted = 0;
   bool ended = false;
+  // The linear paths (AnalysisKind): every step from the start state, on one factorization.
+  bool linear_path = linear_start(s.analysis, resume != nullptr);
+  const VectorXd u_ref = linear_path ? u : VectorXd();
+  bool factorized = false;
   if (resume) {
     resume_counts(resume, r, attempted, w.r0_max);
     t = resume->t;
@@ -491,20 +679,19 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       u = u_last + (a.dt / (t - t_prev)) * (u_last - u_prev);
       a.predicted = (u - u_last).norm();
     }
+    const bool linear_try = linear_path;
     try {
-      // Newton, then exact enforcement: multiplier updates and re-solves until they hold.
-      hardest_solve = solve_fixed(problem, u, t_new, w, a, r);
+      hardest_solve = attempt_step(problem, u, u_ref, t_new, w, a, r, linear_path, factorized);
     } catch (...) {
       u = u_last;
       problem.restore();
       throw;
     }
     add_attempt_totals(r, a);
-    probe_refusal(a, std::min(dt, a.dt), s.min_step);
+    settle_attempt(a, r, s.analysis, std::min(dt, a.dt), s.min_step);
 
     if (a.outcome == NewtonOutcome::converged) {
-      if (a.predicted > 0.0) a.jump_ratio = (u - u_last).norm() / a.predicted;
-      if (a.jump_ratio > kJumpRatio) ++r.jumps;
+      record_jump(a, r, (u - u_last).norm());
       u_prev = u_last;
       t_prev = t;
       t = t_new;
@@ -516,7 +703,9 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
       problem.commit(u, t);
       r.time_callback += seconds_since(t0);
       if (log_) log_converged_step(*log_, r, a, t, (t - s.t0) / span, problem);
-      if (hardest_solve <= s.easy_iterations) dt = std::min(dt * s.growth_factor, s.max_step);
+      // The linear paths keep initial_step: their steps are the output's times.
+      if (!a.linear && hardest_solve <= s.easy_iterations)
+        dt = std::min(dt * s.growth_factor, s.max_step);
       checkpoint_ = counted_checkpoint(t, r, attempted, w.r0_max);
       checkpoint_.dt = dt;
       checkpoint_.u_prev = u_prev;
@@ -533,6 +722,12 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
         r.message = format("stopped by the step callback at t = %.9g", t);
         ended = true;
       }
+    } else if (linear_try && s.analysis == AnalysisKind::linear) {
+      // The linear analysis has no smaller step that could do better: the run ends.
+      u = u_last;
+      problem.restore();
+      end_linear_run(log_, r, std::move(a), t);
+      ended = true;
     } else {
       u = u_last;
       problem.restore();
@@ -576,6 +771,16 @@ void write_summary(std::ostream& os, const NonlinearSolverResult& r) {
       "commit and output %.4f s (%.1f %%)\n",
       r.time_total, r.time_assembly, 100.0 * r.time_assembly / total, r.time_linear_solve,
       100.0 * r.time_linear_solve / total, r.time_callback, 100.0 * r.time_callback / total);
+  if (r.linear_steps > 0 || r.linear_until > 0) {
+    os << format(
+        "  linear path: %d step(s) on one tangent at the start state, assembled and factorized "
+        "once (assemblies without the tangent %d)",
+        r.linear_steps, r.residual_assemblies);
+    if (r.linear_until > 0)
+      os << format("; not certified at step %d (%s): Newton from there", r.linear_until,
+                   r.linear_message.c_str());
+    os << '\n';
+  }
   if (r.augmentations > 0)
     os << format("  augmentations %d (multiplier updates, each followed by a Newton re-solve)\n",
                  r.augmentations);

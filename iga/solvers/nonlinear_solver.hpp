@@ -40,8 +40,31 @@ enum class PathControl {
                ///< cylindrical arc length [Cri81], through limit points and snap-backs
 };
 
+/// What each step solves (NonlinearSolverSettings::analysis).
+enum class AnalysisKind {
+  nonlinear,  ///< Newton-Raphson on every step
+  /// Small displacements: u(t) = u_0 - K_0^-1 R(u_0, t), with u_0 the start state and K_0 the
+  /// tangent of the first step's assembly at u_0, factorized once for the run. Per step one
+  /// assembly and one solve: the first step's assembly gives R and K_0, each later step's
+  /// R(u_0, t) alone. No Newton and no residual test: the solution of the linearized
+  /// problem (linear theory wherever the bodies' response at u_0 is linear in u).
+  linear,
+  /// The linear path while it is exact to the residual test: each step's u as for `linear`,
+  /// then R(u, t) assembled without the tangent; the step is accepted when it passes the
+  /// residual test of a Newton iteration (|R| <= tol_residual_rel |R(u_0, t)| or the absolute
+  /// test), so the state is Newton's to its tolerance. The first step that does not pass goes
+  /// on with Newton from the linear state (the linear solve was Newton's first correction),
+  /// and so does the rest of the run. A nonlinear run pays one residual assembly for the test.
+  certified,
+};
+
 /// Step control and convergence tests. validate() names the offending field.
 struct NonlinearSolverSettings {
+  /// Newton on every step (default), the linear path, or the linear path while certified
+  /// (AnalysisKind). The linear paths take steps of initial_step (landing on hit_times and t1),
+  /// need load control (arc length follows a nonlinear path) and do not resume a restart
+  /// (a resumed run is solved by Newton).
+  AnalysisKind analysis = AnalysisKind::nonlinear;
   /// Load control (default) or arc length. With arc length the sizes below keep their meaning
   /// in units of t for the first step: the arc length is Delta l_0 = initial_step |du_t| (du_t
   /// the tangent solution K du_t = -dR/dt at the start), and min_step, max_step bound it as
@@ -144,6 +167,7 @@ enum class NonlinearSolverStatus {
 const char* to_string(NewtonOutcome o);
 const char* to_string(NonlinearSolverStatus s);
 const char* to_string(PathControl c);
+const char* to_string(AnalysisKind k);
 
 /// Load control: a converged step whose increment exceeds this many times the tangent's
 /// prediction is reported as a probable jump over a limit point (StepAttempt::jump_ratio).
@@ -160,6 +184,7 @@ struct StepAttempt {
                             ///< re-solves after multiplier updates included
   int augmentations = 0;    ///< multiplier updates (re-solves) of the step
   double arc_length = 0.0;  ///< arc length Delta l of the step (0 under load control)
+  bool linear = false;      ///< solved by the linear path (AnalysisKind), accepted
   bool landed = false;      ///< arc length: the step was repeated under load control to land
                             ///< on t1 or a hit time it crossed
   /// Arc length: the angle (degrees) between the converged increment Delta u and the step's
@@ -195,6 +220,14 @@ struct NonlinearSolverResult {
   std::vector<int> step_iterations;   ///< Newton iterations of each converged step
   std::vector<StepAttempt> attempts;  ///< every attempt, in order
   int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
+  int residual_assemblies = 0;        ///< ... of them without the tangent (the linear paths)
+  /// Steps solved by the linear path (AnalysisKind::linear, or certified: accepted by the
+  /// residual test); their solves count as one iteration each.
+  int linear_steps = 0;
+  /// Certified linear path: the first step it could not certify, where Newton took over (0:
+  /// none), and why.
+  int linear_until = 0;
+  std::string linear_message;
   int cholmod_factorizations = 0;
   int ldlt_factorizations = 0;
   int umfpack_factorizations = 0;
@@ -303,8 +336,25 @@ class NonlinearSolver {
   /// before (a 2-cycle, e.g. points flipping between stick and slip) is followed by a half step.
   /// `r0_step`: |R_0| of the step's first solve; a re-solve's relative residual test is taken
   /// against the larger of it and its own |R_0| (which is only the multipliers' jump).
+  /// `e1_step`: E_1 of the step's first correction where it was made before (the linear path);
+  /// the energy test is taken against the larger of it and its own E_1.
   void newton(NonlinearProblem& problem, VectorXd& u, double t, Workspace& w, StepAttempt& a,
-              NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0);
+              NonlinearSolverResult& r, bool break_cycles = false, double r0_step = 0.0,
+              double e1_step = 0.0);
+  /// One step of the linear path (AnalysisKind) to time t from the start state u_ref into u:
+  /// assembles R(u_ref, t) (with the tangent K_0 and its factorization when `factorized` is
+  /// false, then set), solves, and for `certify` assembles R(u, t) and tests it. Returns true
+  /// when the step is done (a's outcome converged, or a failure of the linear path); false
+  /// when certification failed (u is the linear state, a holds its norms).
+  bool linear_step(NonlinearProblem& problem, VectorXd& u, const VectorXd& u_ref, double t,
+                   Workspace& w, StepAttempt& a, NonlinearSolverResult& r, bool& factorized,
+                   bool certify);
+  /// One attempt of a load-control step to t: the linear path while `linear_path` (cleared
+  /// when it hands over to Newton), else Newton and exact enforcement. Returns the most
+  /// iterations of one solve.
+  int attempt_step(NonlinearProblem& problem, VectorXd& u, const VectorXd& u_ref, double t,
+                   Workspace& w, StepAttempt& a, NonlinearSolverResult& r, bool& linear_path,
+                   bool& factorized);
   /// The arc-length run (settings.control == arc_length).
   NonlinearSolverResult solve_arc_length(NonlinearProblem& problem, VectorXd& u,
                                          const StepCallback& on_step,

@@ -50,6 +50,11 @@ std::string format(const char* fmt, Args... args) {
 double assemble_residual(NonlinearProblem& problem, const VectorXd& u, double t, int n, VectorXd& R,
                          SparseMatrix& K, NonlinearSolverResult& r, std::string& error);
 
+/// R(u, t) alone (no tangent) into R, timed and counted in r. Returns |R|, or -1 with `error`
+/// set when the problem threw.
+double assemble_rhs(NonlinearProblem& problem, const VectorXd& u, double t, int n, VectorXd& R,
+                    NonlinearSolverResult& r, std::string& error);
+
 /// The Newton correction: K du = rhs, timed in r, the factorizations counted in a by backend.
 LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, const VectorXd& rhs,
                                    VectorXd& du, StepAttempt& a, NonlinearSolverResult& r);

@@ -146,6 +146,8 @@ class PyAnalysis {
     d["steps"] = result_.solver.steps;
     d["cutbacks"] = result_.solver.cutbacks;
     d["newton_iterations"] = result_.solver.total_iterations;
+    d["linear_steps"] = result_.solver.linear_steps;  // solved by the linear path
+    d["assemblies"] = result_.solver.assemblies;
     d["full_slip"] = result_.full_slip;
     d["seconds"] = result_.solver.time_total;
     d["restart_file"] = result_.restart_file;

@@ -171,3 +171,17 @@ def test_bad_input_raises_model_error_with_the_json_path(source, tmp_path):
         rci.Model.load(source / "data/capstan.json").run(on_step=3)
     with pytest.raises(KeyError):
         rci.Model.load(source / "data/capstan.json").run().displacements("nobody")
+
+
+def test_linear_analysis(source):
+    # The Scordelis-Lo roof's linear analysis: one assembly, one solve, the linear value.
+    model = rci.Model.load(source / "data/scordelis_lo.json")
+    linear = model.run()
+    assert linear.converged and linear.linear_steps == 1 and linear.assemblies == 1
+    w = -linear.steps["free_edge_mid_uz"][-1]
+    assert w == pytest.approx(0.300584, rel=1e-5)
+    # Newton on the same model at 1e-5 of the load, where it is linear to 2e-6.
+    newton = model.set("/solver/analysis", "nonlinear").set(
+        "/load_curves/load_factor/scale", 1e-5).run()
+    assert newton.converged and newton.linear_steps == 0 and newton.newton_iterations >= 2
+    assert -1e5 * newton.steps["free_edge_mid_uz"][-1] == pytest.approx(w, rel=1e-5)

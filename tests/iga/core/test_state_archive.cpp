@@ -96,9 +96,9 @@ TEST_CASE("StateArchive: the same routine writes and reads, bit for bit", "[iga]
     CHECK_THROWS_WITH(f.save(path), Catch::Contains("this archive writes " + streamed));
     f.save(streamed);
     CHECK_FALSE(fs::exists(streamed + ".part"));
-    std::ifstream a(path, std::ios::binary), b(streamed, std::ios::binary);
-    const std::string da((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>());
-    const std::string db((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+    std::ifstream fa(path, std::ios::binary), fb(streamed, std::ios::binary);
+    const std::string da((std::istreambuf_iterator<char>(fa)), std::istreambuf_iterator<char>());
+    const std::string db((std::istreambuf_iterator<char>(fb)), std::istreambuf_iterator<char>());
     CHECK(da.size() > 100);
     CHECK(da == db);
   }

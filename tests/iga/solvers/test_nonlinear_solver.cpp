@@ -546,4 +546,165 @@ TEST_CASE("NonlinearSolver: invalid settings and state sizes throw with the fiel
   CHECK_THROWS_AS((void)solver.solve(chain, u), std::invalid_argument);
 }
 
+namespace {
+
+/// R(u, t) = A u + c u^3 (componentwise) - t f, A SPD tridiagonal: linear for c = 0 (u = t A^-1
+/// f), else hardening; counts its assemblies with and without the tangent. With `singular` A
+/// has a zero row and column (no stiffness at the last unknown).
+class CubicSystem : public NonlinearProblem {
+ public:
+  explicit CubicSystem(double c, bool singular = false) : c_(c) {
+    const int n = 4;
+    A_ = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i) {
+      A_(i, i) = 4.0 + i;
+      if (i + 1 < n) A_(i, i + 1) = A_(i + 1, i) = -1.0;
+    }
+    if (singular) A_.row(n - 1).setZero(), A_.col(n - 1).setZero();
+    f_ = Eigen::Vector4d(1.0, -2.0, 3.0, 0.5);
+  }
+  int num_dofs() const override { return 4; }
+  void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override {
+    R = A_ * u + c_ * u.array().cube().matrix() - t * f_;
+    if (K) {
+      ++tangents;
+      const Eigen::MatrixXd k =
+          A_ + Eigen::MatrixXd((3.0 * c_ * u.array().square()).matrix().asDiagonal());
+      *K = k.sparseView();
+    } else {
+      ++residuals;
+    }
+  }
+  /// The linear solution t A^-1 f.
+  VectorXd linear(double t) const { return A_.ldlt().solve(t * f_); }
+  int tangents = 0, residuals = 0;
+
+ private:
+  double c_;
+  Eigen::MatrixXd A_;
+  VectorXd f_;
+};
+
+}  // namespace
+
+TEST_CASE(
+    "NonlinearSolver: the linear analysis solves every step on one assembly and factorization "
+    "of the start tangent",
+    "[iga][solver][linear]") {
+  NonlinearSolverSettings s;
+  s.analysis = AnalysisKind::linear;
+  s.initial_step = 0.25;
+  s.max_step = 1.0;  // the linear path keeps initial_step: no growth
+  for (const double c : {0.0, 2.0}) {
+    CubicSystem p(c);
+    NonlinearSolver solver(s);
+    VectorXd u = VectorXd::Zero(4);
+    std::vector<double> times;
+    const NonlinearSolverResult r =
+        solver.solve(p, u, [&](const VectorXd& uc, double t, const StepAttempt& a) {
+          times.push_back(t);
+          CHECK(a.linear);
+          // Linear theory at every step: t A^-1 f, whatever c (the tangent at u = 0 is A).
+          CHECK((uc - p.linear(t)).norm() <= 1e-10 * p.linear(1.0).norm());
+          return true;
+        });
+    INFO("c = " << c << ": " << r.message);
+    REQUIRE(r.converged());
+    CHECK(times == std::vector<double>{0.25, 0.5, 0.75, 1.0});
+    CHECK(r.linear_steps == 4);
+    CHECK(r.total_iterations == 4);  // one solve per step
+    CHECK(p.tangents == 1);          // one tangent ...
+    CHECK(r.cholmod_factorizations + r.ldlt_factorizations + r.umfpack_factorizations == 1);
+    CHECK(p.residuals == 3);  // ... and the later steps' R(u_0, t)
+    CHECK(r.assemblies == 4);
+    CHECK(r.residual_assemblies == 3);
+  }
+  // A singular start tangent ends the run, at once and saying so (no cutbacks: a smaller step
+  // has the same tangent).
+  CubicSystem singular(0.0, true);
+  NonlinearSolver solver(s);
+  VectorXd u = VectorXd::Zero(4);
+  const NonlinearSolverResult r = solver.solve(singular, u);
+  CHECK(r.status == NonlinearSolverStatus::failed);
+  CHECK_THAT(r.message, Catch::Contains("linear analysis: the step to t = 0.25 failed"));
+  CHECK(r.cutbacks == 0);
+  CHECK(r.steps == 0);
+  CHECK(u.isZero(0.0));
+}
+
+TEST_CASE(
+    "NonlinearSolver: the certified linear path is taken where the residual test holds, and "
+    "hands over to Newton where it does not",
+    "[iga][solver][linear]") {
+  // Probe off: the comparison with Newton counts iterations and assemblies.
+  const RoundoffProbeOff probe_off;
+  NonlinearSolverSettings s;
+  s.initial_step = 0.5;
+  s.max_step = 0.5;
+  s.tol_residual_rel = 1e-10;
+  const auto run = [&](double c, AnalysisKind kind, CubicSystem& p) {
+    NonlinearSolverSettings sk = s;
+    sk.analysis = kind;
+    NonlinearSolver solver(sk);
+    VectorXd u = VectorXd::Zero(4);
+    NonlinearSolverResult r = solver.solve(p, u);
+    INFO("c = " << c << ", " << to_string(kind) << ": " << r.message);
+    REQUIRE(r.converged());
+    return std::make_pair(r, u);
+  };
+  // Linear (c = 0) and linear within the test (c = 1e-9: |c u^3| ~ 1e-11 |f|): the linear path,
+  // two assemblies per step (R(u_0, t), then R(u, t) for the test), one factorization.
+  for (const double c : {0.0, 1e-9}) {
+    CubicSystem p(c), q(c);
+    const auto [r, u] = run(c, AnalysisKind::certified, p);
+    const auto [rn, un] = run(c, AnalysisKind::nonlinear, q);
+    CHECK(r.linear_steps == 2);
+    CHECK(r.linear_until == 0);
+    CHECK(p.tangents == 1);
+    CHECK(p.residuals == 3);
+    CHECK(r.cholmod_factorizations == 1);
+    CHECK((u - un).norm() <= 1e-9 * un.norm());  // Newton's state to its tolerance
+    CHECK(rn.cholmod_factorizations == 4);       // Newton: two per step (the energy test)
+  }
+  // Nonlinear (c = 2): the first step is not certified and Newton goes on from the linear
+  // state, taking Newton's own path: its iterations, one assembly more (the test's).
+  const double c = 2.0;
+  CubicSystem p(c), q(c);
+  const auto [r, u] = run(c, AnalysisKind::certified, p);
+  const auto [rn, un] = run(c, AnalysisKind::nonlinear, q);
+  CHECK(r.linear_steps == 0);
+  CHECK(r.linear_until == 1);
+  CHECK_THAT(r.linear_message, Catch::Contains("after the linear solve, above the residual test"));
+  CHECK((u - un).norm() <= 1e-12 * un.norm());
+  CHECK((u - p.linear(1.0)).norm() > 1e-2 * un.norm());  // not the linear solution
+  CHECK(r.total_iterations == rn.total_iterations);
+  CHECK(r.assemblies == rn.assemblies + 1);
+  CHECK(r.residual_assemblies == 1);
+  CHECK(r.step_iterations == rn.step_iterations);
+}
+
+TEST_CASE("NonlinearSolver: a linear analysis refuses arc length and a restart",
+          "[iga][solver][linear]") {
+  NonlinearSolverSettings s;
+  s.analysis = AnalysisKind::linear;
+  s.control = PathControl::arc_length;
+  CHECK_THROWS_WITH(NonlinearSolver(s),
+                    Catch::Contains("NonlinearSolverSettings.analysis: must be nonlinear with "
+                                    "arc length"));
+  s.analysis = AnalysisKind::certified;
+  CHECK_THROWS_WITH(NonlinearSolver(s), Catch::Contains("got certified"));
+  s.control = PathControl::load;
+  s.analysis = AnalysisKind::linear;
+  NonlinearSolver solver(s);
+  CubicSystem p(0.0);
+  VectorXd u = VectorXd::Zero(4);
+  SolverCheckpoint c;
+  c.t = 0.5;
+  c.steps = 1;
+  c.attempted = 1;
+  c.dt = 0.5;
+  CHECK_THROWS_WITH((void)solver.solve(p, u, {}, &c),
+                    Catch::Contains("a linear analysis does not resume a restart"));
+}
+
 }  // namespace test_nonlinear_solver
