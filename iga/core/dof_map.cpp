@@ -75,6 +75,14 @@ void DofMap::renumber() const {
       c.free = m->free;
       c.resolved = m->prescribed;
     }
+  plain_free_.resize(3 * points_.size());
+  plain_sign_.resize(3 * points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    for (std::size_t a = 0; a < 3; ++a) {
+      const Component& c = points_[i].c[a];
+      plain_free_[3 * i + a] = points_[i].rotated ? -2 : c.free;
+      plain_sign_[3 * i + a] = c.sign;
+    }
 }
 
 std::vector<Vector3d> DofMap::constraint_forces(const std::vector<Vector3d>& g) const {
@@ -140,6 +148,7 @@ void DofMap::set_local_basis(int point, const Matrix3d& Q) {
           " is not orthonormal");
   P.Q = Q;
   P.rotated = !Q.isIdentity(0.0);
+  stale_ = true;  // reduce_in_place's lookup changes
 }
 
 const Matrix3d& DofMap::local_basis(int point) const {
@@ -379,11 +388,20 @@ void DofMap::reduce_in_place(std::vector<Triplet>& t) const {
   refresh();
   std::vector<Triplet> spread;  // of rotated points and scalars
   std::size_t w = 0;
+  const std::size_t n3 = plain_free_.size();
   for (std::size_t r = 0; r < t.size(); ++r) {
     const Triplet tr = t[r];
-    const int kept = reduce_plain(tr, t[w]);  // w <= r: t[r] has been read
-    if (kept > 0) ++w;
-    if (kept < 0) reduce_triplet(tr, spread);
+    // reduce_plain by lookup (a negative index is large as a size_t: not a point's)
+    const auto i = static_cast<std::size_t>(tr.row()), j = static_cast<std::size_t>(tr.col());
+    if (i < n3 && j < n3) {
+      const int fi = plain_free_[i], fj = plain_free_[j];
+      if (fi >= 0 && fj >= 0) {  // w <= r: t[r] has been read
+        t[w++] = Triplet(fi, fj, plain_sign_[i] * plain_sign_[j] * tr.value());
+        continue;
+      }
+      if (fi != -2 && fj != -2) continue;  // a side constrained, no local axes: no image
+    }
+    reduce_triplet(tr, spread);
   }
   t.resize(w);
   t.insert(t.end(), spread.begin(), spread.end());

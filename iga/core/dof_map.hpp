@@ -166,6 +166,11 @@ class DofMap {
   std::vector<Prescribed> prescribed_;
   mutable int num_free_ = 0;
   mutable bool stale_ = false;
+  /// Per Cartesian component 3 i + a of the points: its free DOF where point i has no local
+  /// axes (its sign in plain_sign_), -1 where it is constrained, -2 for a rotated point's;
+  /// renumber() fills them (reduce_in_place's lookup: no division, no call per triplet).
+  mutable std::vector<int> plain_free_;
+  mutable std::vector<double> plain_sign_;
 };
 
 }  // namespace iga
