@@ -9,7 +9,6 @@
 
 #include "iga/core/state_archive.hpp"
 #include "iga/solvers/nonlinear_solver.hpp"
-#include "iga/solvers/roundoff_probe.hpp"
 #include "iga/solvers/solver_steps.hpp"
 
 namespace iga {
@@ -65,17 +64,7 @@ namespace {
 double assemble_with_rate(NonlinearProblem& problem, const VectorXd& u, double t, double h, int n,
                           VectorXd& R_h, VectorXd& R, SparseMatrix& K, VectorXd& R_t,
                           NonlinearSolverResult& r, std::string& error) {
-  const Clock::time_point t0 = Clock::now();
-  try {
-    problem.assemble(u, t + h, R_h, nullptr);
-  } catch (const std::exception& e) {
-    error = e.what();
-    r.time_assembly += seconds_since(t0);
-    ++r.assemblies;
-    return -1.0;
-  }
-  r.time_assembly += seconds_since(t0);
-  ++r.assemblies;
+  if (assemble_rhs(problem, u, t + h, n, R_h, r, error) < 0.0) return -1.0;
   const double rn = assemble_residual(problem, u, t, n, R, K, r, error);
   if (rn >= 0.0) R_t = (R_h - R) / h;
   return rn;
@@ -185,13 +174,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
                               w.K, arc.R_t, r, error);
   };
   // K x = b with the current factorization (factorized by the caller).
-  const auto solve = [&](const VectorXd& b, VectorXd& x) {
-    const Clock::time_point t0 = Clock::now();
-    const LinearSolveStatus ls = linear_.solve(b, x);
-    roundoff_probe_perturb(x);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
-    r.time_linear_solve += seconds_since(t0);
-    return ls;
-  };
+  const auto solve = [&](const VectorXd& b, VectorXd& x) { return solve_again(linear_, b, x, r); };
 
   double Dt = 0.0;
   if (!arc_predictor(problem, u, arc, w, a, r, Dt)) return;
@@ -212,10 +195,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
   double r0 = 0.0, scale = 0.0, e1 = 0.0, r_prev = 0.0;
   int increases = 0;
   const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
-  const auto r_abs = [&] {
-    return std::max(
-        {s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
-  };
+  const auto r_abs = [&] { return residual_floor(s, w.r0_max, problem); };
   for (int k = 0;; ++k) {
     u = arc.u_last + Du;
     a.t = arc.t + Dt;

@@ -191,6 +191,15 @@ LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, 
   return ls;
 }
 
+LinearSolveStatus solve_again(LinearSolver& linear, const VectorXd& rhs, VectorXd& x,
+                              NonlinearSolverResult& r) {
+  const Clock::time_point t0 = Clock::now();
+  const LinearSolveStatus ls = linear.solve(rhs, x);
+  roundoff_probe_perturb(x);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
+  r.time_linear_solve += seconds_since(t0);
+  return ls;
+}
+
 /// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp) of the
 /// given size, never at the minimum size.
 void probe_refusal(StepAttempt& a, double size, double min_size) {
@@ -396,13 +405,8 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   const double r_div = s.divergence_ratio * w.r0_max;
   a.residual_norms.push_back(r0);
   if (!std::isfinite(r0)) return finish(NewtonOutcome::not_finite, "|R_0| is not finite");
-  // The absolute residual test, scaled to the run's forces (a floor for unloaded starts).
-  // The problem's round-off is a floor too (contact forces from large penalties: an augmented
-  // Lagrangian with a raised eps_N cannot get |R| below it).
-  const auto r_abs = [&] {
-    return std::max(
-        {s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
-  };
+  // The absolute residual test (residual_floor), with the run's force scale so far.
+  const auto r_abs = [&] { return residual_floor(s, w.r0_max, problem); };
   if (r0 <= r_abs()) return finish(NewtonOutcome::converged, {});
 
   const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
@@ -480,10 +484,7 @@ bool NonlinearSolver::linear_step(NonlinearProblem& problem, VectorXd& u, const 
     ls = solve_correction(linear_, w.K, w.rhs, w.du, a, r);
     factorized = ls == LinearSolveStatus::success;
   } else {
-    const Clock::time_point t0 = Clock::now();
-    ls = linear_.solve(w.rhs, w.du);
-    roundoff_probe_perturb(w.du);  // test-only: IGA_ROUNDOFF_PROBE (roundoff_probe.hpp)
-    r.time_linear_solve += seconds_since(t0);
+    ls = solve_again(linear_, w.rhs, w.du, r);
   }
   if (ls != LinearSolveStatus::success) {
     a.outcome = NewtonOutcome::linear_solve_failed;
@@ -507,8 +508,7 @@ bool NonlinearSolver::linear_step(NonlinearProblem& problem, VectorXd& u, const 
   // The residual test of a Newton iteration (newton()) on R(u, t).
   const double rk = assemble_rhs(problem, u, t, w.n, w.R, r, error);
   if (!record_residual(rk, 1, error, a)) return true;
-  const double r_abs =
-      std::max({s.tol_residual_abs, s.tol_residual_scaled * w.r0_max, problem.residual_roundoff()});
+  const double r_abs = residual_floor(s, w.r0_max, problem);
   if (rk <= r_abs || rk <= s.tol_residual_rel * r0) {
     a.outcome = NewtonOutcome::converged;
     return true;

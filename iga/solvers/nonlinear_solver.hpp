@@ -220,7 +220,7 @@ struct NonlinearSolverResult {
   std::vector<int> step_iterations;   ///< Newton iterations of each converged step
   std::vector<StepAttempt> attempts;  ///< every attempt, in order
   int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
-  int residual_assemblies = 0;        ///< ... of them without the tangent (the linear paths)
+  int residual_assemblies = 0;        ///< ... of them without the tangent (the linear paths; dR/dt)
   /// Steps solved by the linear path (AnalysisKind::linear, or certified: accepted by the
   /// residual test); their solves count as one iteration each.
   int linear_steps = 0;

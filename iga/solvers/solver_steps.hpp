@@ -7,6 +7,7 @@
 // rk = |R_k| the norm at iteration k, a the step's attempt, r the run's result.
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <ostream>
@@ -58,6 +59,19 @@ double assemble_rhs(NonlinearProblem& problem, const VectorXd& u, double t, int 
 /// The Newton correction: K du = rhs, timed in r, the factorizations counted in a by backend.
 LinearSolveStatus solve_correction(LinearSolver& linear, const SparseMatrix& K, const VectorXd& rhs,
                                    VectorXd& du, StepAttempt& a, NonlinearSolverResult& r);
+
+/// A solve on the factorization linear holds (no new factorization), timed in r.
+LinearSolveStatus solve_again(LinearSolver& linear, const VectorXd& rhs, VectorXd& x,
+                              NonlinearSolverResult& r);
+
+/// The absolute residual test's bound: tol_residual_abs, scaled to the run's forces r0_max
+/// (a floor for unloaded starts), and the problem's round-off (contact forces from large
+/// penalties: an augmented Lagrangian with a raised eps_N cannot get |R| below it).
+inline double residual_floor(const NonlinearSolverSettings& s, double r0_max,
+                             const NonlinearProblem& problem) {
+  return std::max(
+      {s.tol_residual_abs, s.tol_residual_scaled * r0_max, problem.residual_roundoff()});
+}
 
 /// Tests only: the round-off probe's refusal of a converged step (roundoff_probe.hpp) of the
 /// given size, never at the minimum size.
