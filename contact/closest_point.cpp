@@ -1,6 +1,10 @@
 // Closest point projection onto surfaces and curves ([KS15] eqs. 10-18, Sect. 2.2).
 #include "contact/closest_point.hpp"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -160,7 +164,8 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
       for (int i = 0; i < n; ++i) {
         const Vector2d uv(b.range.u.lo + (b.range.u.hi - b.range.u.lo) * i / (n - 1),
                           b.range.v.lo + (b.range.v.hi - b.range.v.lo) * j / (n - 1));
-        samples_[e].push_back({uv, s_.point(uv[0], uv[1])});
+        const SurfaceDerivs d = s_.derivs(uv[0], uv[1], 1);
+        samples_[e].push_back({uv, d.S, d.Su, d.Sv});
       }
   }
   // The inner element borders where the patch may have a kink: knots of multiplicity >= the
@@ -173,6 +178,16 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
       if (b > d.lo && b < d.hi && kv[dir]->multiplicity(b) >= kv[dir]->degree())
         kinks_[dir].push_back(b);
   }
+  const std::size_t n_el = boxes_.size(), n_s = static_cast<std::size_t>(n * n);
+  box_coords_.resize(6 * n_el);
+  sample_coords_.resize(3 * n_el * n_s);
+  for (std::size_t e = 0; e < n_el; ++e)
+    for (int c = 0; c < 3; ++c) {
+      box_coords_[static_cast<std::size_t>(c) * n_el + e] = boxes_[e].lo[c];
+      box_coords_[static_cast<std::size_t>(c + 3) * n_el + e] = boxes_[e].hi[c];
+      for (std::size_t k = 0; k < n_s; ++k)
+        sample_coords_[(3 * e + static_cast<std::size_t>(c)) * n_s + k] = samples_[e][k].x[c];
+    }
   int degree = 0;
   for (const BezierPatch& b : bez_.elements()) degree = std::max({degree, b.degree_u, b.degree_v});
   if (degree <= detail::kMaxNetDegree)
@@ -183,6 +198,117 @@ PatchProjector::PatchProjector(const NurbsSurface& s, int samples_per_dir)
 
 int PatchProjector::element_of(const Vector2d& uv) const {
   return bez_.element_of(uv[0], uv[1]);
+}
+
+// Two elements at a time (SSE2, on every x86-64); the distances are those of box_distance2
+// below (the same operations).
+void PatchProjector::box_distances2(const Vector3d& x, double* d2) const {
+  const std::size_t n = boxes_.size();
+  const double* b = box_coords_.data();
+  std::size_t e = 0;
+#if defined(__SSE2__)
+  const __m128d zero = _mm_setzero_pd();
+  const __m128d xs[3] = {_mm_set1_pd(x[0]), _mm_set1_pd(x[1]), _mm_set1_pd(x[2])};
+  for (; e + 2 <= n; e += 2) {
+    __m128d sum = zero;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const __m128d lo = _mm_loadu_pd(b + c * n + e), hi = _mm_loadu_pd(b + (c + 3) * n + e);
+      const __m128d d = _mm_max_pd(_mm_max_pd(_mm_sub_pd(lo, xs[c]), _mm_sub_pd(xs[c], hi)), zero);
+      sum = c == 0 ? _mm_mul_pd(d, d) : _mm_add_pd(sum, _mm_mul_pd(d, d));
+    }
+    _mm_storeu_pd(d2 + e, sum);
+  }
+#endif
+  for (; e < n; ++e) {
+    double sum = 0.0;
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double d = std::max(std::max(b[c * n + e] - x[static_cast<Eigen::Index>(c)],
+                                         x[static_cast<Eigen::Index>(c)] - b[(c + 3) * n + e]),
+                                0.0);
+      sum = c == 0 ? d * d : sum + d * d;
+    }
+    d2[e] = sum;
+  }
+}
+
+Vector2d PatchProjector::seed_from(const Sample& s, int e, const Vector3d& x) const {
+  // Not on a patch with creases: the step may carry the start across one, where the Newton,
+  // one side's derivatives on the crease, can stop short along it (seen: OCC17026-1.igs face 3,
+  // a foot on the crease 7.6e-6 h from OpenCASCADE's at the same distance).
+  if (!kinks_[0].empty() || !kinks_[1].empty()) return s.uv;
+  const Vector3d r = x - s.x;
+  const double a = s.xu.dot(s.xu), b = s.xu.dot(s.xv), c = s.xv.dot(s.xv);
+  const double det = a * c - b * b;
+  if (!(det > 1e-12 * a * c)) return s.uv;  // a degenerate tangent plane (a pole)
+  const double gu = s.xu.dot(r), gv = s.xv.dot(r);
+  const Vector2d uv = s.uv + Vector2d(c * gu - b * gv, a * gv - b * gu) / det;
+  const Domain2& er = bez_.elements()[static_cast<std::size_t>(e)].range;
+  const Domain2 dom = s_.domain();
+  const bool near = std::abs(uv[0] - s.uv[0]) <= er.u.hi - er.u.lo &&
+                    std::abs(uv[1] - s.uv[1]) <= er.v.hi - er.v.lo;
+  const bool inside =
+      uv[0] >= dom.u.lo && uv[0] <= dom.u.hi && uv[1] >= dom.v.lo && uv[1] <= dom.v.hi;
+  return near && inside ? uv : s.uv;
+}
+
+namespace {
+// d2[k] = |x - sample k|^2 for the n samples of an element, their coordinates as three arrays
+// c[0 .. n), c[n .. 2n), c[2n .. 3n) (PatchProjector::sample_coords_): two at a time (SSE2).
+void sample_distances2(const double* c, int n, const Vector3d& x, double* d2) {
+  int k = 0;
+#if defined(__SSE2__)
+  const __m128d x0 = _mm_set1_pd(x[0]), x1 = _mm_set1_pd(x[1]), x2 = _mm_set1_pd(x[2]);
+  for (; k + 2 <= n; k += 2) {
+    const __m128d dx = _mm_sub_pd(_mm_loadu_pd(c + k), x0);
+    const __m128d dy = _mm_sub_pd(_mm_loadu_pd(c + n + k), x1);
+    const __m128d dz = _mm_sub_pd(_mm_loadu_pd(c + 2 * n + k), x2);
+    _mm_storeu_pd(
+        d2 + k, _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)), _mm_mul_pd(dz, dz)));
+  }
+#endif
+  for (; k < n; ++k) {
+    const double dx = c[k] - x[0], dy = c[n + k] - x[1], dz = c[2 * n + k] - x[2];
+    d2[k] = dx * dx + dy * dy + dz * dz;
+  }
+}
+
+// The first index of the smallest of d[0 .. n) (n >= 1; a NaN is never the smallest unless
+// d[0] is one), and that value: two lanes at a time, each keeping its first minimum, then the
+// lower lane by value and index.
+int first_minimum(const double* d, int n, double& value) {
+  int k = 1, best = 0;
+  value = d[0];
+#if defined(__SSE2__)
+  if (n >= 4) {
+    __m128d bv = _mm_loadu_pd(d), bi = _mm_set_pd(1.0, 0.0), idx = bi;
+    const __m128d two = _mm_set1_pd(2.0);
+    for (k = 2; k + 2 <= n; k += 2) {
+      const __m128d v = _mm_loadu_pd(d + k);
+      idx = _mm_add_pd(idx, two);
+      const __m128d m = _mm_cmplt_pd(v, bv);
+      bv = _mm_or_pd(_mm_and_pd(m, v), _mm_andnot_pd(m, bv));
+      bi = _mm_or_pd(_mm_and_pd(m, idx), _mm_andnot_pd(m, bi));
+    }
+    double v2[2], i2[2];
+    _mm_storeu_pd(v2, bv);
+    _mm_storeu_pd(i2, bi);
+    const bool second = v2[1] < v2[0] || (v2[1] == v2[0] && i2[1] < i2[0]);
+    value = v2[second ? 1 : 0];
+    best = static_cast<int>(i2[second ? 1 : 0]);
+  }
+#endif
+  for (; k < n; ++k)
+    if (d[k] < value) value = d[k], best = k;
+  return best;
+}
+}  // namespace
+
+int PatchProjector::nearest_sample(int e, const Vector3d& x) const {
+  const int n_s = samples_per_dir_ * samples_per_dir_;
+  double d2[kMaxSamples];
+  sample_distances2(sample_coords_.data() + static_cast<std::size_t>(3 * e * n_s), n_s, x, d2);
+  double d2_min = 0.0;
+  return first_minimum(d2, n_s, d2_min);
 }
 
 namespace {
@@ -501,6 +627,25 @@ double hull_lower_bound(const Box3& box, const Vector3d* pts, std::size_t n, con
     const Vector3d b = x - *toward;
     if (b.norm() > 0.0) dirs[n_dirs++] = b.normalized();
   }
+#if defined(__SSE2__)
+  if (n_dirs == 2) {  // both supports at once, one direction per lane
+    const __m128d dx = _mm_set_pd(dirs[1].x(), dirs[0].x());
+    const __m128d dy = _mm_set_pd(dirs[1].y(), dirs[0].y());
+    const __m128d dz = _mm_set_pd(dirs[1].z(), dirs[0].z());
+    __m128d support = _mm_set1_pd(-kInf);
+    for (std::size_t i = 0; i < n; ++i) {
+      // d.P in the order of Vector3d::dot: (d_x P_x + d_y P_y) + d_z P_z
+      const __m128d dot = _mm_add_pd(_mm_add_pd(_mm_mul_pd(dx, _mm_set1_pd(pts[i].x())),
+                                                _mm_mul_pd(dy, _mm_set1_pd(pts[i].y()))),
+                                     _mm_mul_pd(dz, _mm_set1_pd(pts[i].z())));
+      support = _mm_max_pd(dot, support);  // max(support, dot) as std::max: NaN-free here
+    }
+    double sup[2];
+    _mm_storeu_pd(sup, support);
+    for (int k = 0; k < 2; ++k) lb = std::max(lb, dirs[k].dot(x) - sup[k]);
+    return lb;
+  }
+#endif
   for (int k = 0; k < n_dirs; ++k) {
     double support = -kInf;
     for (std::size_t i = 0; i < n; ++i) support = std::max(support, dirs[k].dot(pts[i]));
@@ -593,6 +738,7 @@ struct CertifiedSearch {
   const BezierSurface& surface;  // the patch (by its Bezier elements)
   const std::vector<BezierPatch>& elements;
   const std::vector<std::vector<Sample>>& samples;  // per element
+  const double* sample_coords;                      // the same, as PatchProjector's
   int samples_per_dir;
   const std::vector<Node>& tree;
   const std::vector<double>* kinks;  // [2]: the patch's C0 element borders in u and v
@@ -734,29 +880,38 @@ struct CertifiedSearch {
     const std::vector<Sample>& smp = samples[static_cast<std::size_t>(element)];
     const int n = samples_per_dir;
     double d2s[MaxSamples];
-    for (int k = 0; k < n * n; ++k) d2s[k] = (smp[static_cast<std::size_t>(k)].x - x).squaredNorm();
+    sample_distances2(sample_coords + static_cast<std::ptrdiff_t>(3 * element * n * n), n * n, x,
+                      d2s);
     constexpr int kMaxSeeds = 3;
     std::pair<double, int> seeds[kMaxSeeds];
     int n_seeds = 0;
+    // A sample is a discrete local minimum when no sample of its 3 x 3 block is nearer: the
+    // block's minimum, by rows then columns (std::min leaves a NaN neighbour out, as the
+    // comparison < would), is not below its own distance.
+    double row_min[MaxSamples], block_min[MaxSamples];
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) {
-        const double d = d2s[i + n * j];
-        bool is_min = true;
-        for (int dj = -1; dj <= 1 && is_min; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int ii = i + di, jj = j + dj;
-            if ((di == 0 && dj == 0) || ii < 0 || jj < 0 || ii >= n || jj >= n) continue;
-            if (d2s[ii + n * jj] < d) {
-              is_min = false;
-              break;
-            }
-          }
-        if (!is_min) continue;
-        std::pair<double, int> cand{d, i + n * j};
-        for (int q = 0; q < n_seeds; ++q)
-          if (cand < seeds[q]) std::swap(cand, seeds[q]);
-        if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
+        const int k = i + n * j;
+        double m = d2s[k];
+        if (i > 0) m = std::min(m, d2s[k - 1]);
+        if (i + 1 < n) m = std::min(m, d2s[k + 1]);
+        row_min[k] = m;
       }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int k = i + n * j;
+        double m = row_min[k];
+        if (j > 0) m = std::min(m, row_min[k - n]);
+        if (j + 1 < n) m = std::min(m, row_min[k + n]);
+        block_min[k] = m;
+      }
+    for (int k = 0; k < n * n; ++k) {
+      if (block_min[k] < d2s[k]) continue;
+      std::pair<double, int> cand{d2s[k], k};
+      for (int q = 0; q < n_seeds; ++q)
+        if (cand < seeds[q]) std::swap(cand, seeds[q]);
+      if (n_seeds < kMaxSeeds) seeds[n_seeds++] = cand;
+    }
     for (int q = 0; q < n_seeds; ++q)
       consider(node_newton(element, smp[static_cast<std::size_t>(seeds[q].second)].uv, range),
                element, range, false);
@@ -979,24 +1134,35 @@ struct CertifiedSearch {
 // marked not certified (`ProjectionResult::certified`).
 ProjectionResult PatchProjector::search(const Vector3d& x, const int* ids, std::size_t n_ids,
                                         double max_distance, const ProjectionOptions& opt,
-                                        const ProjectionResult* start, bool pieces) const {
+                                        const ProjectionResult* start, bool pieces,
+                                        const double* box_d2) const {
   if (!high_tree_.empty())
-    return search_in(high_tree_, x, ids, n_ids, max_distance, opt, start, pieces);
-  return search_in(tree_, x, ids, n_ids, max_distance, opt, start, pieces);
+    return search_in(high_tree_, x, ids, n_ids, max_distance, opt, start, pieces, box_d2);
+  return search_in(tree_, x, ids, n_ids, max_distance, opt, start, pieces, box_d2);
 }
 
 template <class N>
 ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vector3d& x,
                                            const int* ids, std::size_t n_ids, double max_distance,
                                            const ProjectionOptions& opt,
-                                           const ProjectionResult* start, bool pieces) const {
+                                           const ProjectionResult* start, bool pieces,
+                                           const double* box_d2) const {
   thread_local std::vector<std::pair<double, int>> order;
   order.clear();
   const double limit2 = max_distance < kInf ? max_distance * max_distance : kInf;
+  thread_local std::vector<double> all_d2;  // every element's, at once (box_distances2)
+  const bool all = ids == nullptr && !pieces;
+  if (all && box_d2 == nullptr) {
+    all_d2.resize(boxes_.size());
+    box_distances2(x, all_d2.data());
+    box_d2 = all_d2.data();
+  }
   for (std::size_t k = 0; k < n_ids; ++k) {
     const int e = ids ? ids[k] : static_cast<int>(k);
-    const double lb2 = box_distance2(
-        pieces ? tree[static_cast<std::size_t>(e)].box : boxes_[static_cast<std::size_t>(e)], x);
+    const double lb2 = all ? box_d2[k]
+                           : box_distance2(pieces ? tree[static_cast<std::size_t>(e)].box
+                                                  : boxes_[static_cast<std::size_t>(e)],
+                                           x);
     if (lb2 <= limit2) order.emplace_back(lb2, e);
   }
   const auto region_of = [this](const Vector2d& uv, const Vector3d& r_star) {
@@ -1006,6 +1172,7 @@ ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vec
       .surface = bez_,
       .elements = bez_.elements(),
       .samples = samples_,
+      .sample_coords = sample_coords_.data(),
       .samples_per_dir = samples_per_dir_,
       .tree = tree,
       .kinks = kinks_,
@@ -1030,10 +1197,11 @@ ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vec
   // that distance exists), so that far elements are pruned before any Newton.
   if (!cs.warm && !pieces) {
     const auto first = std::min_element(order.begin(), order.end());
-    for (const Sample& smp : samples_[static_cast<std::size_t>(first->second)]) {
-      const double d = (smp.x - x).norm();
-      if (d < cs.ub) cs.ub = d, cs.ub_uv = smp.uv, cs.ub_seen = true;
-    }
+    const int k = nearest_sample(first->second, x);
+    const Sample& smp =
+        samples_[static_cast<std::size_t>(first->second)][static_cast<std::size_t>(k)];
+    const double d = (smp.x - x).norm();
+    if (d < cs.ub) cs.ub = d, cs.ub_uv = smp.uv, cs.ub_seen = true;
     cs.ub *= 1.0 + 1e-12;
   }
   std::sort(order.begin(), order.end());
@@ -1185,31 +1353,31 @@ bool PatchProjector::ball_clear(const Ball& ball, const Domain2& region, Unclear
 ProjectionResult PatchProjector::project(const Vector3d& x, const ProjectionOptions& opt) const {
   std::size_t first = 0;
   double first2 = kInf;
-  if (opt.certify && has_tree())
-    for (std::size_t e = 0; e < boxes_.size(); ++e) {
-      const double d2 = box_distance2(boxes_[e], x);
-      if (d2 < first2) first2 = d2, first = e;
-    }
+  thread_local std::vector<double> d2;  // every element box's, for the search too
+  const double* box_d2 = nullptr;
+  if (opt.certify && has_tree()) {
+    d2.resize(boxes_.size());
+    box_distances2(x, d2.data());
+    box_d2 = d2.data();
+    first = static_cast<std::size_t>(first_minimum(box_d2, static_cast<int>(d2.size()), first2));
+  }
   // Near the surface (within the size of the nearest element's box) first the Newton from the
   // nearest sample of that element: its answer proven global without a search where the
   // certificate holds (the chord test fails far from a curved surface: there, search at once).
   if (first2 < (boxes_[first].hi - boxes_[first].lo).squaredNorm()) {
-    const Sample* seed = &samples_[first].front();
-    double seed2 = kInf;
-    for (const Sample& smp : samples_[first]) {
-      const double d2 = (smp.x - x).squaredNorm();
-      if (d2 < seed2) seed2 = d2, seed = &smp;
-    }
-    ProjectionResult r = newton_on_patch(bez_, kinks_, x, seed->uv, opt);
+    const Sample* seed =
+        &samples_[first][static_cast<std::size_t>(nearest_sample(static_cast<int>(first), x))];
+    ProjectionResult r =
+        newton_on_patch(bez_, kinks_, x, seed_from(*seed, static_cast<int>(first), x), opt);
     // Proven global, or else the search started from that answer (an upper bound that prunes
     // from the first node on).
     if (found(r.status)) return certify(x, r, opt);
     const int used = r.iterations;
-    r = search(x, nullptr, boxes_.size(), kInf, opt);
+    r = search(x, nullptr, boxes_.size(), kInf, opt, nullptr, false, box_d2);
     r.iterations += used;
     return r;
   }
-  return project_within(x, kInf, opt);
+  return search(x, nullptr, boxes_.size(), kInf, opt, nullptr, false, box_d2);
 }
 
 ProjectionResult PatchProjector::project(const Vector3d& x, const Vector2d& guess,

@@ -82,12 +82,21 @@ class PatchProjector {
   struct Sample {
     Vector2d uv;
     Vector3d x;
+    Vector3d xu, xv;  // S_u, S_v there (a Gauss-Newton step from the sample: seed_from)
   };
+  // A start for the Newton from sample s of element e: one Gauss-Newton step from s towards
+  // the foot of x, (J^T J) d = J^T (x - S), J = [S_u S_v], where that step stays within the
+  // element's width in each parameter and inside the patch (else s itself; s itself also on a
+  // patch with creases, kinks_). Near the surface it saves the Newton about one iteration,
+  // without an evaluation.
+  Vector2d seed_from(const Sample& s, int e, const Vector3d& x) const;
   // The certified search among the elements ids[0 .. n_ids) (ids = nullptr: all), or with
   // `pieces`, among those nodes of the tree (the rest of the patch proven by the caller).
+  // box_d2: with all elements, their boxes' squared distances from x if the caller has them
+  // (box_distances2).
   ProjectionResult search(const Vector3d& x, const int* ids, std::size_t n_ids, double max_distance,
                           const ProjectionOptions& opt, const ProjectionResult* start = nullptr,
-                          bool pieces = false) const;
+                          bool pieces = false, const double* box_d2 = nullptr) const;
   static constexpr int kMaxSamples = 64;  // 8 x 8
   NurbsSurface s_;
   BezierSurface bez_;  // the same patch by its Bezier elements: what the Newtons evaluate
@@ -97,6 +106,15 @@ class PatchProjector {
   std::vector<Vector3d> hull_;                // control points of all elements (lower bounds)
   std::vector<std::size_t> hull_offset_;      // element e: hull_[offset[e] .. offset[e+1])
   Box3 box_;
+  // The same boxes and samples as arrays of coordinates, for scans whose distances vectorize:
+  // box_coords_[c * n + e] = element e's lo (c = 0..2) and hi (c = 3..5) in x, y, z
+  // (n elements); sample_coords_[(3 e + c) * n_s + k] = coordinate c of sample k of element e
+  // (n_s = samples_per_dir^2).
+  std::vector<double> box_coords_, sample_coords_;
+  // Element boxes' squared distances from x, d2[e], all elements (box_coords_).
+  void box_distances2(const Vector3d& x, double* d2) const;
+  // The sample of element e nearest to x (its index in samples_[e]).
+  int nearest_sample(int e, const Vector3d& x) const;
   // Inner element borders of multiplicity >= the degree (the patch C0 there), sorted, per
   // direction: the certified search does not leave a minimum on them to the other side.
   std::vector<double> kinks_[2];
@@ -154,7 +172,8 @@ class PatchProjector {
   template <class N>
   ProjectionResult search_in(const std::vector<N>& tree, const Vector3d& x, const int* ids,
                              std::size_t n_ids, double max_distance, const ProjectionOptions& opt,
-                             const ProjectionResult* start, bool pieces) const;
+                             const ProjectionResult* start, bool pieces,
+                             const double* box_d2) const;
   // The leaves of the tree that a certificate's ball test could not clear (by their boxes
   // within the ball's radius of x): a search among them alone completes the proof, as the rest
   // of the patch is the region or clear.

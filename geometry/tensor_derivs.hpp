@@ -12,15 +12,42 @@
 
 #include <cstddef>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 #include "geometry/bspline_basis.hpp"
+#include "geometry/cpu_features.h"
 #include "geometry/derivatives.hpp"
 
 namespace iga::detail {
 
-// A3.6 on the homogeneous net gives A^(k,l), then A4.4 / eq. (4.20):
+// The rational surface's derivatives from the homogeneous ones A[k][l] = A^(k,l), k + l <= O:
+// A4.4 / eq. (4.20),
 // S^(k,l) = (A^(k,l) - sum_{i=1..k} C(k,i) w^(i,0) S^(k-i,l)
 //           - sum_{j=1..l} C(l,j) [w^(0,j) S^(k,l-j) + sum_{i=1..k} C(k,i) w^(i,j) S^(k-i,l-j)]) /
 //           w
+template <int O>
+SurfaceDerivs rational_derivs(const Vector4d (&A)[O + 1][O + 1]) {
+  // Written out for k + l <= 2, in the order of the sums above (the same rounding).
+  const double inv_w = 1.0 / A[0][0].w();
+  SurfaceDerivs d;
+  d.order = O;
+  d.S = A[0][0].template head<3>() * inv_w;
+  if constexpr (O >= 1) {
+    const double w10 = A[1][0].w(), w01 = A[0][1].w();
+    d.Su = (A[1][0].template head<3>() - w10 * d.S) * inv_w;
+    d.Sv = (A[0][1].template head<3>() - w01 * d.S) * inv_w;
+    if constexpr (O >= 2) {
+      d.Suu = (A[2][0].template head<3>() - 2.0 * w10 * d.Su - A[2][0].w() * d.S) * inv_w;
+      d.Suv = (A[1][1].template head<3>() - w01 * d.Su - w10 * d.Sv - A[1][1].w() * d.S) * inv_w;
+      d.Svv = (A[0][2].template head<3>() - 2.0 * w01 * d.Sv - A[0][2].w() * d.S) * inv_w;
+    }
+  }
+  return d;
+}
+
+// A3.6 on the homogeneous net gives A^(k,l), then rational_derivs.
 // The order O, and for the common degrees also PF = p and QF = q (0: known at run time only),
 // are template parameters so that the loops unroll.
 template <int O, int PF, int QF>
@@ -43,40 +70,113 @@ SurfaceDerivs eval_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, int p_rt
     for (int l = 0; l <= O; ++l)
       for (int k = 0; k + l <= O; ++k) A[k][l].noalias() += Nv[l][s] * T[k];
   }
-  constexpr double bin[3][3] = {{1, 0, 0}, {1, 1, 0}, {1, 2, 1}};
-  Vector3d S[O + 1][O + 1];
-  const double inv_w = 1.0 / A[0][0].w();
-  for (int k = 0; k <= O; ++k) {
-    for (int l = 0; k + l <= O; ++l) {
-      Vector3d x = A[k][l].template head<3>();
-      for (int j = 1; j <= l; ++j) x -= bin[l][j] * A[0][j].w() * S[k][l - j];
-      for (int i = 1; i <= k; ++i) {
-        x -= bin[k][i] * A[i][0].w() * S[k - i][l];
-        for (int j = 1; j <= l; ++j) x -= bin[k][i] * bin[l][j] * A[i][j].w() * S[k - i][l - j];
+  return rational_derivs<O>(A);
+}
+
+// The homogeneous sums A^(k,l) = sum_rs Nu[k][r] Nv[l][s] Pw_rs, k + l <= O, for degree P in
+// both directions (2 or 3: the patches of most models) on whole homogeneous points: a point
+// (x, y, z, w) is one 4-wide vector (AVX2 with fused multiply-adds where the processor has
+// them, else two SSE2 halves, which every x86-64 has), so the sums take a quarter (or half) of
+// the scalar instructions. The sums run in the order of eval_derivs (u first, then v); with
+// fused multiply-adds they round differently, within round-off. The path is chosen once per
+// process by the processor's features as glibc sees them (cpu_features.h: a run with
+// GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA takes the path of a processor without them).
+// A[q] = A^(kSumK[q], kSumL[q]): 00, 10, 01, 20, 11, 02.
+inline constexpr int kSumK[6] = {0, 1, 0, 2, 1, 0}, kSumL[6] = {0, 0, 1, 0, 1, 2};
+constexpr int sums_of(int order) {
+  return (order + 1) * (order + 2) / 2;
+}
+
+#if defined(__x86_64__)
+template <int P, int O>
+void net_sums_sse2(const Vector4d* net, int stride, const BasisDerivs& Nu, const BasisDerivs& Nv,
+                   double (*A)[4]) {
+  constexpr int NQ = sums_of(O);
+  __m128d a[NQ][2];
+  for (int q = 0; q < NQ; ++q) a[q][0] = a[q][1] = _mm_setzero_pd();
+  for (int s = 0; s <= P; ++s) {
+    const double* row = net[static_cast<std::ptrdiff_t>(s) * stride].data();
+    __m128d T[O + 1][2];
+    const __m128d p0 = _mm_loadu_pd(row), p1 = _mm_loadu_pd(row + 2);
+    for (int k = 0; k <= O; ++k) {
+      const __m128d b = _mm_set1_pd(Nu[k][0]);
+      T[k][0] = _mm_mul_pd(b, p0);
+      T[k][1] = _mm_mul_pd(b, p1);
+    }
+    for (int r = 1; r <= P; ++r) {
+      const __m128d q0 = _mm_loadu_pd(row + 4 * r), q1 = _mm_loadu_pd(row + 4 * r + 2);
+      for (int k = 0; k <= O; ++k) {
+        const __m128d b = _mm_set1_pd(Nu[k][static_cast<std::size_t>(r)]);
+        T[k][0] = _mm_add_pd(T[k][0], _mm_mul_pd(b, q0));
+        T[k][1] = _mm_add_pd(T[k][1], _mm_mul_pd(b, q1));
       }
-      S[k][l] = x * inv_w;
+    }
+    for (int q = 0; q < NQ; ++q) {
+      const __m128d b = _mm_set1_pd(Nv[kSumL[q]][static_cast<std::size_t>(s)]);
+      a[q][0] = _mm_add_pd(a[q][0], _mm_mul_pd(b, T[kSumK[q]][0]));
+      a[q][1] = _mm_add_pd(a[q][1], _mm_mul_pd(b, T[kSumK[q]][1]));
     }
   }
-  SurfaceDerivs d;
-  d.order = O;
-  d.S = S[0][0];
-  if constexpr (O >= 1) {
-    d.Su = S[1][0];
-    d.Sv = S[0][1];
+  for (int q = 0; q < NQ; ++q) {
+    _mm_storeu_pd(A[q], a[q][0]);
+    _mm_storeu_pd(A[q] + 2, a[q][1]);
   }
-  if constexpr (O >= 2) {
-    d.Suu = S[2][0];
-    d.Suv = S[1][1];
-    d.Svv = S[0][2];
-  }
-  return d;
 }
+
+template <int P, int O>
+__attribute__((target("avx2,fma"))) void net_sums_avx2(const Vector4d* net, int stride,
+                                                       const BasisDerivs& Nu, const BasisDerivs& Nv,
+                                                       double (*A)[4]) {
+  constexpr int NQ = sums_of(O);
+  __m256d a[NQ];
+  for (int q = 0; q < NQ; ++q) a[q] = _mm256_setzero_pd();
+  for (int s = 0; s <= P; ++s) {
+    const double* row = net[static_cast<std::ptrdiff_t>(s) * stride].data();
+    __m256d T[O + 1];
+    const __m256d p0 = _mm256_loadu_pd(row);
+    for (int k = 0; k <= O; ++k) T[k] = _mm256_mul_pd(_mm256_set1_pd(Nu[k][0]), p0);
+    for (int r = 1; r <= P; ++r) {
+      const __m256d p = _mm256_loadu_pd(row + 4 * r);
+      for (int k = 0; k <= O; ++k)
+        T[k] = _mm256_fmadd_pd(_mm256_set1_pd(Nu[k][static_cast<std::size_t>(r)]), p, T[k]);
+    }
+    for (int q = 0; q < NQ; ++q)
+      a[q] = _mm256_fmadd_pd(_mm256_set1_pd(Nv[kSumL[q]][static_cast<std::size_t>(s)]), T[kSumK[q]],
+                             a[q]);
+  }
+  for (int q = 0; q < NQ; ++q) _mm256_storeu_pd(A[q], a[q]);
+}
+
+inline bool avx2_fma_active() {
+  static const bool active = iga_avx2_fma_active() != 0;
+  return active;
+}
+
+// eval_derivs for p = q = P by the vector sums above.
+template <int O, int P>
+SurfaceDerivs vector_derivs(const BasisDerivs& Nu, const BasisDerivs& Nv, const Vector4d* net,
+                            int stride) {
+  double sums[sums_of(O)][4];
+  if (avx2_fma_active())
+    net_sums_avx2<P, O>(net, stride, Nu, Nv, sums);
+  else
+    net_sums_sse2<P, O>(net, stride, Nu, Nv, sums);
+  Vector4d A[O + 1][O + 1];
+  for (int q = 0; q < sums_of(O); ++q) A[kSumK[q]][kSumL[q]] = Eigen::Map<const Vector4d>(sums[q]);
+  return rational_derivs<O>(A);
+}
+#endif
 
 template <int O>
 SurfaceDerivs dispatch_degrees(const BasisDerivs& Nu, const BasisDerivs& Nv, int p, int q,
                                const Vector4d* net, int stride) {
+#if defined(__x86_64__)
+  if (p == 2 && q == 2) return vector_derivs<O, 2>(Nu, Nv, net, stride);
+  if (p == 3 && q == 3) return vector_derivs<O, 3>(Nu, Nv, net, stride);
+#else
   if (p == 2 && q == 2) return eval_derivs<O, 2, 2>(Nu, Nv, p, q, net, stride);
   if (p == 3 && q == 3) return eval_derivs<O, 3, 3>(Nu, Nv, p, q, net, stride);
+#endif
   return eval_derivs<O, 0, 0>(Nu, Nv, p, q, net, stride);
 }
 

@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -31,20 +32,44 @@ Json quick_saddle(double mu, const std::string& strategy) {
   return doc;
 }
 
-/// max |K - dR/du| / max |K| of the reduced problem at (u, t), central differences of step h.
-double problem_tangent_error(NonlinearProblem& p, const VectorXd& u, double t, double h) {
+/// max |K - dR/du| / max |K| of the reduced problem at (u, t), by central differences. A
+/// difference that changes the contact's counts (active, sticking, sliding) from those at u is
+/// no derivative: a point crossed the gap's sign or the stick-slip kink within the step. Which
+/// points sit that close to a kink depends on the run's round-off (the converged state differs
+/// between processors at 1e-10, so a point 1e-8 from the kink on one machine is across it on
+/// another; seen on an Intel Xeon with AVX-512: relative error 0.035 at h = 1e-7). So each
+/// column is compared with the differences of steps h, h / 3 and h / 10 that keep the counts,
+/// the nearest taken; a column with none is left out and counted in `skipped`.
+double problem_tangent_error(NonlinearProblem& p, const SurfaceContact& contact, const VectorXd& u,
+                             double t, double h, int& skipped) {
   VectorXd R;
   SparseMatrix K;
   p.assemble(u, t, R, &K);
+  const SurfaceContactCounts at_u = contact.counts();
+  const auto same_counts = [&] {
+    const SurfaceContactCounts n = contact.counts();
+    return n.active == at_u.active && n.stick == at_u.stick && n.slip == at_u.slip;
+  };
   const Eigen::MatrixXd Kd(K);
   double err = 0.0;
+  skipped = 0;
   for (Eigen::Index j = 0; j < u.size(); ++j) {
-    VectorXd up = u, um = u, Rp, Rm;
-    up[j] += h;
-    um[j] -= h;
-    p.assemble(up, t, Rp, nullptr);
-    p.assemble(um, t, Rm, nullptr);
-    err = std::max(err, ((Rp - Rm) / (2.0 * h) - Kd.col(j)).cwiseAbs().maxCoeff());
+    double col = std::numeric_limits<double>::infinity();
+    for (const double s : {h, h / 3, h / 10}) {
+      VectorXd up = u, um = u, Rp, Rm;
+      up[j] += s;
+      um[j] -= s;
+      p.assemble(up, t, Rp, nullptr);
+      const bool valid_p = same_counts();
+      p.assemble(um, t, Rm, nullptr);
+      if (!valid_p || !same_counts()) continue;
+      col = std::min(col, ((Rp - Rm) / (2.0 * s) - Kd.col(j)).cwiseAbs().maxCoeff());
+    }
+    if (std::isinf(col)) {
+      ++skipped;
+      continue;
+    }
+    err = std::max(err, col);
   }
   p.assemble(u, t, R, nullptr);
   return err / Kd.cwiseAbs().maxCoeff();
@@ -80,12 +105,17 @@ TEST_CASE(
       std::uniform_real_distribution<double> U(-1.0, 1.0);
       VectorXd u = r.u;
       for (Eigen::Index k = 0; k < u.size(); ++k) u[k] += 2e-5 * U(g);
-      const double err = problem_tangent_error(p, u, 610.0, 1e-7);
+      int skipped = 0;
+      const double err = problem_tangent_error(p, contact, u, 610.0, 1e-7, skipped);
       const SurfaceContactCounts n = contact.counts();
-      INFO(strategy << ", mu = " << mu << ": " << p.status() << ", relative error " << err);
+      INFO(strategy << ", mu = " << mu << ": " << p.status() << ", relative error " << err << ", "
+                    << skipped << " of " << u.size() << " columns across a kink at every step");
       REQUIRE(n.active > 20);
       if (mu > 0.0) CHECK(n.stick + n.slip == n.active);
       CHECK(err < 1e-5);
+      // A kink within h / 10 of u in a column's direction: a few points at most (a column
+      // moves the points of a control point's support, 3 x 3 elements of 3 x 3 points).
+      CHECK(skipped <= 6);
     }
 }
 
