@@ -272,9 +272,10 @@ void sample_distances2(const double* c, int n, const Vector3d& x, double* d2) {
   }
 }
 
-// The first index of the smallest of d[0 .. n) (n >= 1; a NaN is never the smallest unless
-// d[0] is one), and that value: two lanes at a time, each keeping its first minimum, then the
-// lower lane by value and index.
+// The first index of the smallest of d[0 .. n), and that value: two lanes at a time, each
+// keeping its first minimum, then the lower lane by value and index. n >= 1, and no NaN in d
+// (a NaN would hide the values after it in its lane; the distances here are NaN only all
+// together, for a non-finite x, and then the first is returned).
 int first_minimum(const double* d, int n, double& value) {
   int k = 1, best = 0;
   value = d[0];
@@ -616,9 +617,11 @@ namespace {
 // Lower bound of |x - S| over a Bezier piece from its control points (convex hull property):
 // the distance to their box, and for the unit directions d from the box centre towards x and
 // from the best foot point so far towards x, d.x - max_i d.P_i (a supporting plane of the hull).
+// Returns as soon as the bound exceeds `enough` (where the caller asks only whether it does).
 double hull_lower_bound(const Box3& box, const Vector3d* pts, std::size_t n, const Vector3d& x,
-                        const Vector3d* toward) {
+                        const Vector3d* toward, double enough = kInf) {
   double lb = std::sqrt(box_distance2(box, x));
+  if (lb > enough) return lb;  // the box's bound already prunes: the planes cannot undo that
   Vector3d dirs[2];
   int n_dirs = 0;
   const Vector3d a = x - 0.5 * (box.lo + box.hi);
@@ -924,7 +927,7 @@ struct CertifiedSearch {
     const Domain2& range = node.net.range;
     if (is_proven(range)) return;
     if (hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()), x,
-                         best_d < kInf ? &best.point : nullptr) > threshold())
+                         best_d < kInf ? &best.point : nullptr, threshold()) > threshold())
       return;
     if (!opt.certify) {  // the sampled search: seeded Newtons in the element, no proof
       seed_newtons(element);
@@ -940,7 +943,7 @@ struct CertifiedSearch {
       seed_newtons(element);
       if (is_proven(range) ||
           hull_lower_bound(node.box, node.points.data(), static_cast<std::size_t>(node.net.size()),
-                           x, &best.point) > threshold())
+                           x, &best.point, threshold()) > threshold())
         return;
     }
     if (depth >= kMaxDepth) {
@@ -1215,9 +1218,9 @@ ProjectionResult PatchProjector::search_in(const std::vector<N>& tree, const Vec
       cs.visit(n, true, n.element, n.level);
     } else {  // no tree (the elements are not a full grid): the sampled search, not certified
       const std::size_t k = static_cast<std::size_t>(e);
-      if (hull_lower_bound(boxes_[k], hull_.data() + hull_offset_[k],
-                           hull_offset_[k + 1] - hull_offset_[k], x,
-                           cs.best_d < kInf ? &cs.best.point : nullptr) > cs.threshold())
+      if (hull_lower_bound(
+              boxes_[k], hull_.data() + hull_offset_[k], hull_offset_[k + 1] - hull_offset_[k], x,
+              cs.best_d < kInf ? &cs.best.point : nullptr, cs.threshold()) > cs.threshold())
         continue;
       cs.seed_newtons(e);
       cs.certified = false;
