@@ -146,20 +146,9 @@ SurfaceDerivs BezierSurface::derivs_on(int element, double u, double v, int orde
   u = std::clamp(u, e.range.u.lo, e.range.u.hi);
   v = std::clamp(v, e.range.v.lo, e.range.v.hi);
   const double hu = e.range.u.hi - e.range.u.lo, hv = e.range.v.hi - e.range.v.lo;
-  const double tu = (u - e.range.u.lo) / hu, tv = (v - e.range.v.lo) / hv;
   BasisDerivs Bu, Bv;  // d/du = (1 / h_u) d/dt
-  if (e.degree_u == 3 && e.degree_v == 3) {
-    bernstein_cubic(tu, order, 1.0 / hu, Bu);
-    bernstein_cubic(tv, order, 1.0 / hv, Bv);
-    return detail::tensor_derivs(Bu, Bv, 3, 3, order, e.pw.data(), 4);
-  }
-  if (e.degree_u == 2 && e.degree_v == 2) {
-    bernstein_quadratic(tu, order, 1.0 / hu, Bu);
-    bernstein_quadratic(tv, order, 1.0 / hv, Bv);
-    return detail::tensor_derivs(Bu, Bv, 2, 2, order, e.pw.data(), 3);
-  }
-  bernstein_any(e.degree_u, tu, order, 1.0 / hu, Bu);
-  bernstein_any(e.degree_v, tv, order, 1.0 / hv, Bv);
+  bernstein_any(e.degree_u, (u - e.range.u.lo) / hu, order, 1.0 / hu, Bu);
+  bernstein_any(e.degree_v, (v - e.range.v.lo) / hv, order, 1.0 / hv, Bv);
   return detail::tensor_derivs(Bu, Bv, e.degree_u, e.degree_v, order, e.pw.data(), e.degree_u + 1);
 }
 
