@@ -1,7 +1,9 @@
 // Benchmarks of the rods (iga/rod/): one global assembly (forces + consistent tangent into
 // triplets) of a 64-element straight rod in a slightly bent and twisted state, for the
-// torsion-free rod (written-out derivatives) and the rod with torsion (automatic
-// differentiation, iga/core/jet.hpp), degrees 2 and 3. Run: build/release/bench/bench_rod
+// torsion-free rod (written-out derivatives) and the rod with torsion (small jets joined by
+// the chain rule, iga/rod/twisting_rod.hpp "Derivatives"), degrees 2 and 3. The rod with
+// torsion assembles on all OpenMP threads from 16 elements on: compare on one core with
+//   OMP_NUM_THREADS=1 build/release/bench/bench_rod
 //   --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 

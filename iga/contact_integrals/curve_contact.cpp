@@ -128,7 +128,7 @@ Roll spin_and_roll(const SectionFrames& rod, std::span<const Vector3d> x,
     cp.tangent_c = Q.transpose() * cp.frame_t_c;
     if (found(cp.foot.status)) cp.normal_c = cp.foot.normal;
   }
-  sp = rod.spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x, alpha);
+  sp = rod.spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x, alpha, /*derivatives=*/false);
   cp.frame_t = sp.t;
   cp.frame_d1 = sp.d1;
   cp.spin = sp.value;
@@ -319,7 +319,11 @@ void CurveContact::assemble(const BodyState& state, Eigen::VectorXd& R,
                        ? 1
                        : 0;
     if (evaluated[i] == 0 || !cp.law.active) continue;
-    if (frames) cp.torque = cp.law.T_vector.dot(rolls[i].s1);
+    if (frames) {  // the spin's derivatives only where the point is active
+      cp.torque = cp.law.T_vector.dot(rolls[i].s1);
+      spins[i] = frames->spin_since(cp.eta, cp.frame_t_c, cp.frame_d1_c, x_world, twists,
+                                    /*derivatives=*/true);
+    }
     set_frame_forces(basis_[i], p, x, cp);
   }
   near_.clear();

@@ -66,8 +66,7 @@ template <int N>
 Jet<N> chain(const Jet<N>& x, double value, double d1, double d2) {
   Jet<N> z(value);
   z.g = d1 * x.g;
-  z.H = d1 * x.H;
-  z.H.noalias() += d2 * (x.g * x.g.transpose());
+  z.H = d1 * x.H + d2 * x.g.lazyProduct(x.g.transpose());
   return z;
 }
 
@@ -114,9 +113,8 @@ template <int N>
 Jet<N> operator*(const Jet<N>& a, const Jet<N>& b) {
   Jet<N> z(a.v * b.v);
   z.g = a.v * b.g + b.v * a.g;
-  z.H = a.v * b.H + b.v * a.H;
-  z.H.noalias() += a.g * b.g.transpose();
-  z.H.noalias() += b.g * a.g.transpose();
+  // one pass over H (the outer products evaluated coefficient-wise, without temporaries)
+  z.H = a.v * b.H + b.v * a.H + a.g.lazyProduct(b.g.transpose()) + b.g.lazyProduct(a.g.transpose());
   return z;
 }
 template <int N>
@@ -159,6 +157,17 @@ Jet<N> atan2(const Jet<N>& y, const Jet<N>& x) {
   z.H = ty * y.H + tx * x.H;
   z.H.noalias() += tyy * (y.g * y.g.transpose() - x.g * x.g.transpose());
   z.H.noalias() += txy * (x.g * y.g.transpose() + y.g * x.g.transpose());
+  return z;
+}
+
+/// The jet `a` over M variables as a jet over N >= M variables, its variable i becoming
+/// variable offset + i.
+template <int N, int M>
+Jet<N> embed(const Jet<M>& a, int offset) {
+  static_assert(M <= N);
+  Jet<N> z(a.v);
+  z.g.template segment<M>(offset) = a.g;
+  z.H.template block<M, M>(offset, offset) = a.H;
   return z;
 }
 

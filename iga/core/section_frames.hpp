@@ -40,9 +40,11 @@ class SectionFrames {
                      Vector3d& d1) const = 0;
   /// The rotation of the section at xi about its tangent since it had the frame (t_c, d1_c):
   /// the angle from the smallest rotation of d1_c onto the current tangent to d1, with its
-  /// derivatives in the DOFs it depends on.
+  /// derivatives in the DOFs it depends on (without `derivatives`: the value, the frame and the
+  /// DOFs only; gradient and hessian empty).
   virtual SectionSpin spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
-                                 std::span<const Vector3d> x, std::span<const double> s) const = 0;
+                                 std::span<const Vector3d> x, std::span<const double> s,
+                                 bool derivatives) const = 0;
 
  protected:
   SectionFrames() = default;

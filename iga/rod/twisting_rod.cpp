@@ -39,6 +39,66 @@ std::string num(double v) {
   return num_text(v, 6);
 }
 
+/// The relative twist Delta_e of an element from its knots' frames (d1, d2, t) as jets over
+/// y_0 and y_1, continued from its committed value: a jet over (y_0, y_1).
+Jet<8> relative_twist(const std::array<JetVec3<4>, 3>& F0, const std::array<JetVec3<4>, 3>& F1,
+                      double committed) {
+  // Delta_e = atan2(y, x) with m = SR(t_0 -> t_1) d1_0: x = m.d1_1, y = (m x d1_1).t_1 =
+  // -m.d2_1; with t_1.d1_1 = t_1.d2_1 = 0 these are x = d1_0.d1_1 - (t_1.d1_0)(t_0.d1_1)/(1 +
+  // t_0.t_1), y = -(d1_0.d2_1 - (t_1.d1_0)(t_0.d2_1)/(1 + t_0.t_1)): products of the two
+  // frames' vectors, each a jet over y_0 times a jet over y_1.
+  auto prod = [](const JetVec3<4>& u,
+                 const JetVec3<4>& v) {  // u.v, u over variables 0-3, v over 4-7
+    Jet<8> z(0.0);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const Jet<4>&uc = u.c[c], &vc = v.c[c];
+      z.v += uc.v * vc.v;
+      z.g.template head<4>() += vc.v * uc.g;
+      z.g.template tail<4>() += uc.v * vc.g;
+      z.H.template topLeftCorner<4, 4>() += vc.v * uc.H;
+      z.H.template bottomRightCorner<4, 4>() += uc.v * vc.H;
+      z.H.template topRightCorner<4, 4>().noalias() += uc.g * vc.g.transpose();
+    }
+    z.H.template bottomLeftCorner<4, 4>() = z.H.template topRightCorner<4, 4>().transpose();
+    return z;
+  };
+  const Jet<8> r = inverse(1.0 + prod(F0[2], F1[2]));
+  const Jet<8> p = prod(F0[0], F1[2]) * r;  // (t_1.d1_0)/(1 + t_0.t_1)
+  const Jet<8> xD = prod(F0[0], F1[0]) - p * prod(F0[2], F1[0]);
+  const Jet<8> yD = p * prod(F0[2], F1[1]) - prod(F0[0], F1[1]);
+  Jet<8> Delta = atan2(yD, xD);
+  Delta.v += 2.0 * std::numbers::pi * std::round((committed - Delta.v) / (2.0 * std::numbers::pi));
+  return Delta;
+}
+
+double value_of(double v) {
+  return v;
+}
+template <int N>
+double value_of(const Jet<N>& j) {
+  return j.v;
+}
+double inverse(double a) {
+  return 1.0 / a;
+}
+/// Numbers of spin_at: a double, or a jet over (a, y_0, y_1) from the frames' jets.
+template <typename T>
+struct SpinNumber {
+  static double var(double v, int) { return v; }
+  template <int M>
+  static double lift(const Jet<M>& j) {
+    return j.v;
+  }
+};
+template <>
+struct SpinNumber<Jet<11>> {
+  static Jet<11> var(double v, int i) { return Jet<11>::variable(v, i); }
+  template <int M>
+  static Jet<11> lift(const Jet<M>& j) {
+    return embed<11>(j, 3);
+  }
+};
+
 }  // namespace
 
 TwistingRod::TwistingRod(NurbsCurve reference, RodSection section, RodOptions options)
@@ -348,6 +408,308 @@ void TwistingRod::evaluate(int e, std::span<const Vector3d> x, std::span<const d
   }
 }
 
+// The written-out chain (the header's "Derivatives"). Per element: the end frames F_k = (d1_k,
+// d2_k, t_k) as jets over y_k = (a_k, beta_k) (4 variables each) and Delta_e as a jet over (y_0,
+// y_1) (8). Per quadrature point: a, b in the left frame, a^ = F_0^T a, b^ = F_0^T b; the SR
+// frame's strain scalars c = (c_1, c_2, c_3) as jets over (a^, b^) (6); W_q as a function of
+// (c, Delta) written out; then the chain rule to (a, b, y_0, Delta) and to the element DOFs.
+namespace {
+
+/// What a quadrature point gives: W_q and its derivatives in (a^, b^) and Delta.
+struct PointTerms {
+  Eigen::Matrix<double, 6, 1> gv = Eigen::Matrix<double, 6, 1>::Zero();
+  Eigen::Matrix<double, 6, 6> Hv = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> HvD = Eigen::Matrix<double, 6, 1>::Zero();  ///< d2W/d(a^, b^) dDelta
+  double gvD = 0.0, HDD = 0.0, W = 0.0;
+};
+
+/// The bending and torsion energy of a quadrature point (the header's "Derivatives"): a^, b^
+/// in the left frame's components, s = (xi - xi_k)/h, J = |R'|, K the stress-free curvatures.
+void bending_terms(const Vector3d& ah, const Vector3d& bh, double s, double J, const Vector3d& K,
+                   double Delta, double h, const RodSection& S, PointTerms& d) {
+  using J3 = Jet<3>;
+  // c_1 = g.t', c_2 = (t x g).t', c_3 = g'.(t x g) in the left frame's components:
+  // tau = t^ = a^/|a^|, del = t'^ = (b^ - (tau.b^) tau)/|a^|, w_i = tau_i/(1 + tau_3);
+  // c_1 = del_1 - w_1 del_3, c_2 = del_2 - w_2 del_3, c_3 = (tau_2 c_1 - tau_1 c_2)/(1 +
+  // tau_3) = w_2 del_1 - w_1 del_2. So c = M(a^) b^ with M's rows (using tau.(1, 0, -w_1)
+  // = w_1): M_1 = ((1, 0, -w_1) - w_1 tau)/|a^|, M_2 = ((0, 1, -w_2) - w_2 tau)/|a^|,
+  // M_3 = (w_2, -w_1, 0)/|a^|: M as jets over a^ only.
+  std::array<J3, 3> av, tau;
+  for (int i = 0; i < 3; ++i) av[static_cast<std::size_t>(i)] = J3::variable(ah[i], i);
+  const J3 il = inverse(sqrt(av[0] * av[0] + av[1] * av[1] + av[2] * av[2]));
+  for (std::size_t i = 0; i < 3; ++i) tau[i] = il * av[i];
+  const J3 iR = inverse(1.0 + tau[2]);
+  const J3 w1 = tau[0] * iR, w2 = tau[1] * iR;
+  const J3 iw1 = il * w1, iw2 = il * w2;
+  const std::array<std::array<J3, 3>, 3> M = {{
+      {il - iw1 * tau[0], -1.0 * (iw1 * tau[1]), -1.0 * (iw1 + iw1 * tau[2])},
+      {-1.0 * (iw2 * tau[0]), il - iw2 * tau[1], -1.0 * (iw2 + iw2 * tau[2])},
+      {iw2, -1.0 * iw1, J3(0.0)},
+  }};
+  std::array<J3, 3> c;
+  for (std::size_t i = 0; i < 3; ++i) {
+    c[i] = bh[0] * M[i][0];
+    c[i] += bh[1] * M[i][1];
+    c[i] += bh[2] * M[i][2];
+  }
+  const J3& c3 = c[2];
+  // kappa_1 = (sin phi c_1 - cos phi c_2)/J, kappa_2 = (cos phi c_1 + sin phi c_2)/J,
+  // kappa_3 = (Delta/h + c_3)/J, phi = s Delta; u = (c_1, c_2, c_3, Delta).
+  const double phi = s * Delta, sn = std::sin(phi), cs = std::cos(phi), iJ = 1.0 / J;
+  const double k1 = (sn * c[0].v - cs * c[1].v) * iJ, k2 = (cs * c[0].v + sn * c[1].v) * iJ;
+  const double k3 = (Delta / h + c3.v) * iJ;
+  const Eigen::Vector4d g1(sn * iJ, -cs * iJ, 0.0, s * k2), g2(cs * iJ, sn * iJ, 0.0, -s * k1),
+      g3(0.0, 0.0, iJ, iJ / h);
+  const double e1 = k1 - K[0], e2 = k2 - K[1], e3 = k3 - K[2];
+  const double C1 = S.EI1 * e1, C2 = S.EI2 * e2, C3 = S.GJ * e3;
+  d.W += 0.5 * (C1 * e1 + C2 * e2 + C3 * e3);
+  const Eigen::Vector4d gu = C1 * g1 + C2 * g2 + C3 * g3;
+  Eigen::Matrix4d Hu =
+      S.EI1 * g1 * g1.transpose() + S.EI2 * g2 * g2.transpose() + S.GJ * g3 * g3.transpose();
+  // second derivatives of kappa_1, kappa_2 (kappa_3 is linear in u)
+  const double sJ = s * iJ;
+  Hu(0, 3) += C1 * sJ * cs - C2 * sJ * sn;
+  Hu(1, 3) += C1 * sJ * sn + C2 * sJ * cs;
+  Hu(3, 0) = Hu(0, 3);
+  Hu(3, 1) = Hu(1, 3);
+  Hu(3, 3) += -s * s * (C1 * k1 + C2 * k2);
+  // c's gradient over (a^, b^): (grad c_i, M_i); its Hessian: [[H c_i, dM_i/da^], [., 0]]
+  Eigen::Matrix<double, 6, 3> Cg;
+  Matrix3d Hab = Matrix3d::Zero();  // sum_i gu_i d2c_i/da^ db^
+  for (std::size_t i = 0; i < 3; ++i) {
+    Cg.col(static_cast<int>(i)) << c[i].g, M[i][0].v, M[i][1].v, M[i][2].v;
+    for (std::size_t mm = 0; mm < 3; ++mm)
+      Hab.col(static_cast<int>(mm)) += gu[static_cast<int>(i)] * M[i][mm].g;
+  }
+  d.gv = Cg * gu.head<3>();
+  d.Hv.noalias() = Cg * Hu.topLeftCorner<3, 3>() * Cg.transpose();
+  d.Hv.topLeftCorner<3, 3>() += gu[0] * c[0].H + gu[1] * c[1].H + gu[2] * c3.H;
+  d.Hv.topRightCorner<3, 3>() += Hab;
+  d.Hv.bottomLeftCorner<3, 3>() += Hab.transpose();
+  d.HvD = Cg * Hu.col(3).head<3>();
+  d.gvD = gu[3];
+  d.HDD = Hu(3, 3);
+}
+
+}  // namespace
+
+struct TwistingRod::NodalFrame {
+  std::array<JetVec3<4>, 3> F;  ///< d1, d2, t
+};
+
+// The nodal frame (d1_k, d2_k, t_k) over y_k = (a_k, beta_k), as in kernel(): t, g =
+// SR(t_c -> t) d1_c and h = t x g as jets over a_k; then d1 = cos(beta) g + sin(beta) h and
+// d2 = t x d1 = cos(beta) h - sin(beta) g (t x h = -g), their beta-derivatives written out.
+void TwistingRod::nodal_frame(int knot, std::span<const Vector3d> x, std::span<const double> alpha,
+                              const std::vector<Triad>& triads, NodalFrame& NF) const {
+  using J3 = Jet<3>;
+  using J4 = Jet<4>;
+  const int nel = num_elements();
+  const Element& el = elements_[static_cast<std::size_t>(std::min(knot, nel - 1))];
+  const auto& dN = knot < nel ? el.dN_lo : el.dN_hi;
+  std::array<JetVec3<4>, 3>& F = NF.F;
+  Vector3d a = Vector3d::Zero();
+  for (int j = 0; j <= degree(); ++j)
+    a += dN[static_cast<std::size_t>(j)] * x[static_cast<std::size_t>(el.first + j)];
+  JetVec3<3> av;
+  for (int c = 0; c < 3; ++c) av.c[static_cast<std::size_t>(c)] = J3::variable(a[c], c);
+  const JetVec3<3> t = unit(av);
+  const Triad& tc = triads[static_cast<std::size_t>(knot)];
+  const J3 w = dot(t, tc.d1) * inverse(1.0 + dot(t, tc.t));
+  JetVec3<3> g;
+  for (std::size_t c = 0; c < 3; ++c)
+    g.c[c] = tc.d1[static_cast<int>(c)] - w * (t.c[c] + tc.t[static_cast<int>(c)]);
+  const JetVec3<3> hv = cross(t, g);
+  const double beta = alpha[static_cast<std::size_t>(knot)] - tc.alpha;
+  const double cb = std::cos(beta), sb = std::sin(beta);
+  // u = cb p + sb q as a jet over (a, beta)
+  auto rotated = [&](const J3& pp, const J3& qq) {
+    J4 z(cb * pp.v + sb * qq.v);
+    z.g.template head<3>() = cb * pp.g + sb * qq.g;
+    z.g[3] = -sb * pp.v + cb * qq.v;
+    z.H.template topLeftCorner<3, 3>() = cb * pp.H + sb * qq.H;
+    z.H.template topRightCorner<3, 1>() = -sb * pp.g + cb * qq.g;
+    z.H.template bottomLeftCorner<1, 3>() = z.H.template topRightCorner<3, 1>().transpose();
+    z.H(3, 3) = -z.v;
+    return z;
+  };
+  for (std::size_t c = 0; c < 3; ++c) {
+    F[0].c[c] = rotated(g.c[c], hv.c[c]);
+    F[1].c[c] = rotated(hv.c[c], -1.0 * g.c[c]);
+    F[2].c[c] = embed<4>(t.c[c], 0);
+  }
+}
+
+template <int P>
+double TwistingRod::fast_tangent(int e, std::span<const Vector3d> x, const NodalFrame& NF0,
+                                 const NodalFrame& NF1, Eigen::VectorXd& f_out,
+                                 Eigen::MatrixXd& K_out) const {
+  constexpr int np = P + 1, N = 3 * np + 2;
+  using V4 = JetVec3<4>;
+  using J8 = Jet<8>;
+  using Mat6 = Eigen::Matrix<double, 6, 6>;
+  using Vec6 = Eigen::Matrix<double, 6, 1>;
+  const Element& el = elements_[static_cast<std::size_t>(e)];
+  const auto xj = [&](int j) -> const Vector3d& {
+    return x[static_cast<std::size_t>(el.first + j)];
+  };
+  const std::array<V4, 3>& F0 = NF0.F;
+  const std::array<V4, 3>& F1 = NF1.F;
+  J8 Delta = relative_twist(F0, F1, el.Delta);
+  const double h = el.range.hi - el.range.lo;
+
+  Matrix3d Fm;  // rows d1_0, d2_0, t_0
+  for (int i = 0; i < 3; ++i) Fm.row(i) = F0[static_cast<std::size_t>(i)].value().transpose();
+
+  Eigen::Matrix<double, N, 1> f = Eigen::Matrix<double, N, 1>::Zero();
+  Eigen::Matrix<double, N, N> K = Eigen::Matrix<double, N, N>::Zero();
+  Eigen::Matrix<double, N, 5> X = Eigen::Matrix<double, N, 5>::Zero();  // d2W/dq d(y_0, Delta)
+  Matrix3d Cf = Matrix3d::Zero();  // sum of dW/da^_i a_c + dW/db^_i b_c: weights of F0's Hessians
+  Eigen::Matrix<double, 5, 5> Hy = Eigen::Matrix<double, 5, 5>::Zero();  // over (y_0, Delta)
+  double gD = 0.0, W = 0.0;
+  const RodSection& S = section_;
+  std::array<double, np> dN{}, ddN{};
+  for (int gq = 0; gq < el.qp_count; ++gq) {
+    const QuadraturePoint& q = qps_[static_cast<std::size_t>(el.qp_begin + gq)];
+    Vector3d a = Vector3d::Zero(), b = Vector3d::Zero();
+    for (int j = 0; j < np; ++j) {
+      dN[static_cast<std::size_t>(j)] = basis_value(q.basis.dN, q.basis, el.first + j);
+      ddN[static_cast<std::size_t>(j)] = basis_value(q.basis.ddN, q.basis, el.first + j);
+      a += dN[static_cast<std::size_t>(j)] * xj(j);
+      b += ddN[static_cast<std::size_t>(j)] * xj(j);
+    }
+    const Vector3d ah = Fm * a, bh = Fm * b;
+    PointTerms d;
+    if (q.bending) bending_terms(ah, bh, q.s, q.J, q.K, Delta.v, h, S, d);
+    Vec6& gv = d.gv;  // dW_q/d(a^, b^)
+    Mat6& Hv = d.Hv;
+    Vec6& HvD = d.HvD;
+    double &gvD = d.gvD, &HDD = d.HDD, &Wq = d.W;
+    if (q.axial) {  // eps = (|a|^2 - A)/(2A), |a^| = |a|
+      const double eps = (ah.squaredNorm() - q.A) / (2.0 * q.A);
+      Wq += 0.5 * S.EA * eps * eps;
+      gv.head<3>() += (S.EA * eps / q.A) * ah;
+      Hv.topLeftCorner<3, 3>() += (S.EA / (q.A * q.A)) * (ah * ah.transpose());
+      Hv.topLeftCorner<3, 3>().diagonal().array() += S.EA * eps / q.A;
+    }
+    const double wq = q.wJ;
+    W += wq * Wq;
+    gv *= wq;
+    Hv *= wq;
+    HvD *= wq;
+    gvD *= wq;
+    HDD *= wq;
+    // Chain to (a, b, y_0, Delta): a^_i = f_i . a with f_i = F0[i] (a jet over y_0).
+    Eigen::Matrix<double, 6, 4> My;                                         // d(a^, b^)/dy_0
+    Eigen::Matrix<double, 6, 4> Sab = Eigen::Matrix<double, 6, 4>::Zero();  // sum_i g_i df_ic/dy_0
+    for (std::size_t i = 0; i < 3; ++i) {
+      Eigen::Vector4d ja = Eigen::Vector4d::Zero(), jb = Eigen::Vector4d::Zero();
+      for (std::size_t c = 0; c < 3; ++c) {
+        const Eigen::Vector4d& G = F0[i].c[c].g;
+        ja += a[static_cast<int>(c)] * G;
+        jb += b[static_cast<int>(c)] * G;
+        Sab.row(static_cast<int>(c)) += gv[static_cast<int>(i)] * G.transpose();
+        Sab.row(3 + static_cast<int>(c)) += gv[3 + static_cast<int>(i)] * G.transpose();
+        Cf(static_cast<int>(i), static_cast<int>(c)) +=
+            gv[static_cast<int>(i)] * a[static_cast<int>(c)] +
+            gv[3 + static_cast<int>(i)] * b[static_cast<int>(c)];
+      }
+      My.row(static_cast<int>(i)) = ja.transpose();
+      My.row(3 + static_cast<int>(i)) = jb.transpose();
+    }
+    // The positions in the left frame's components, x^_j = F_0 x_j (F_0 at its value): there
+    // d(a^, b^)/d(a, b) = I; the mixed second derivatives turn with F_0.
+    const Vec6& gz = gv;
+    const Mat6& Hzz = Hv;
+    Eigen::Matrix<double, 6, 5> Hz5;  // d2W/d(a^, b^) d(y_0, Delta)
+    const Eigen::Matrix<double, 6, 4> HvMy = Hv * My;
+    Hz5.leftCols<4>() = HvMy;
+    Hz5.topLeftCorner<3, 4>().noalias() += Fm * Sab.topRows<3>();
+    Hz5.bottomLeftCorner<3, 4>().noalias() += Fm * Sab.bottomRows<3>();
+    Hz5.col(4) = HvD;
+    Hy.topLeftCorner<4, 4>() += My.transpose() * HvMy;
+    Hy.col(4).head<4>() += My.transpose() * HvD;
+    Hy(4, 4) += HDD;
+    gD += gvD;
+    // to the positions: a = sum_j R_j' x_j, b = sum_j R_j'' x_j
+    for (int j = 0; j < np; ++j) {
+      const double Aj = dN[static_cast<std::size_t>(j)], Bj = ddN[static_cast<std::size_t>(j)];
+      f.template segment<3>(3 * j) += Aj * gz.head<3>() + Bj * gz.tail<3>();
+      X.template middleRows<3>(3 * j) += Aj * Hz5.topRows<3>() + Bj * Hz5.bottomRows<3>();
+      const Matrix3d Ej = Aj * Hzz.topLeftCorner<3, 3>() + Bj * Hzz.bottomLeftCorner<3, 3>();
+      const Matrix3d Gj = Aj * Hzz.topRightCorner<3, 3>() + Bj * Hzz.bottomRightCorner<3, 3>();
+      for (int k = 0; k < np; ++k)
+        K.template block<3, 3>(3 * j, 3 * k) +=
+            Ej * dN[static_cast<std::size_t>(k)] + Gj * ddN[static_cast<std::size_t>(k)];
+    }
+  }
+  // back from x^_j = F_0 x_j to x_j
+  for (int j = 0; j < np; ++j) {
+    f.template segment<3>(3 * j) = Fm.transpose() * f.template segment<3>(3 * j);
+    X.template middleRows<3>(3 * j) = Fm.transpose() * X.template middleRows<3>(3 * j);
+    for (int k = 0; k < np; ++k)
+      K.template block<3, 3>(3 * j, 3 * k) =
+          Fm.transpose() * K.template block<3, 3>(3 * j, 3 * k) * Fm;
+  }
+  // F0's second derivatives, weighted once per element
+  Eigen::Vector4d gy = Eigen::Vector4d::Zero();
+  for (std::size_t i = 0; i < 3; ++i)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double w = Cf(static_cast<int>(i), static_cast<int>(c));
+      gy += w * F0[i].c[c].g;
+      Hy.topLeftCorner<4, 4>() += w * F0[i].c[c].H;
+    }
+  // (y_0, Delta) -> w = (y_0, y_1) = (a_0, beta_0, a_1, beta_1)
+  Eigen::Matrix<double, 5, 8> Dw = Eigen::Matrix<double, 5, 8>::Zero();
+  Dw.topLeftCorner<4, 4>().setIdentity();
+  Dw.row(4) = Delta.g.transpose();
+  Hy.row(4).head<4>() = Hy.col(4).head<4>().transpose();
+  Eigen::Matrix<double, 8, 1> gw = gD * Delta.g;
+  gw.head<4>() += gy;
+  const Eigen::Matrix<double, 8, 8> Hw = Dw.transpose() * Hy * Dw + gD * Delta.H;
+  // w = Bw q, a linear function of the element DOFs: a_0 = sum_j R_j'(xi_k) x_j, beta_0 =
+  // alpha_k, a_1 = sum_j R_j'(xi_k+1) x_j, beta_1 = alpha_k+1. A Bw for a matrix A of 8 columns:
+  auto times_Bw = [&](const auto& A) {
+    Eigen::Matrix<double, std::decay_t<decltype(A)>::RowsAtCompileTime, N> r;
+    for (int j = 0; j < np; ++j)
+      for (int c = 0; c < 3; ++c)
+        r.col(3 * j + c) = el.dN_lo[static_cast<std::size_t>(j)] * A.col(c) +
+                           el.dN_hi[static_cast<std::size_t>(j)] * A.col(4 + c);
+    r.col(3 * np) = A.col(3);
+    r.col(3 * np + 1) = A.col(7);
+    return r;
+  };
+  f += times_Bw(gw.transpose()).transpose();
+  const Eigen::Matrix<double, N, 8> XD = X.lazyProduct(Dw);
+  const Eigen::Matrix<double, N, N> XB = times_Bw(XD);
+  K += XB + XB.transpose();
+  const Eigen::Matrix<double, N, 8> HB = times_Bw(Hw).transpose();  // (Hw Bw)^T
+  K += times_Bw(HB);
+  f_out = f;
+  K_out = K;
+  return W;
+}
+
+double TwistingRod::tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
+                            const std::vector<Triad>& triads, Eigen::VectorXd& f,
+                            Eigen::MatrixXd& K, const NodalFrame* F0, const NodalFrame* F1) const {
+  NodalFrame L, R;
+  if (!F0) nodal_frame(e, x, alpha, triads, L);
+  if (!F1) nodal_frame(e + 1, x, alpha, triads, R);
+  const NodalFrame& A = F0 ? *F0 : L;
+  const NodalFrame& B = F1 ? *F1 : R;
+  switch (degree()) {
+    case 2:
+      return fast_tangent<2>(e, x, A, B, f, K);
+    case 3:
+      return fast_tangent<3>(e, x, A, B, f, K);
+    case 4:
+      return fast_tangent<4>(e, x, A, B, f, K);
+    default:
+      return fast_tangent<5>(e, x, A, B, f, K);
+  }
+}
+
 double TwistingRod::element_energy(int e, std::span<const Vector3d> x,
                                    std::span<const double> alpha) const {
   check(x, alpha);
@@ -365,11 +727,20 @@ double TwistingRod::energy(std::span<const Vector3d> x, std::span<const double> 
 void TwistingRod::element_tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
                                   Eigen::VectorXd& f, Eigen::MatrixXd* K) const {
   check(x, alpha);
+  Eigen::MatrixXd Ke;
+  tangent(e, x, alpha, committed_, f, Ke);
+  if (K) *K = std::move(Ke);
+}
+
+void TwistingRod::element_tangent_by_jets(int e, std::span<const Vector3d> x,
+                                          std::span<const double> alpha, Eigen::VectorXd& f,
+                                          Eigen::MatrixXd& K) const {
+  check(x, alpha);
   Eval ev;
   ev.derivatives = true;
   evaluate(e, x, alpha, committed_, ev);
   f = ev.f;
-  if (K) *K = ev.K;
+  K = ev.K;
 }
 
 void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> alpha,
@@ -380,22 +751,31 @@ void TwistingRod::assemble(std::span<const Vector3d> x, std::span<const double> 
   const int nel = num_elements();
   const int ne = 3 * (degree() + 1) + 2;
   std::vector<Eval> evs(static_cast<std::size_t>(nel));
-#pragma omp parallel for schedule(static) if (nel >= kParallelTwistingRodElements)
-  for (int e = 0; e < nel; ++e) {
-    Eval& ev = evs[static_cast<std::size_t>(e)];
-    ev.derivatives = true;
-    evaluate(e, x, alpha, committed_, ev);
+  std::vector<NodalFrame> frames(static_cast<std::size_t>(nel + 1));  // shared by neighbours
+#pragma omp parallel if (nel >= kParallelTwistingRodElements)
+  {
+#pragma omp for schedule(static)
+    for (int k = 0; k <= nel; ++k)
+      nodal_frame(k, x, alpha, committed_, frames[static_cast<std::size_t>(k)]);
+#pragma omp for schedule(static)
+    for (int e = 0; e < nel; ++e) {
+      Eval& ev = evs[static_cast<std::size_t>(e)];
+      ev.W = tangent(e, x, alpha, committed_, ev.f, ev.K, &frames[static_cast<std::size_t>(e)],
+                     &frames[static_cast<std::size_t>(e + 1)]);
+    }
   }
   f.setZero(num_dofs());
+  std::vector<int> dofs(static_cast<std::size_t>(ne));
   for (int e = 0; e < nel; ++e) {
     const Eval& ev = evs[static_cast<std::size_t>(e)];
-    auto global = [&](int l) { return global_dof(e, l); };
-    for (int i = 0; i < ne; ++i) {
-      f[global(i)] += ev.f[i];
-      if (K)
-        for (int j = 0; j < ne; ++j)
-          if (ev.K(i, j) != 0.0) K->emplace_back(global(i), global(j), ev.K(i, j));
-    }
+    for (int i = 0; i < ne; ++i) dofs[static_cast<std::size_t>(i)] = global_dof(e, i);
+    for (int i = 0; i < ne; ++i) f[dofs[static_cast<std::size_t>(i)]] += ev.f[i];
+    if (K)
+      for (int j = 0; j < ne; ++j)  // K is column-major
+        for (int i = 0; i < ne; ++i)
+          if (ev.K(i, j) != 0.0)
+            K->emplace_back(dofs[static_cast<std::size_t>(i)], dofs[static_cast<std::size_t>(j)],
+                            ev.K(i, j));
   }
 }
 
@@ -423,9 +803,9 @@ void TwistingRod::moment_at(double xi, const Vector3d& M, double Mt, std::span<c
   K = ev.K;
 }
 
-SectionSpin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
-                                    std::span<const Vector3d> x,
-                                    std::span<const double> alpha) const {
+SectionSpin TwistingRod::spin_since_by_jets(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                                            std::span<const Vector3d> x,
+                                            std::span<const double> alpha) const {
   check(x, alpha);
   const int e = element_at(xi);
   Eval ev;
@@ -442,6 +822,100 @@ SectionSpin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector
   for (std::size_t l = 0; l < sp.dofs.size(); ++l) sp.dofs[l] = global_dof(e, static_cast<int>(l));
   sp.t = ev.strains.t;
   sp.d1 = ev.strains.d1;
+  return sp;
+}
+
+template <typename T>
+T TwistingRod::spin_at(int e, double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                       std::span<const Vector3d> x, const NodalFrame& NF0, const NodalFrame& NF1,
+                       Vector3d& t_out, Vector3d& d1_out) const {
+  // As kernel() with xi and spin_from, the frame at xi from the knots' frames:
+  // g = SR(t_0 -> t) d1_0, d1 = cos phi g + sin phi t x g, the spin the angle about t from
+  // SR(t_c -> t) d1_c to d1.
+  using std::atan2;
+  using std::cos;
+  using std::sin;
+  using std::sqrt;
+  using V = std::array<T, 3>;
+  using Num = SpinNumber<T>;
+  const Element& el = elements_[static_cast<std::size_t>(e)];
+  const double h = el.range.hi - el.range.lo;
+  xi = std::min(xi, el.range.hi - (e + 1 < num_elements() ? 1e-12 * h : 0.0));
+  const RationalBasis B = rational_basis(reference_, xi);
+  Vector3d av = Vector3d::Zero();
+  for (int j = 0; j <= degree(); ++j)
+    av += basis_value(B.dN, B, el.first + j) * x[static_cast<std::size_t>(el.first + j)];
+  V a, t0, d10;
+  for (std::size_t c = 0; c < 3; ++c) {
+    a[c] = Num::var(av[static_cast<int>(c)], static_cast<int>(c));
+    t0[c] = Num::lift(NF0.F[2].c[c]);
+    d10[c] = Num::lift(NF0.F[0].c[c]);
+  }
+  const T Delta = Num::lift(relative_twist(NF0.F, NF1.F, el.Delta));
+  const auto dot = [](const V& u, const V& v) { return u[0] * v[0] + u[1] * v[1] + u[2] * v[2]; };
+  const auto dotc = [](const V& u, const Vector3d& v) {
+    return v[0] * u[0] + v[1] * u[1] + v[2] * u[2];
+  };
+  const auto cross = [](const V& u, const V& v) {
+    return V{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+  };
+  const T il = inverse(sqrt(dot(a, a)));
+  V t;
+  for (std::size_t c = 0; c < 3; ++c) t[c] = il * a[c];
+  const T w = dot(t, d10) * inverse(1.0 + dot(t0, t));
+  V g;
+  for (std::size_t c = 0; c < 3; ++c) g[c] = d10[c] - w * (t0[c] + t[c]);
+  const V hv = cross(t, g);
+  const T phi = ((xi - el.range.lo) / h) * Delta;
+  const T cphi = cos(phi), sphi = sin(phi);
+  V d1;
+  for (std::size_t c = 0; c < 3; ++c) d1[c] = cphi * g[c] + sphi * hv[c];
+  const T wc = dotc(t, d1_c) * inverse(1.0 + dotc(t, t_c));
+  V m;
+  for (std::size_t c = 0; c < 3; ++c)
+    m[c] = d1_c[static_cast<int>(c)] - wc * (t_c[static_cast<int>(c)] + t[c]);
+  for (int c = 0; c < 3; ++c) {
+    t_out[c] = value_of(t[static_cast<std::size_t>(c)]);
+    d1_out[c] = value_of(d1[static_cast<std::size_t>(c)]);
+  }
+  return atan2(dot(cross(m, d1), t), dot(m, d1));
+}
+
+SectionSpin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                                    std::span<const Vector3d> x, std::span<const double> alpha,
+                                    bool derivatives) const {
+  check(x, alpha);
+  const int e = element_at(xi);
+  NodalFrame F0, F1;
+  nodal_frame(e, x, alpha, committed_, F0);
+  nodal_frame(e + 1, x, alpha, committed_, F1);
+  const int np = degree() + 1, ne = 3 * np + 2;
+  SectionSpin sp;
+  sp.positions = 3 * np;
+  sp.dofs.resize(static_cast<std::size_t>(ne));
+  for (int l = 0; l < ne; ++l) sp.dofs[static_cast<std::size_t>(l)] = global_dof(e, l);
+  if (!derivatives) {
+    sp.value = spin_at<double>(e, xi, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
+    return sp;
+  }
+  const Jet<11> s = spin_at<Jet<11>>(e, xi, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
+  sp.value = s.v;
+  // (a, y_0, y_1) = L q: a = sum_j R_j'(xi) x_j, a_k = sum_j R_j'(xi_k) x_j, beta_k = alpha_k
+  const Element& el = elements_[static_cast<std::size_t>(e)];
+  const double h = el.range.hi - el.range.lo;
+  const double xc = std::min(xi, el.range.hi - (e + 1 < num_elements() ? 1e-12 * h : 0.0));
+  const RationalBasis B = rational_basis(reference_, xc);
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(11, ne);
+  for (int j = 0; j < np; ++j)
+    for (int c = 0; c < 3; ++c) {
+      L(c, 3 * j + c) = basis_value(B.dN, B, el.first + j);
+      L(3 + c, 3 * j + c) = el.dN_lo[static_cast<std::size_t>(j)];
+      L(7 + c, 3 * j + c) = el.dN_hi[static_cast<std::size_t>(j)];
+    }
+  L(6, 3 * np) = 1.0;
+  L(10, 3 * np + 1) = 1.0;
+  sp.gradient = L.transpose() * s.g;
+  sp.hessian = L.transpose() * s.H * L;
   return sp;
 }
 

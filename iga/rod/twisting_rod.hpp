@@ -10,8 +10,9 @@
 //   path-independent (unlike an SR map from the reference tangent, their Sect. 4);
 // [SVQ86] Simo & Vu-Quoc, "A three-dimensional finite-strain rod model. Part II", CMAME 58
 //   (1986) 79-116 (the 45-degree bend); [KS15] the reference paper (GI of the rope, (52)).
-// The formulas below are written out by us; the element derivatives come from second-order
-// forward automatic differentiation (iga/core/jet.hpp) of the energy.
+// The formulas below are written out by us; the element derivatives come from small
+// second-order jets (iga/core/jet.hpp) per stage, joined by the chain rule written out (see
+// "Derivatives").
 //
 // Notation (symbol -> code):
 //   xi, xi_k               curve parameter; knot k (element borders, k = 0 .. n_el)  xi, knot
@@ -60,9 +61,27 @@
 // the twist at knot k (TwistingRodProblem keeps the twists as the scalar unknowns of its DofMap,
 // so that they are fixed and prescribed along load curves, and their reactions are torques).
 //
-// Cost: the automatic differentiation costs O(N^2) per operation (N = 3 (p + 1) + 2 element
-// DOFs): forces and tangent take ~67 us per element of degree 2 and ~97 us of degree 3
-// (bench/bench_rod.cpp), some 60 times the torsion-free rod's written-out derivatives.
+// Derivatives. One jet over all N = 3 (p + 1) + 2 element DOFs costs O(N^2) per operation
+// (~67 / 97 us per element of degree 2 / 3); element_tangent_by_jets keeps that as the
+// reference. element_tangent and assemble use the structure instead:
+//   - the knot frames F_k = (d1_k, d2_k, t_k) depend on y_k = (a_k, beta_k) only: jets over 4
+//     variables, once per knot (neighbouring elements share them);
+//   - Delta_e = atan2(y, x), x = d1_0.d1_1 - (t_1.d1_0)(t_0.d1_1)/(1 + t_0.t_1), y = -(d1_0.d2_1
+//     - (t_1.d1_0)(t_0.d2_1)/(1 + t_0.t_1)) (t_1 is normal to d1_1, d2_1): products of a jet
+//     over y_0 and one over y_1, a jet over 8 variables;
+//   - at a quadrature point, in the components of the left frame (a^ = F_0^T a, b^ = F_0^T b,
+//     tau = a^/|a^|, w_i = tau_i/(1 + tau_3), del = (b^ - (tau.b^) tau)/|a^| = t'^), since SR
+//     maps d1_0, d2_0 to g, t x g: c_1 = g.t' = del_1 - w_1 del_3, c_2 = (t x g).t' = del_2 -
+//     w_2 del_3, c_3 = g'.(t x g) = w_2 del_1 - w_1 del_2, so c = M(a^) b^ with M a jet over a^
+//     (3 variables), and kappa_1 = (sin phi c_1 - cos phi c_2)/J, kappa_2 = (cos phi c_1 + sin
+//     phi c_2)/J, kappa_3 = (Delta/h + c_3)/J, whose derivatives in (c, Delta) are written out;
+//   - the chain rule from (a^, b^, Delta) to (a, b, y_0, y_1), with F_0's second derivatives
+//     weighted once per element, and to the element DOFs (a, b, a_k linear in the points).
+// spin_since uses the knot frames too, with one jet over (a, y_0, y_1) (11 variables) at xi,
+// and skips the jets when no derivatives are asked (contact points that are not active).
+// Forces and tangent then take ~5.5 / 7.3 us per element of degree 2 / 3 on one core, about 5
+// and 4.5 times the torsion-free rod (bench/bench_rod.cpp); the tests compare both paths to
+// round-off and the forces and tangent against finite differences of the energy.
 #pragma once
 
 #include <span>
@@ -75,7 +94,7 @@
 namespace iga {
 
 /// Rods with torsion of at least this many elements are assembled on all OpenMP threads
-/// (TwistingRod::assemble; an element takes 70-100 us).
+/// (TwistingRod::assemble; an element takes 5-8 us).
 inline constexpr int kParallelTwistingRodElements = 16;
 
 /// Strains, section forces and frame at one point of the twisting rod (output, tests).
@@ -122,6 +141,10 @@ class TwistingRod final : public SectionFrames {
   double energy(std::span<const Vector3d> x, std::span<const double> alpha) const;
   void element_tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
                        Eigen::VectorXd& f, Eigen::MatrixXd* K) const;
+  /// The same forces and tangent by second-order jets over all element DOFs (the slow
+  /// reference the written-out chain of element_tangent is tested against).
+  void element_tangent_by_jets(int e, std::span<const Vector3d> x, std::span<const double> alpha,
+                               Eigen::VectorXd& f, Eigen::MatrixXd& K) const;
   /// Global internal forces (num_dofs(), numbering of the header) and tangent triplets, in
   /// element order. Rods of kParallelTwistingRodElements elements or more are assembled on all
   /// OpenMP threads; the result is the same bit for bit for any number of threads.
@@ -145,7 +168,12 @@ class TwistingRod final : public SectionFrames {
   /// global numbers in SectionSpin::dofs); and the current frame there. A rope's contact point
   /// rolls by it (iga/contact_integrals/curve_contact.hpp).
   SectionSpin spin_since(double xi, const Vector3d& t_c, const Vector3d& d1_c,
-                         std::span<const Vector3d> x, std::span<const double> alpha) const override;
+                         std::span<const Vector3d> x, std::span<const double> alpha,
+                         bool derivatives) const override;
+  /// The same by second-order jets over all element DOFs (the reference spin_since is tested
+  /// against).
+  SectionSpin spin_since_by_jets(double xi, const Vector3d& t_c, const Vector3d& d1_c,
+                                 std::span<const Vector3d> x, std::span<const double> alpha) const;
   /// The section frame (t, d1) at xi (as strains()).
   void frame(double xi, std::span<const Vector3d> x, std::span<const double> alpha, Vector3d& t,
              Vector3d& d1) const override;
@@ -216,6 +244,26 @@ class TwistingRod final : public SectionFrames {
               const std::vector<Triad>& triads, Eval& out) const;
   void evaluate(int e, std::span<const Vector3d> x, std::span<const double> alpha,
                 const std::vector<Triad>& triads, Eval& out) const;
+  /// The nodal frame (d1_k, d2_k, t_k) at knot k as jets over (a_k, beta_k) (twisting_rod.cpp).
+  struct NodalFrame;
+  void nodal_frame(int knot, std::span<const Vector3d> x, std::span<const double> alpha,
+                   const std::vector<Triad>& triads, NodalFrame& F) const;
+  /// Energy, forces f and tangent K of element e by the chain of the header's "Derivatives"
+  /// (small jets per stage, the chain rule between them written out), from the frames of its
+  /// two knots.
+  template <int P>
+  double fast_tangent(int e, std::span<const Vector3d> x, const NodalFrame& F0,
+                      const NodalFrame& F1, Eigen::VectorXd& f, Eigen::MatrixXd& K) const;
+  /// spin_since by the frames of the element's knots: the spin as a jet over (a, y_0, y_1)
+  /// (11 variables) with derivatives, as a number without.
+  template <typename T>
+  T spin_at(int e, double xi, const Vector3d& t_c, const Vector3d& d1_c,
+            std::span<const Vector3d> x, const NodalFrame& F0, const NodalFrame& F1, Vector3d& t,
+            Vector3d& d1) const;
+  /// fast_tangent for the rod's degree; the knots' frames computed here unless given.
+  double tangent(int e, std::span<const Vector3d> x, std::span<const double> alpha,
+                 const std::vector<Triad>& triads, Eigen::VectorXd& f, Eigen::MatrixXd& K,
+                 const NodalFrame* F0 = nullptr, const NodalFrame* F1 = nullptr) const;
   void check(std::span<const Vector3d> x, std::span<const double> alpha) const;
   /// The element holding parameter xi (the last one for xi at its end).
   int element_at(double xi) const;

@@ -135,6 +135,83 @@ TEST_CASE("TwistingRod: forces and tangent against central differences of the en
   }
 }
 
+TEST_CASE("TwistingRod: the written-out chain equals the jets over all element DOFs",
+          "[iga][rod][twist]") {
+  // element_tangent (small jets per stage, the chain rule written out) against
+  // element_tangent_by_jets (one second-order jet over all DOFs): the same function, so they
+  // agree to round-off; degrees 2 to 5, with straight stress-free and separate axial
+  // quadrature, committed at one state and evaluated at another with large twists.
+  std::mt19937 rng(23);
+  for (int p : {2, 3, 4, 5})
+    for (int variant = 0; variant < 2; ++variant) {
+      RodOptions opt;
+      if (variant == 1) {
+        opt.straight_stress_free = true;
+        opt.axial_quadrature_points = p;
+      }
+      TwistingRod rod(wavy_curve(rng, p, 9), section(), opt);
+      const State s1 = perturbed(rod, rng, 0.2);
+      rod.commit(s1.x, s1.alpha);
+      const State s = perturbed(rod, rng, 0.15, &s1);
+      double worst = 0.0;
+      for (int e = 0; e < rod.num_elements(); ++e) {
+        Eigen::VectorXd f, fj;
+        Eigen::MatrixXd K, Kj;
+        rod.element_tangent(e, s.x, s.alpha, f, &K);
+        rod.element_tangent_by_jets(e, s.x, s.alpha, fj, Kj);
+        REQUIRE(f.size() == fj.size());
+        REQUIRE(K.rows() == Kj.rows());
+        worst = std::max({worst, (f - fj).cwiseAbs().maxCoeff() / fj.cwiseAbs().maxCoeff(),
+                          (K - Kj).cwiseAbs().maxCoeff() / Kj.cwiseAbs().maxCoeff()});
+      }
+      INFO("degree " << p << ", variant " << variant);
+      CHECK(worst < 1e-11);
+    }
+}
+
+TEST_CASE("TwistingRod: the section's spin by the knots' frames equals the jets over all DOFs",
+          "[iga][rod][twist]") {
+  // spin_since (the frame at xi from the knots' frames, one jet over 11 variables) against
+  // spin_since_by_jets; at knots, inside elements and at the ends, with and without
+  // derivatives (the value and frame the same either way).
+  std::mt19937 rng(29);
+  std::uniform_real_distribution<double> d(-0.3, 0.3);
+  for (int p : {2, 3, 4}) {
+    TwistingRod rod(wavy_curve(rng, p, 8), section());
+    const State s1 = perturbed(rod, rng, 0.2);
+    rod.commit(s1.x, s1.alpha);
+    const State s = perturbed(rod, rng, 0.15, &s1);
+    std::vector<double> params = {0.0, 1.0};
+    for (int k = 1; k + 1 < rod.num_knots(); ++k) params.push_back(rod.knot(k));
+    for (int i = 0; i < 6; ++i) params.push_back((i + 0.37) / 6.0);
+    double worst = 0.0;
+    for (double xi : params) {
+      Vector3d t_c, d1_c;
+      rod.frame(xi, s1.x, s1.alpha, t_c, d1_c);
+      const Vector3d turn = Vector3d(d(rng), d(rng), d(rng));  // an earlier frame, turned
+      const Eigen::AngleAxisd Q(turn.norm(), turn.normalized());
+      t_c = Q * t_c;
+      d1_c = Q * d1_c;
+      const SectionSpin a = rod.spin_since(xi, t_c, d1_c, s.x, s.alpha, true);
+      const SectionSpin v = rod.spin_since(xi, t_c, d1_c, s.x, s.alpha, false);
+      const SectionSpin j = rod.spin_since_by_jets(xi, t_c, d1_c, s.x, s.alpha);
+      REQUIRE(a.dofs == j.dofs);
+      REQUIRE(v.dofs == j.dofs);
+      CHECK(v.gradient.size() == 0);
+      CHECK(a.value == Approx(j.value).margin(1e-12));
+      CHECK(v.value == Approx(j.value).margin(1e-12));
+      CHECK((a.t - j.t).norm() < 1e-12);
+      CHECK((v.d1 - j.d1).norm() < 1e-12);
+      worst = std::max(
+          {worst,
+           (a.gradient - j.gradient).cwiseAbs().maxCoeff() / j.gradient.cwiseAbs().maxCoeff(),
+           (a.hessian - j.hessian).cwiseAbs().maxCoeff() / j.hessian.cwiseAbs().maxCoeff()});
+    }
+    INFO("degree " << p);
+    CHECK(worst < 1e-10);
+  }
+}
+
 TEST_CASE("TwistingRod: objective (the whole state turned rigidly keeps the energy)",
           "[iga][rod][twist]") {
   // Positions x -> Q x + c and the committed triads -> Q (t, d1): the energy is unchanged and
