@@ -826,9 +826,9 @@ SectionSpin TwistingRod::spin_since_by_jets(double xi, const Vector3d& t_c, cons
 }
 
 template <typename T>
-T TwistingRod::spin_at(int e, double xi, const Vector3d& t_c, const Vector3d& d1_c,
-                       std::span<const Vector3d> x, const NodalFrame& NF0, const NodalFrame& NF1,
-                       Vector3d& t_out, Vector3d& d1_out) const {
+T TwistingRod::spin_at(int e, double xi, const RationalBasis& B, const Vector3d& t_c,
+                       const Vector3d& d1_c, std::span<const Vector3d> x, const NodalFrame& NF0,
+                       const NodalFrame& NF1, Vector3d& t_out, Vector3d& d1_out) const {
   // As kernel() with xi and spin_from, the frame at xi from the knots' frames:
   // g = SR(t_0 -> t) d1_0, d1 = cos phi g + sin phi t x g, the spin the angle about t from
   // SR(t_c -> t) d1_c to d1.
@@ -840,8 +840,6 @@ T TwistingRod::spin_at(int e, double xi, const Vector3d& t_c, const Vector3d& d1
   using Num = SpinNumber<T>;
   const Element& el = elements_[static_cast<std::size_t>(e)];
   const double h = el.range.hi - el.range.lo;
-  xi = std::min(xi, el.range.hi - (e + 1 < num_elements() ? 1e-12 * h : 0.0));
-  const RationalBasis B = rational_basis(reference_, xi);
   Vector3d av = Vector3d::Zero();
   for (int j = 0; j <= degree(); ++j)
     av += basis_value(B.dN, B, el.first + j) * x[static_cast<std::size_t>(el.first + j)];
@@ -894,17 +892,18 @@ SectionSpin TwistingRod::spin_since(double xi, const Vector3d& t_c, const Vector
   sp.positions = 3 * np;
   sp.dofs.resize(static_cast<std::size_t>(ne));
   for (int l = 0; l < ne; ++l) sp.dofs[static_cast<std::size_t>(l)] = global_dof(e, l);
-  if (!derivatives) {
-    sp.value = spin_at<double>(e, xi, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
-    return sp;
-  }
-  const Jet<11> s = spin_at<Jet<11>>(e, xi, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
-  sp.value = s.v;
-  // (a, y_0, y_1) = L q: a = sum_j R_j'(xi) x_j, a_k = sum_j R_j'(xi_k) x_j, beta_k = alpha_k
+  // at an inner right end, the element's left limit (as kernel())
   const Element& el = elements_[static_cast<std::size_t>(e)];
   const double h = el.range.hi - el.range.lo;
   const double xc = std::min(xi, el.range.hi - (e + 1 < num_elements() ? 1e-12 * h : 0.0));
   const RationalBasis B = rational_basis(reference_, xc);
+  if (!derivatives) {
+    sp.value = spin_at<double>(e, xc, B, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
+    return sp;
+  }
+  const Jet<11> s = spin_at<Jet<11>>(e, xc, B, t_c, d1_c, x, F0, F1, sp.t, sp.d1);
+  sp.value = s.v;
+  // (a, y_0, y_1) = L q: a = sum_j R_j'(xi) x_j, a_k = sum_j R_j'(xi_k) x_j, beta_k = alpha_k
   Eigen::MatrixXd L = Eigen::MatrixXd::Zero(11, ne);
   for (int j = 0; j < np; ++j)
     for (int c = 0; c < 3; ++c) {

@@ -255,9 +255,9 @@ class TwistingRod final : public SectionFrames {
   double fast_tangent(int e, std::span<const Vector3d> x, const NodalFrame& F0,
                       const NodalFrame& F1, Eigen::VectorXd& f, Eigen::MatrixXd& K) const;
   /// spin_since by the frames of the element's knots: the spin as a jet over (a, y_0, y_1)
-  /// (11 variables) with derivatives, as a number without.
+  /// (11 variables) with derivatives, as a number without; B: the basis at xi (inside element e).
   template <typename T>
-  T spin_at(int e, double xi, const Vector3d& t_c, const Vector3d& d1_c,
+  T spin_at(int e, double xi, const RationalBasis& B, const Vector3d& t_c, const Vector3d& d1_c,
             std::span<const Vector3d> x, const NodalFrame& F0, const NodalFrame& F1, Vector3d& t,
             Vector3d& d1) const;
   /// fast_tangent for the rod's degree; the knots' frames computed here unless given.
