@@ -64,6 +64,15 @@ class RigidContactPair : public ContactPair {
     g.tail(g.size() - n3) += g_.tail(g.size() - n3);
     time_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
+  /// The integral works in the tool's frame at the pose of t, and exact enforcement predicts
+  /// the step's first multipliers from t (predict): g depends on t where the pose differs
+  /// between t0 and t1 (bit for bit) or the multipliers are augmented.
+  bool depends_on_time(double t0, double t1) const override {
+    if (contact_.enforcement().augmented) return true;
+    if (!motion()) return false;
+    const RigidPose a = pose(t0), b = pose(t1);
+    return a.Q != b.Q || a.c != b.c || a.c0 != b.c0;
+  }
   void commit() override { contact_.commit(); }
   /// Exact enforcement (augmented Lagrange, ContactEnforcement): the integral checks the
   /// largest |gap| of the points carrying a force in the state of the last assembly (the

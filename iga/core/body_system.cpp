@@ -2,6 +2,7 @@
 #include "iga/core/body_system.hpp"
 
 #include <algorithm>
+#include <array>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -71,6 +72,24 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
   }
   if (!K) return;
   assembler_.assemble(triplets_, n, n, *K);  // the pattern kept while the bodies' are
+}
+
+bool BodySystem::load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) {
+  R_t.setZero(num_dofs());
+  bool can = true;
+  VectorXd Rb;
+  for (int b = 0; b < num_bodies() && can; ++b) {
+    const int o = offset(b), nb = offset(b + 1) - o;
+    can = bodies_[static_cast<std::size_t>(b)]->load_rate(u.segment(o, nb), t, h, Rb);
+    if (can) R_t.segment(o, nb) = Rb;
+  }
+  if (!distributed()) return can;
+  // Every process takes the same path: the rates' sum, or an assembly everywhere.
+  std::array<double, 1> cannot{can ? 0.0 : 1.0};
+  comm_->max(cannot);
+  if (cannot[0] != 0.0) return false;
+  comm_->sum(std::span<double>(R_t.data(), static_cast<std::size_t>(R_t.size())));
+  return true;
 }
 
 std::vector<ContactPair*> BodySystem::all_pairs() const {

@@ -46,6 +46,8 @@ class BodySystem : public NonlinearProblem {
   int num_dofs() const override { return offsets_.back(); }
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
   bool symmetric() const override;
+  /// The bodies' load_rate stacked; false where one body's is (on any process: then on all).
+  bool load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) override;
   void commit(const VectorXd& u, double t) override;
   /// The worst of the bodies' (failed > updated > satisfied), messages joined.
   AugmentResult augment(const VectorXd& u, double t) override;

@@ -76,6 +76,13 @@ class ContactPair {
   /// g -= contact forces in the body's state at t; K (if not null) gets the triplets of their
   /// derivative.
   virtual void add(const BodyState& state, double t, VectorXd& g, std::vector<Triplet>* K) = 0;
+  /// Whether add() at the same body state may give another g at t1 than at t0 (a tool whose
+  /// pose differs, multipliers predicted along t): NonlinearProblem::load_rate then needs the
+  /// assembly. By default true: a pair that does not say otherwise is assembled.
+  virtual bool depends_on_time(double t0, double t1) const {
+    (void)t0, (void)t1;
+    return true;
+  }
   /// Commits the history of the last assembly (a converged step).
   virtual void commit() = 0;
   /// Exact enforcement: checks the constraints at the last assembly, updates the multipliers

@@ -236,6 +236,35 @@ void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, Spa
   assembler_.assemble(cart_triplets_, dofs_.num_free(), dofs_.num_free(), *K);
 }
 
+bool ControlPointProblem::load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) {
+  const double t1 = t + h;
+  if (dofs_.prescribed_moves(t, t1)) return false;
+  if (std::any_of(pairs_.begin(), pairs_.end(),
+                  [&](const auto& p) { return p->depends_on_time(t, t1); }))
+    return false;
+  // g(t1) - g(t0) at the same x, s: the internal forces and the pairs' part cancel.
+  VectorXd g0 = VectorXd::Zero(dofs_.num_cartesian()), g1 = g0;
+  if (share().assembles) {
+    std::vector<Vector3d> x;
+    std::vector<double> s;
+    current_points(u, t, x);
+    dofs_.current_scalars(u, t, s);
+    if (!add_load_terms(x, s, t1, g1) || !add_load_terms(x, s, t, g0)) return false;
+    for (const NodalLoad& L : dead_loads_) {
+      if (!L.split && !share().point_terms) continue;  // added by another process
+      const double l0 = L.curve(t), l1 = L.curve(t1);
+      for (const auto& [i, F] : L.forces) {
+        g0.segment<3>(3 * i) -= l0 * F;
+        g1.segment<3>(3 * i) -= l1 * F;
+      }
+    }
+  }
+  g1 -= g0;
+  g1 /= h;
+  dofs_.reduce(g1, R_t);
+  return true;
+}
+
 std::vector<Vector3d> ControlPointProblem::nodal_residual(const VectorXd& u, double t) {
   assemble_cartesian(u, t, false);
   std::vector<Vector3d> r(X_.size());

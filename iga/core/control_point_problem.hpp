@@ -58,6 +58,11 @@ class ControlPointProblem : public Body {
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
   /// The model's symmetry (model_symmetric) and every pair's.
   bool symmetric() const final;
+  /// dR/dt as NonlinearProblem::load_rate: the change of the dead nodal loads and of the
+  /// model's own load terms (add_load_terms) between t and t + h, reduced to the free unknowns;
+  /// false where a prescribed value or a pair changes with t, or the model cannot single its
+  /// load terms out.
+  bool load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) override;
   /// Commits the pairs' history (the state of the last assembly: the converged u, t).
   void commit(const VectorXd& u, double t) override;
   /// Every pair checks its constraints at the last assembly: `failed` if one failed, else
@@ -119,6 +124,15 @@ class ControlPointProblem : public Body {
   /// K != nullptr. Dead nodal loads are subtracted afterwards by the base.
   virtual void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t,
                               VectorXd& g, std::vector<Triplet>* K) = 0;
+  /// The terms of assemble_model's g that depend on t at fixed x and s (loads along load
+  /// curves that follow the configuration, springs whose stiffness follows a curve), added to g
+  /// (3 n + m entries) at t; f_int must not depend on t. Returns false where the model cannot
+  /// single them out (the default): load_rate then leaves dR/dt to an assembly.
+  virtual bool add_load_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                              VectorXd& g) const {
+    (void)x, (void)s, (void)t, (void)g;
+    return false;
+  }
   /// The body's section frames, handed to its contact pairs with its state (a rod whose
   /// sections turn, BodyState); null by default.
   virtual const SectionFrames* section_frames() const { return nullptr; }

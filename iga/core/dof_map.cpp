@@ -289,6 +289,12 @@ void DofMap::current_scalars(const VectorXd& u, double t, std::vector<double>& s
   }
 }
 
+bool DofMap::prescribed_moves(double t0, double t1) const {
+  return std::any_of(prescribed_.begin(), prescribed_.end(), [&](const Prescribed& p) {
+    return p.curve && p.value * p.curve(t0) != p.value * p.curve(t1);
+  });
+}
+
 void DofMap::current_points(std::span<const Vector3d> X, const VectorXd& u, double t,
                             std::vector<Vector3d>& x) const {
   refresh();

@@ -81,6 +81,11 @@ class DofMap {
   /// Free DOF index of a component (-1 if constrained; a tied slave gives its master's index).
   int dof(int point, int component) const;
 
+  /// Whether a prescribed value (a point's component or a scalar) differs between t0 and t1,
+  /// value curve(t0) != value curve(t1) bit for bit: then the current points or scalars at the
+  /// same u differ.
+  bool prescribed_moves(double t0, double t1) const;
+
   // ---- scalar unknowns (k in [0, num_scalars())) ----------------------------------------------
   void fix_scalar(int k);
   /// s_k = value * curve(t).

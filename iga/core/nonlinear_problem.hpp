@@ -72,6 +72,17 @@ class NonlinearProblem {
   /// K holds only this rank's part, and the linear solver sums the parts over the ranks
   /// (LinearSolver::set_distributed). Default false: K is the whole tangent.
   virtual bool distributed() const { return false; }
+  /// dR/dt at (u, t) as the one-sided difference R_t = (R(u, t + h) - R(u, t)) / h (h may be
+  /// negative), where the problem can give it without assembling: where t enters R only
+  /// through loads along load curves, R_t is their change alone and the internal forces, whose
+  /// assembly is most of the cost, cancel. Returns false where it cannot (a prescribed motion
+  /// or a moving tool that changes between t and t + h, multipliers predicted along t): the
+  /// solver then assembles R(u, t + h) (arc length's dR/dt). It changes no state the solver
+  /// sees: the last assembly stays the last. Default: false.
+  virtual bool load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) {
+    (void)u, (void)t, (void)h, (void)R_t;
+    return false;
+  }
   /// Called after a converged step at time t with state u: commit history variables.
   virtual void commit(const VectorXd& u, double t) { (void)u, (void)t; }
   /// Called when Newton has converged at time t with state u (the state of the last assembly),

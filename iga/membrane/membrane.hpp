@@ -125,6 +125,13 @@ class MembraneProblem : public ControlPointProblem {
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
   void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
+  /// The pressure's terms (follower pressure along its curves).
+  bool add_load_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                      VectorXd& g) const override {
+    (void)s;
+    add_pressure_terms(x, t, g, nullptr);
+    return true;
+  }
 
  private:
   struct Point {

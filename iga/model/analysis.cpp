@@ -462,6 +462,8 @@ Json Analysis::summary(const AnalysisResult& res) const {
       settings_.analysis == AnalysisKind::certified ? "auto" : to_string(settings_.analysis);
   s["linear_steps"] = res.solver.linear_steps;
   s["assemblies"] = res.solver.assemblies;
+  s["residual_assemblies"] = res.solver.residual_assemblies;  // without the tangent
+  s["load_rates"] = res.solver.load_rates;  // arc length's dR/dt from the loads alone
   s["factorizations"] = res.solver.cholmod_factorizations + res.solver.ldlt_factorizations +
                         res.solver.umfpack_factorizations + res.solver.petsc_factorizations;
   s["jumps"] = res.solver.jumps;  // load control: steps that likely jumped over a limit point

@@ -308,6 +308,13 @@ class RodProblem : public ControlPointProblem {
   /// g = f_int - (moment loads), tangent triplets.
   void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
+  /// The moment loads' terms.
+  bool add_load_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                      VectorXd& g) const override {
+    (void)s;
+    add_moment_terms(x, t, g, nullptr);
+    return true;
+  }
 
  private:
   struct Moment {

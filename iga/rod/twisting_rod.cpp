@@ -1119,6 +1119,17 @@ int TwistingRodProblem::check_knot(int knot) const {
 void TwistingRodProblem::assemble_model(std::span<const Vector3d> x, std::span<const double> s,
                                         double t, VectorXd& g, std::vector<Triplet>* K) {
   rod_.assemble(x, s, g, K);  // alpha = s
+  add_moment_terms(x, s, t, g, K);
+}
+
+bool TwistingRodProblem::add_load_terms(std::span<const Vector3d> x, std::span<const double> s,
+                                        double t, VectorXd& g) const {
+  add_moment_terms(x, s, t, g, nullptr);
+  return true;
+}
+
+void TwistingRodProblem::add_moment_terms(std::span<const Vector3d> x, std::span<const double> s,
+                                          double t, VectorXd& g, std::vector<Triplet>* K) const {
   Eigen::VectorXd f;
   Eigen::MatrixXd Km;
   for (const KnotMoment& mo : moments_) {

@@ -356,9 +356,15 @@ class TwistingRodProblem : public ControlPointProblem {
   SampledMesh sample_model(const VectorXd& u, double t, int samples) const override;
   void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
+  /// The knot moments' terms.
+  bool add_load_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                      VectorXd& g) const override;
   const SectionFrames* section_frames() const override { return &rod_; }
 
  private:
+  /// g -= the knot moments' work-conjugate forces at t, their tangent into K if not null.
+  void add_moment_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                        VectorXd& g, std::vector<Triplet>* K) const;
   void check_parameter(double xi) const;
   int check_knot(int knot) const;
   struct KnotMoment {

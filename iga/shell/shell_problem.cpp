@@ -193,6 +193,18 @@ void ShellProblem::assemble_model(std::span<const Vector3d> x, std::span<const d
                                   double t, VectorXd& g, std::vector<Triplet>* K) {
   shell_.assemble(x, g, K);  // g = f_int
   add_pressure_terms(x, t, g, K);
+  add_spring_terms(x, t, g, K);
+}
+
+bool ShellProblem::add_load_terms(std::span<const Vector3d> x, std::span<const double> /*s*/,
+                                  double t, VectorXd& g) const {
+  add_pressure_terms(x, t, g, nullptr);
+  add_spring_terms(x, t, g, nullptr);
+  return true;
+}
+
+void ShellProblem::add_spring_terms(std::span<const Vector3d> x, double t, VectorXd& g,
+                                    std::vector<Triplet>* K) const {
   const std::vector<Vector3d>& X = reference_points();
   for (const Spring& s : springs_) {
     if (!share().point_terms) break;  // added by another process

@@ -110,6 +110,9 @@ class ShellProblem : public ControlPointProblem {
   /// g = f_int - f_pressure + springs; tangent triplets.
   void assemble_model(std::span<const Vector3d> x, std::span<const double> s, double t, VectorXd& g,
                       std::vector<Triplet>* K) override;
+  /// The pressure and spring terms (both along curves).
+  bool add_load_terms(std::span<const Vector3d> x, std::span<const double> s, double t,
+                      VectorXd& g) const override;
 
  private:
   struct Spring {
@@ -125,6 +128,9 @@ class ShellProblem : public ControlPointProblem {
   };
   void add_pressure_terms(std::span<const Vector3d> x, double t, VectorXd& g,
                           std::vector<Triplet>* K) const;
+  /// The springs' forces k curve(t) (x - X) and their tangent.
+  void add_spring_terms(std::span<const Vector3d> x, double t, VectorXd& g,
+                        std::vector<Triplet>* K) const;
   /// The reference normal at the edge point of each column of the edge.
   std::vector<Vector3d> edge_normals(SurfaceEdge edge) const;
 

@@ -60,10 +60,26 @@ namespace {
 
 /// dR/dt at (u, t) by a one-sided difference of step h (exact where the loads and prescribed
 /// values are linear in t) into R_t, then R and K at (u, t), so that the last assembly is the
-/// state's own. Returns |R|, or -1 with `error` set.
+/// state's own. The difference comes from the loads alone where the problem can give it
+/// (NonlinearProblem::load_rate: counted in r.load_rates; `try_loads`), else from an assembly
+/// at t + h.
+/// Returns |R|, or -1 with `error` set.
 double assemble_with_rate(NonlinearProblem& problem, const VectorXd& u, double t, double h, int n,
                           VectorXd& R_h, VectorXd& R, SparseMatrix& K, VectorXd& R_t,
-                          NonlinearSolverResult& r, std::string& error) {
+                          NonlinearSolverResult& r, std::string& error, bool try_loads) {
+  bool from_loads = false;
+  const Clock::time_point start = Clock::now();
+  try {
+    from_loads = try_loads && problem.load_rate(u, t, h, R_t);
+  } catch (const std::exception& e) {
+    error = e.what();
+    return -1.0;
+  }
+  r.time_assembly += seconds_since(start);
+  if (from_loads) {
+    ++r.load_rates;
+    return assemble_residual(problem, u, t, n, R, K, r, error);
+  }
   if (assemble_rhs(problem, u, t + h, n, R_h, r, error) < 0.0) return -1.0;
   const double rn = assemble_residual(problem, u, t, n, R, K, r, error);
   if (rn >= 0.0) R_t = (R_h - R) / h;
@@ -124,7 +140,8 @@ bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcS
   // Predictor: K du_t = -dR/dt at the converged state, Delta t = +-Delta l / |du_t|.
   u = arc.u_last;
   a.t = arc.t;
-  if (assemble_with_rate(problem, u, arc.t, h, w.n, arc.R_h, w.R, w.K, arc.R_t, r, error) < 0.0)
+  if (assemble_with_rate(problem, u, arc.t, h, w.n, arc.R_h, w.R, w.K, arc.R_t, r, error,
+                         s.rate_from_loads) < 0.0)
     return finish(NewtonOutcome::assembly_failed, "assembly at the step's start: " + error);
   w.rhs = -arc.R_t;
   const LinearSolveStatus ls = solve_correction(linear_, w.K, w.rhs, arc.du_t, a, r);
@@ -171,7 +188,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
   const double h_base = 1e-7 * (s.t1 - s.t0);
   const auto assemble = [&](double t, double direction) {
     return assemble_with_rate(problem, u, t, direction < 0.0 ? -h_base : h_base, w.n, arc.R_h, w.R,
-                              w.K, arc.R_t, r, error);
+                              w.K, arc.R_t, r, error, s.rate_from_loads);
   };
   // K x = b with the current factorization (factorized by the caller).
   const auto solve = [&](const VectorXd& b, VectorXd& x) { return solve_again(linear_, b, x, r); };

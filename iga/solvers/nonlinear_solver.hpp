@@ -82,6 +82,10 @@ struct NonlinearSolverSettings {
   /// between its folds with 30 or 45 and reaches P_max with 20; 24 x 24 to 40 x 40 follow the
   /// same path with 20 and 45 (24 x 24: 278 steps instead of 208; 40 x 40: 51 either way).
   double max_turn_deg = 20.0;
+  /// Arc length: dR/dt from the loads alone where the problem gives it
+  /// (NonlinearProblem::load_rate), else by an assembly at t + h; false: always by the
+  /// assembly (not a model key: for comparing the two in tests and bench_arc_length).
+  bool rate_from_loads = true;
   double t0 = 0.0;  ///< start of the pseudo-time span (u is converged there)
   /// End of the span. With arc length the run ends when the path reaches t1 (the step that
   /// crosses it is repeated under load control to land on t1); t may go down and up before.
@@ -221,6 +225,9 @@ struct NonlinearSolverResult {
   std::vector<StepAttempt> attempts;  ///< every attempt, in order
   int assemblies = 0;                 ///< calls of NonlinearProblem::assemble
   int residual_assemblies = 0;        ///< ... of them without the tangent (the linear paths; dR/dt)
+  /// Arc length's dR/dt taken from the loads alone (NonlinearProblem::load_rate), each in place
+  /// of a residual assembly.
+  int load_rates = 0;
   /// Steps solved by the linear path (AnalysisKind::linear, or certified: accepted by the
   /// residual test); their solves count as one iteration each.
   int linear_steps = 0;

@@ -148,6 +148,7 @@ class PyAnalysis {
     d["newton_iterations"] = result_.solver.total_iterations;
     d["linear_steps"] = result_.solver.linear_steps;  // solved by the linear path
     d["assemblies"] = result_.solver.assemblies;
+    d["load_rates"] = result_.solver.load_rates;  // arc length's dR/dt from the loads alone
     d["full_slip"] = result_.full_slip;
     d["seconds"] = result_.solver.time_total;
     d["restart_file"] = result_.restart_file;

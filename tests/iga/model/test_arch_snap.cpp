@@ -105,6 +105,26 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
   CHECK(std::abs(extrema[1].first - 2.42704) < 0.03);
   CHECK(delta.back() == Approx(3.523344).epsilon(1e-4));
   CHECK(P.back() == Approx(kLoadAtT1).epsilon(1e-12));  // landed on t = 1
+  // dR/dt from the point load alone (NonlinearProblem::load_rate): no residual assembled for
+  // it, one rate per arc-length assembly (the last step lands under load control).
+  CHECK(res.solver.residual_assemblies == 0);
+  CHECK(res.solver.load_rates > res.solver.steps);
+  CHECK(summary.at("load_rates").get<int>() == res.solver.load_rates);
+  // The same path with dR/dt by an assembly at t + h: the same state at t = 1 (on the far
+  // branch, whatever steps either run took), one residual assembly per rate.
+  Analysis fd = Analysis::from_json(read_json_file(kModel), kModel);
+  fd.solver_settings().rate_from_loads = false;
+  const AnalysisResult res_fd = fd.run(nullptr, "");
+  REQUIRE(res_fd.solver.converged());
+  CHECK(res_fd.solver.load_rates == 0);
+  CHECK(res_fd.solver.residual_assemblies > res_fd.solver.steps);
+  const double delta_fd = -res_fd.steps.back().displacements.at(0).y();
+  CHECK(std::abs(delta_fd - delta.back()) < 1e-8 * delta.back());
+  std::printf(
+      "  dR/dt by assemblies: %d assemblies (%d without the tangent) against %d; "
+      "delta differs by %.2e\n",
+      res_fd.solver.assemblies, res_fd.solver.residual_assemblies, res.solver.assemblies,
+      std::abs(delta_fd - delta.back()));
   // ParaView's series runs by step (t falls and rises along the path): step k at time k.
   const std::string pvd = test::slurp(dir + "/rod.pvd");
   CHECK(pvd.find("timestep=\"" + std::to_string(P.size()) + "\" part=\"0\" file=\"step" +

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "iga/solvers/nonlinear_solver.hpp"
