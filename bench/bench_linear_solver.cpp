@@ -5,14 +5,18 @@
 // saddle's tangent, which makes it positive definite; only the pattern and the fill decide the
 // cost). Each factorization of the same pattern, the symbolic analysis (the AMD ordering) done once
 // before the loop as the solver does while the pattern is unchanged:
-//   BM_Factorize/<method>/<n>: 0 CHOLMOD supernodal LL^T (dense blocks through the BLAS),
-//     1 CHOLMOD simplicial LL^T, 2 CHOLMOD simplicial LDL^T (the indefinite path),
-//     3 UMFPACK LU (the unsymmetric path and the last fallback), 4 iga::LinearSolver (what a
+//   BM_Factorize/<method>/<n> (n = 20, 40, 80, 160): 0 CHOLMOD supernodal LL^T (dense blocks
+//     through the BLAS), 1 CHOLMOD simplicial LL^T, 2 CHOLMOD simplicial LDL^T (the indefinite
+//     path), 3 UMFPACK LU (the unsymmetric path and the last fallback), 4 iga::LinearSolver (what a
 //     Newton iteration calls: CHOLMOD with supernodal or simplicial as CHOLMOD's flop count
 //     decides), 5 and 6: 0 and 2 with METIS nested dissection as the only ordering, 7 and 8:
 //     iga::LinearSolver with MUMPS through PETSc, LDL^T (symmetric) and LU (a build with PETSc;
 //     skipped without);
 //   BM_Solve/<method>/<n>: the triangular solves of one right-hand side.
+// 0 against 4 shows what LinearSolver's serial OpenMP regions around CHOLMOD save (CHOLMOD of
+// SuiteSparse 5 opens regions of a fixed 4 threads in its supernodal factorization:
+// iga/solvers/linear_solver.cpp, SerialRegions); n = 160 is the Newton scaling study's largest
+// plate (issue 37, item 5).
 // The supernodal factorization's speed is the BLAS's: compare the system's libblas.so.3
 // (Debian's alternatives: reference BLAS or OpenBLAS, scripts/install-deps.sh installs
 // libopenblas0-serial).
@@ -181,10 +185,10 @@ void BM_Solve(benchmark::State& state) {
 }
 
 BENCHMARK(BM_Factorize)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80, 160}})
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Solve)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80, 160}})
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

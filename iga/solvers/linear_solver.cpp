@@ -12,12 +12,33 @@
 #include "iga/parallel/communicator.hpp"
 #include "iga/solvers/distributed_solver.hpp"
 
+#include <omp.h>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
 namespace iga {
 
 namespace {
+
+/// While alive, OpenMP regions run on the calling thread alone (max-active-levels 0), the
+/// previous setting restored after. CHOLMOD of SuiteSparse 5 (Debian 12) opens regions of a
+/// fixed 4 threads (its compile-time CHOLMOD_OMP_NUM_THREADS, whatever OMP_NUM_THREADS says) in
+/// the supernodal factorization, several per supernode for loops of a few thousand entries:
+/// their start-ups and barriers cost more than the threads share (some 250,000 futex calls and
+/// a second core half busy for one factorization of the 160 x 160 plate;
+/// bench_linear_solver's LinearSolver against plain CHOLMOD: 1.26 s -> 0.57 s at 160 x 160,
+/// 264 -> 94 ms at 80 x 80, 10 -> 2 ms at 20 x 20 on 2 cores). The factorizations run alone,
+/// between the element loops, which keep their threads.
+class SerialRegions {
+ public:
+  SerialRegions() : levels_(omp_get_max_active_levels()) { omp_set_max_active_levels(0); }
+  ~SerialRegions() { omp_set_max_active_levels(levels_); }
+  SerialRegions(const SerialRegions&) = delete;
+  SerialRegions& operator=(const SerialRegions&) = delete;
+
+ private:
+  int levels_;
+};
 
 using Clock = std::chrono::steady_clock;
 
@@ -238,6 +259,7 @@ struct LinearSolver::Impl {
   /// (with the reason in `why`) if the analysis failed.
   template <class Decomposition>
   bool cholmod_factorize(Decomposition& d, bool& analyzed, const char* name, std::string& why) {
+    const SerialRegions serial;
     if (!analyzed) {
       const Clock::time_point t0 = Clock::now();
       d.analyzePattern(A);
@@ -554,6 +576,7 @@ LinearSolveStatus LinearSolver::solve(const VectorXd& b, VectorXd& x) {
       return m.status;
     }
   } else if (m.backend == LinearBackend::cholmod) {
+    const SerialRegions serial;
     x = m.llt.solve(b);
     ok = m.llt.info() == Eigen::Success;
   } else if (m.backend == LinearBackend::umfpack) {
