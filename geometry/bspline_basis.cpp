@@ -166,11 +166,32 @@ void ders_basis_funs_impl(int span, double u, int p_rt, int nd, std::span<const 
     general_ders<PF>(p, std::min(nd, p), ndu, ders);
 }
 
+/// Degree 1 (bilinear patches: planes and the saddle's hyperboloid as NURBS): A2.3's operations
+/// for p = 1 written out, the same numbers bit for bit (h = right + left, N_0 = right / h,
+/// N_1 = left / h as temp = 1 / h times each; N_0' = -1 / h, N_1' = 1 / h; higher orders 0).
+/// The general scheme's loops and zeroing cost several times these few operations, and the
+/// warm projections onto such a rigid surface evaluate it at every contact point.
+void ders_basis_funs_linear(int span, double u, int nd, std::span<const double> U,
+                            BasisDerivs& ders) {
+  const double left = u - U[span], right = U[span + 1] - u;
+  const double h = right + left;
+  const double temp = 1.0 / h;
+  for (int k = 0; k <= nd; ++k) ders[k][0] = ders[k][1] = 0.0;
+  ders[0][0] = 0.0 + right * temp;
+  ders[0][1] = left * temp;
+  if (nd >= 1) {
+    ders[1][0] = -1.0 / h;
+    ders[1][1] = 1.0 / h;
+  }
+}
+
 }  // namespace
 
 void ders_basis_funs(int span, double u, int p, int nd, std::span<const double> U,
                      BasisDerivs& ders) {
   switch (p) {
+    case 1:
+      return ders_basis_funs_linear(span, u, nd, U, ders);
     case 2:
       return ders_basis_funs_impl<2>(span, u, p, nd, U, ders);
     case 3:

@@ -160,6 +160,31 @@ TEST_CASE("KnotVector: breaks, multiplicity, Greville abscissae, uniform factory
   for (std::size_t i = 1; i < g.size(); ++i) CHECK(g[i] > g[i - 1]);
 }
 
+TEST_CASE("ders_basis_funs: degree 1 written out equals A2.2's values bit for bit, slopes 1/h",
+          "[geometry][basis]") {
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> unif(0.0, 1.0);
+  const std::vector<double> U = test::random_knots(rng, 1, 9, 1);
+  for (int k = 0; k < 300; ++k) {
+    const double u = k < static_cast<int>(U.size()) ? U[k] : unif(rng);
+    const int span = find_span(9, 1, u, U);
+    BasisValues N;
+    BasisDerivs D;
+    basis_funs(span, u, 1, U, N);
+    for (int nd = 0; nd <= kMaxDerivOrder; ++nd) {
+      ders_basis_funs(span, u, 1, nd, U, D);
+      CHECK(D[0][0] == N[0]);  // the same operations as A2.2's: the same bits
+      CHECK(D[0][1] == N[1]);
+      const double h = U[span + 1] - U[span];
+      if (nd >= 1) {
+        CHECK(D[1][0] == Approx(-1.0 / h).epsilon(1e-14));
+        CHECK(D[1][1] == Approx(1.0 / h).epsilon(1e-14));
+      }
+      for (int d = 2; d <= nd; ++d) CHECK((D[d][0] == 0.0 && D[d][1] == 0.0));
+    }
+  }
+}
+
 TEST_CASE("ders_basis_funs: the order <= 2 fast path equals the general A2.3 loop",
           "[geometry][basis]") {
   std::mt19937 rng(19);
