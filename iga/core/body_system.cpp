@@ -78,10 +78,15 @@ bool BodySystem::load_rate(const VectorXd& u, double t, double h, VectorXd& R_t)
   R_t.setZero(num_dofs());
   bool can = true;
   VectorXd Rb;
-  for (int b = 0; b < num_bodies() && can; ++b) {
-    const int o = offset(b), nb = offset(b + 1) - o;
-    can = bodies_[static_cast<std::size_t>(b)]->load_rate(u.segment(o, nb), t, h, Rb);
-    if (can) R_t.segment(o, nb) = Rb;
+  try {
+    for (int b = 0; b < num_bodies() && can; ++b) {
+      const int o = offset(b), nb = offset(b + 1) - o;
+      can = bodies_[static_cast<std::size_t>(b)]->load_rate(u.segment(o, nb), t, h, Rb);
+      if (can) R_t.segment(o, nb) = Rb;
+    }
+  } catch (const std::exception&) {
+    if (!distributed()) throw;
+    can = false;  // the assembly that follows meets the error on every process alike
   }
   if (!distributed()) return can;
   // Every process takes the same path: the rates' sum, or an assembly everywhere.
