@@ -217,11 +217,7 @@ void ControlPointProblem::assemble_cartesian(const VectorXd& u, double t, bool t
   if (g_.size() != dofs_.num_cartesian())
     throw std::logic_error(describe() + ": the model's residual has " + std::to_string(g_.size()) +
                            " entries, expected " + std::to_string(dofs_.num_cartesian()));
-  for (const NodalLoad& L : dead_loads_) {
-    if (!L.split && !share().point_terms) continue;  // added by another process
-    const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) g_.segment<3>(3 * i) -= lam * F;  // g -= f_ext
-  }
+  subtract_dead_loads(t, g_);
   const BodyState state{x_, s_, section_frames()};
   for (const auto& p : pairs_) p->add(state, t, g_, K);
   if (K) cart_size_ = K->size();
@@ -234,6 +230,14 @@ void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, Spa
   dofs_.reduce_in_place(cart_triplets_);  // K_free = P^T K_cart P
   // the pattern is built again only when the triplets' sequence changed (the active set)
   assembler_.assemble(cart_triplets_, dofs_.num_free(), dofs_.num_free(), *K);
+}
+
+void ControlPointProblem::subtract_dead_loads(double t, VectorXd& g) const {
+  for (const NodalLoad& L : dead_loads_) {
+    if (!L.split && !share().point_terms) continue;  // added by another process
+    const double lam = L.curve(t);
+    for (const auto& [i, F] : L.forces) g.segment<3>(3 * i) -= lam * F;  // g -= f_ext
+  }
 }
 
 bool ControlPointProblem::load_rate(const VectorXd& u, double t, double h, VectorXd& R_t) {
@@ -250,14 +254,8 @@ bool ControlPointProblem::load_rate(const VectorXd& u, double t, double h, Vecto
     current_points(u, t, x);
     dofs_.current_scalars(u, t, s);
     if (!add_load_terms(x, s, t1, g1) || !add_load_terms(x, s, t, g0)) return false;
-    for (const NodalLoad& L : dead_loads_) {
-      if (!L.split && !share().point_terms) continue;  // added by another process
-      const double l0 = L.curve(t), l1 = L.curve(t1);
-      for (const auto& [i, F] : L.forces) {
-        g0.segment<3>(3 * i) -= l0 * F;
-        g1.segment<3>(3 * i) -= l1 * F;
-      }
-    }
+    subtract_dead_loads(t, g0);
+    subtract_dead_loads(t1, g1);
   }
   g1 -= g0;
   g1 /= h;

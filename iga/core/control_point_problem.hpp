@@ -163,6 +163,8 @@ class ControlPointProblem : public Body {
     LoadCurve curve;
     bool split = false;  ///< this process's part of the load (add_nodal_load)
   };
+  /// g -= the dead nodal loads at t (this process's share of them).
+  void subtract_dead_loads(double t, VectorXd& g) const;
   /// Cartesian residual g and (optionally) Cartesian triplets at x.
   void assemble_cartesian(const VectorXd& u, double t, bool tangent);
   /// The Cartesian residual at (u, t) evaluated with copies of the pairs (their state kept).
