@@ -12,6 +12,11 @@
 //   BM_NewtonIteration: both, as one Newton iteration does.
 // Counters (rank 0's; the others' are printed): setup_MB the resident memory the model's
 // construction added, peak_MB the process's peak resident memory (VmHWM) after the run.
+// Printed per process besides: the resident memory before the model (the libraries, MPI's and
+// PETSc's), what the run holds live (the resident memory after malloc_trim gave the freed
+// memory back), and the peaks of one assembly and of one factorization and solve at the
+// run's end, each from the live memory before it (VmHWM restarted through
+// /proc/self/clear_refs).
 // Every process runs the same fixed iterations (the collectives must match); only rank 0
 // reports.
 // Run, one process and two:
@@ -20,6 +25,7 @@
 // (add --benchmark_report_aggregates_only=true for the medians only).
 #include <benchmark/benchmark.h>
 
+#include <malloc.h>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -27,6 +33,7 @@
 #include <optional>
 #include <string>
 
+#include "bench/bench_ranks.hpp"
 #include "geometry/json_reader.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/parallel/communicator.hpp"
@@ -50,6 +57,11 @@ double status_mb(const std::string& key) {
   return 0.0;
 }
 
+/// Restarts the process's peak resident memory (VmHWM) at its current resident memory.
+void reset_peak() {
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
 struct Fixture {
   std::optional<Analysis> analysis;
   VectorXd u, R;
@@ -57,7 +69,11 @@ struct Fixture {
   SparseMatrix K;
   LinearSolver solver;
   double setup_mb = 0.0, peak_mb = 0.0;
+  double base_mb = 0.0, live_mb = 0.0, assembly_peak_mb = 0.0, solve_peak_mb = 0.0;
 };
+
+void assemble(Fixture& f);
+void solve(Fixture& f);
 
 Fixture& fixture() {
   static const std::unique_ptr<Fixture> f = [] {
@@ -76,6 +92,7 @@ Fixture& fixture() {
     if (const char* s = std::getenv("IGA_BENCH_SOLVER")) doc["solver"]["linear_solver"] = s;
     doc["output"] = {{"vtk", "none"}};
     const double before = status_mb("VmRSS");
+    x->base_mb = before;
     x->analysis.emplace(Analysis::from_json(doc, "saddle_bench.json", world()));
     x->setup_mb = status_mb("VmRSS") - before;
     const AnalysisResult r = x->analysis->run();
@@ -84,6 +101,17 @@ Fixture& fixture() {
     x->solver.set_method(x->analysis->solver_settings().linear_method);
     x->solver.set_distributed(x->analysis->problem().distributed());
     x->peak_mb = status_mb("VmHWM");
+    // what the run holds: the resident memory once the allocator gave back what was freed
+    malloc_trim(0);
+    x->live_mb = status_mb("VmRSS");
+    // the peaks of one assembly and of one factorization and solve at that state, each from
+    // the resident memory before it (the kernel's VmHWM restarted: /proc/self/clear_refs)
+    reset_peak();
+    assemble(*x);
+    x->assembly_peak_mb = status_mb("VmHWM");
+    reset_peak();
+    solve(*x);
+    x->solve_peak_mb = status_mb("VmHWM");
     if (world().root())
       std::printf(
           "saddle %d x %d, degree %d, %d unknowns, %d process(es): %zu steps to t = %g, "
@@ -139,13 +167,6 @@ BENCHMARK(BM_Assembly)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTim
 BENCHMARK(BM_LinearSolve)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 BENCHMARK(BM_NewtonIteration)->Unit(benchmark::kMillisecond)->Iterations(3)->UseRealTime();
 
-/// Reports nothing (the processes but rank 0).
-class Silent final : public benchmark::BenchmarkReporter {
- public:
-  bool ReportContext(const Context&) override { return true; }
-  void ReportRuns(const std::vector<Run>&) override {}
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -154,16 +175,14 @@ int main(int argc, char** argv) {
   fixture();  // the model and its state, before any timing
   const Fixture& f = fixture();
   // Each process's memory, in rank order, printed by rank 0.
-  char mine[96];
-  std::snprintf(mine, sizeof mine, "rank %d: setup %.0f MB, peak %.0f MB", world().rank(),
-                f.setup_mb, f.peak_mb);
+  char mine[256];
+  std::snprintf(mine, sizeof mine,
+                "rank %d: before the model %.0f MB, setup %.0f MB, peak of the run %.0f MB, live "
+                "after it %.0f MB, peak of an assembly %.0f MB, of a factorization and solve "
+                "%.0f MB",
+                world().rank(), f.base_mb, f.setup_mb, f.peak_mb, f.live_mb, f.assembly_peak_mb,
+                f.solve_peak_mb);
   for (const std::string& line : world().gather(mine)) std::printf("%s\n", line.c_str());
-  if (world().root()) {
-    benchmark::RunSpecifiedBenchmarks();
-  } else {
-    Silent silent;
-    benchmark::RunSpecifiedBenchmarks(&silent);
-  }
-  benchmark::Shutdown();
+  bench::run_on_every_rank();
   return 0;
 }

@@ -12,6 +12,11 @@
 //     decides), 5 and 6: 0 and 2 with METIS nested dissection as the only ordering, 7 and 8:
 //     iga::LinearSolver with MUMPS through PETSc, LDL^T (symmetric) and LU (a build with PETSc;
 //     skipped without);
+//   BM_Distributed/<n>: iga::DistributedLinearSolver (MUMPS LDL^T through PETSc) over the run's
+//     processes, each handing in the entries of its even block of rows (the plate's numbering
+//     is row by row of control points, so a block of rows is a strip of the plate, as a cut
+//     shell's block is), with the COO assembly of every factorization; run it under mpirun
+//     against one process (a fixed count of iterations: every process takes part in each);
 //   BM_Solve/<method>/<n>: the triangular solves of one right-hand side.
 // 0 against 4 shows what LinearSolver's serial OpenMP regions around CHOLMOD save (CHOLMOD of
 // SuiteSparse 5 opens regions of a fixed 4 threads in its supernodal factorization:
@@ -22,6 +27,8 @@
 // libopenblas0-serial).
 // Run: build/release/bench/bench_linear_solver --benchmark_repetitions=5
 //   --benchmark_report_aggregates_only=true
+// and over 2 processes (MUMPS's options pass in PETSC_OPTIONS, e.g. "-mat_mumps_icntl_7 5"):
+//   mpirun -n 2 build/release/bench/bench_linear_solver --benchmark_filter=Distributed
 #include <benchmark/benchmark.h>
 
 #include <map>
@@ -30,11 +37,13 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
+#include "bench/bench_ranks.hpp"
 #include "geometry/constructions.hpp"
 #include "geometry/refinement.hpp"
 #include "iga/core/sparse_assembly.hpp"
 #include "iga/parallel/communicator.hpp"
 #include "iga/shell/kirchhoff_love_shell.hpp"
+#include "iga/solvers/distributed_solver.hpp"
 #include "iga/solvers/linear_solver.hpp"
 
 using namespace iga;
@@ -184,6 +193,44 @@ void BM_Solve(benchmark::State& state) {
   bench(state, true);
 }
 
+/// Factorizations by DistributedLinearSolver over world(): this process's even block of rows.
+void BM_Distributed(benchmark::State& state) {
+  if (!parallel_build()) {
+    state.SkipWithError("no PETSc in this build");
+    return;
+  }
+  const SparseMatrix& K = plate_tangent(static_cast<int>(state.range(0)));
+  const Communicator& w = world();
+  const Eigen::Index first = K.rows() * w.rank() / w.size();
+  const Eigen::Index last = K.rows() * (w.rank() + 1) / w.size();
+  std::vector<Triplet> mine;
+  for (Eigen::Index c = 0; c < K.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(K, c); it; ++it)
+      if (it.row() >= first && it.row() < last)
+        mine.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
+  SparseMatrix part(K.rows(), K.cols());  // this process's part, as LinearSolver hands it in
+  part.setFromTriplets(mine.begin(), mine.end());
+  part.makeCompressed();
+  DistributedLinearSolver solver(LinearMethod::mumps);
+  const int n = static_cast<int>(K.rows());
+  if (solver.factorize(part, true) != LinearSolveStatus::success) {
+    state.SkipWithError(solver.message().c_str());
+    return;
+  }
+  for (auto _ : state) benchmark::DoNotOptimize(solver.factorize(part, true));
+  state.counters["dofs"] = static_cast<double>(n);
+  state.counters["processes"] = w.size();
+}
+
+BENCHMARK(BM_Distributed)
+    ->Arg(20)
+    ->Arg(40)
+    ->Arg(80)
+    ->Arg(160)
+    ->Iterations(3)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
 BENCHMARK(BM_Factorize)
     ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6, 7, 8}, {20, 40, 80, 160}})
     ->Unit(benchmark::kMillisecond);
@@ -193,4 +240,9 @@ BENCHMARK(BM_Solve)
 
 }  // namespace
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  const ParallelSession session(argc, argv);
+  benchmark::Initialize(&argc, argv);
+  bench::run_on_every_rank();
+  return 0;
+}

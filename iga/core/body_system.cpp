@@ -47,12 +47,16 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
   const int n = num_dofs();
   R.setZero(n);
   if (K) triplets_.clear();
+  // One body over several processes: its share is the whole system's (no copies of its
+  // tangent, which is most of a process's memory at the assembly's peak).
+  const bool whole = bodies_.size() == 1;
   // Over several processes a failure of one process's share is every process's: each takes
   // part in the reductions whatever happened, then all throw the first process's error (a
   // process that left alone would leave the others waiting).
   std::string error;
   try {
-    for (int b = 0; b < num_bodies(); ++b) {
+    if (whole) bodies_[0]->assemble(u, t, R, K);
+    for (int b = 0; b < num_bodies() && !whole; ++b) {
       const int o = offset(b), nb = offset(b + 1) - o;
       bodies_[static_cast<std::size_t>(b)]->assemble(u.segment(o, nb), t, Rb_, K ? &Kb_ : nullptr);
       R.segment(o, nb) = Rb_;
@@ -70,7 +74,7 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
     comm_->sum(std::span<double>(R.data(), static_cast<std::size_t>(R.size())));
     if (combine_tallies(!error.empty())) throw std::runtime_error(comm_->first_message(error));
   }
-  if (!K) return;
+  if (!K || whole) return;
   assembler_.assemble(triplets_, n, n, *K);  // the pattern kept while the bodies' are
 }
 

@@ -1,12 +1,14 @@
 // K du = b over the ranks of the run (world(), iga/parallel/communicator.hpp): each rank hands
-// in the tangent's triplets of its own elements (global free DOF numbers, any rows: entries of
-// several ranks at one place are summed), PETSc assembles them into one distributed AIJ matrix
-// (coordinate assembly: MatSetPreallocationCOO, MatSetValuesCOO; rows split in even blocks),
-// MUMPS (LDL^T with the inertia for a symmetric K, LU otherwise) or a Krylov solver solves it,
-// and every rank gets the whole solution. The right-hand side is the same on every rank (the
-// residual summed over the ranks). While no rank's sequence of triplet positions changed, the
-// matrix keeps its pattern and MUMPS its analysis. In a build without PETSc the constructor
-// throws: one process needs no distribution (LinearSolver).
+// in its part of the tangent, the sum of its own elements' entries (global free DOF numbers, any
+// rows: the parts of several ranks at one place are summed), as a compressed sparse matrix
+// (or as triplets); PETSc assembles the parts into one distributed AIJ matrix (coordinate
+// assembly: MatSetPreallocationCOO once per pattern, then MatSetValuesCOO straight from the
+// part's value array, no copy; rows split in even blocks), MUMPS (LDL^T with the inertia for a
+// symmetric K, LU otherwise) or a Krylov solver solves it, and every rank gets the whole
+// solution. The right-hand side is the same on every rank (the residual summed over the ranks).
+// While no rank's pattern changed, the matrix keeps its pattern and MUMPS its analysis; what a
+// rank keeps to tell is its part's pattern (4 bytes an entry). In a build without PETSc the
+// constructor throws: one process needs no distribution (LinearSolver).
 // References: [MUMPS], [PETSc] as in petsc_engine.hpp.
 #pragma once
 
@@ -29,9 +31,13 @@ class DistributedLinearSolver {
   DistributedLinearSolver(const DistributedLinearSolver&) = delete;
   DistributedLinearSolver& operator=(const DistributedLinearSolver&) = delete;
 
-  /// Collective: the matrix of n unknowns summed from every rank's `local` triplets, factorized
-  /// (MUMPS) or its preconditioner set up (Krylov). A failure is a status, the same on every
-  /// rank, with the reason in message().
+  /// Collective: the n x n matrix summed from every rank's part `local` (square, compressed,
+  /// column major; its value array is read, not copied, by PETSc), factorized (MUMPS) or its
+  /// preconditioner set up (Krylov). A failure is a status, the same on every rank, with the
+  /// reason in message().
+  [[nodiscard]] LinearSolveStatus factorize(const Eigen::SparseMatrix<double>& local,
+                                            bool symmetric);
+  /// The same with this rank's part as triplets (summed where they repeat a place).
   [[nodiscard]] LinearSolveStatus factorize(int n, const std::vector<Eigen::Triplet<double>>& local,
                                             bool symmetric);
   /// Collective: x = K^-1 b with b (size n) the same on every rank; x, the whole solution, on

@@ -236,13 +236,8 @@ struct LinearSolver::Impl {
       return fail(LinearSolveStatus::invalid_input, w.first_message(bad));
     }
     const Clock::time_point t0 = Clock::now();
-    std::vector<Eigen::Triplet<double>> t;
-    t.reserve(static_cast<std::size_t>(A_local.nonZeros()));
-    for (Eigen::Index j = 0; j < A_local.outerSize(); ++j)
-      for (SparseMatrix::InnerIterator it(A_local, j); it; ++it)
-        t.emplace_back(static_cast<int>(it.row()), static_cast<int>(it.col()), it.value());
     if (method == LinearMethod::krylov) dist->set_near_null_space(modes);
-    const LinearSolveStatus s = dist->factorize(static_cast<int>(A_local.rows()), t, symmetric);
+    const LinearSolveStatus s = dist->factorize(A_local, symmetric);  // A_local is compressed
     return petsc_factorized(t0, s, dist->message(), dist->reused_analysis(),
                             dist->negative_pivots());
   }

@@ -6,8 +6,10 @@
 // owners, so that entries cross ranks and several ranks add at one place. a = 0 is the
 // shifted Laplacian tridiag(-1, 2, -1) - sigma I, whose negative eigenvalues are counted in
 // closed form: MUMPS's inertia must match. Also: new values on the same pattern (reused), the
-// non-symmetric LU, a singular matrix (the free chain) as a status on every rank. Exit 0 on every
-// rank when all hold.
+// non-symmetric LU, a singular matrix (the free chain) as a status on every rank; each rank's part
+// handed in as a compressed matrix (as LinearSolver does) solves as its triplets do, keeps the
+// pattern for new values, and a new pattern on one rank alone is a new analysis on every rank.
+// Exit 0 on every rank when all hold.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -110,6 +112,34 @@ int main(int argc, char** argv) {
   expect(w.sum(static_cast<long long>(hi - lo)) == n, "the blocks hold every row once");
   expect(w.max(double(lo == 0 ? 0 : 1)) == (p > 1 ? 1.0 : 0.0) && hi <= n && lo <= hi,
          "the blocks are ordered ranges");
+  // Parts as compressed matrices: the same solution as the triplets'; new values on the same
+  // pattern keep it; an explicit zero added on rank 0 alone changes the pattern on every rank.
+  {
+    const Eigen::SparseMatrix<double> A = whole(n, 0.05, 0.0, true, p);
+    const Eigen::VectorXd ref = Eigen::SparseLU<Eigen::SparseMatrix<double>>(A).solve(b);
+    const auto part = [&](double sigma, bool extra) {
+      Triplets t = chain(n, sigma, 0.0, true, r, p);
+      if (extra && r == 0) t.emplace_back(0, n - 1, 0.0);
+      Eigen::SparseMatrix<double> P(n, n);
+      P.setFromTriplets(t.begin(), t.end());
+      P.makeCompressed();
+      return P;
+    };
+    iga::DistributedLinearSolver c(iga::LinearMethod::mumps);
+    Eigen::VectorXd x;
+    expect(c.factorize(part(0.05, false), true) == iga::LinearSolveStatus::success &&
+               c.solve(b, x) == iga::LinearSolveStatus::success,
+           "compressed parts: " + c.message());
+    expect((x - ref).norm() <= 1e-10 * ref.norm(), "compressed parts: the triplets' solution");
+    expect(!c.reused_analysis(), "compressed parts: the first factorization analyses");
+    expect(c.factorize(part(0.7, false), true) == iga::LinearSolveStatus::success &&
+               c.reused_analysis(),
+           "compressed parts: new values keep the pattern");
+    expect(c.factorize(part(0.05, true), true) == iga::LinearSolveStatus::success &&
+               !c.reused_analysis() && c.solve(b, x) == iga::LinearSolveStatus::success &&
+               (x - ref).norm() <= 1e-10 * ref.norm(),
+           "compressed parts: a new pattern on rank 0 is a new analysis everywhere");
+  }
   const long long failed = w.sum(static_cast<long long>(errors));
   if (r == 0) std::printf("mpi_linear_system: %d ranks, %lld failures\n", p, failed);
   return failed == 0 ? 0 : 1;

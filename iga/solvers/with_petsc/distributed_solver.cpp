@@ -23,8 +23,8 @@ struct DistributedLinearSolver::Impl {
   VecScatter to_all = nullptr;
   PetscInt n = -1;
   bool symmetric = true;
-  std::vector<PetscInt> ci, cj;  ///< this rank's triplet positions (the pattern's signature)
-  std::vector<PetscScalar> cv;
+  /// this rank's part's pattern (column starts, row indices), the pattern's signature
+  std::vector<int> outer, inner;
   std::string message;
   int negative = -1;
   bool reused = false;
@@ -52,10 +52,13 @@ struct DistributedLinearSolver::Impl {
     to_all = nullptr;
   }
 
-  /// A new matrix of this rank's positions (collective), with its solver and vectors.
+  /// A new matrix of this rank's pattern (collective), with its solver and vectors.
   bool create(std::string& why) {
     destroy();
-    std::vector<PetscInt> i = ci, j = cj;  // PETSc may change the arrays it is given
+    // the part's entries as coordinates, column by column (the order of its value array)
+    std::vector<PetscInt> i(inner.begin(), inner.end()), j(inner.size());
+    for (std::size_t c = 0; c + 1 < outer.size(); ++c)
+      std::fill(j.begin() + outer[c], j.begin() + outer[c + 1], static_cast<PetscInt>(c));
     if (!call(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate", why) ||
         !call(MatSetSizes(A, PETSC_DECIDE, PETSC_DECIDE, n, n), "MatSetSizes", why) ||
         !call(MatSetType(A, MATAIJ), "MatSetType", why) ||
@@ -71,8 +74,8 @@ struct DistributedLinearSolver::Impl {
            petsc::configure(ksp, method, symmetric, why);
   }
 
-  bool setup(std::string& why) {
-    return call(MatSetValuesCOO(A, cv.data(), INSERT_VALUES), "MatSetValuesCOO", why) &&
+  bool setup(const double* values, std::string& why) {
+    return call(MatSetValuesCOO(A, values, INSERT_VALUES), "MatSetValuesCOO", why) &&
            (method != LinearMethod::krylov || petsc::set_near_null_space(A, modes, why)) &&
            call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
            call(KSPSetUp(ksp), "KSPSetUp", why) &&
@@ -90,30 +93,34 @@ DistributedLinearSolver::DistributedLinearSolver(LinearMethod method)
 
 DistributedLinearSolver::~DistributedLinearSolver() = default;
 
-LinearSolveStatus DistributedLinearSolver::factorize(
-    int n, const std::vector<Eigen::Triplet<double>>& local, bool symmetric) {
+LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<double>& local,
+                                                     bool symmetric) {
+  if (local.rows() != local.cols() || !local.isCompressed())
+    throw std::invalid_argument(
+        "DistributedLinearSolver::factorize: the part must be square and "
+        "compressed, got " +
+        std::to_string(local.rows()) + " x " + std::to_string(local.cols()));
   Impl& m = *impl_;
   const Communicator& w = world();
-  bool same = m.A != nullptr && n == m.n && symmetric == m.symmetric && local.size() == m.ci.size();
-  for (std::size_t k = 0; same && k < local.size(); ++k)
-    same = local[k].row() == m.ci[k] && local[k].col() == m.cj[k];
+  const auto n = static_cast<PetscInt>(local.rows());
+  const int* outer = local.outerIndexPtr();
+  const int* inner = local.innerIndexPtr();
+  const auto nnz = static_cast<std::size_t>(local.nonZeros());
+  const bool same = m.A != nullptr && n == m.n && symmetric == m.symmetric &&
+                    m.outer.size() == static_cast<std::size_t>(n) + 1 && m.inner.size() == nnz &&
+                    std::equal(m.outer.begin(), m.outer.end(), outer) &&
+                    std::equal(m.inner.begin(), m.inner.end(), inner);
   m.reused = w.sum(static_cast<long long>(same ? 0 : 1)) == 0;  // every rank's unchanged
-  m.cv.resize(local.size());
-  for (std::size_t k = 0; k < local.size(); ++k) m.cv[k] = local[k].value();
   std::string why;
   bool ok = true;
   if (!m.reused) {
     m.n = n;
     m.symmetric = symmetric;
-    m.ci.resize(local.size());
-    m.cj.resize(local.size());
-    for (std::size_t k = 0; k < local.size(); ++k) {
-      m.ci[k] = local[k].row();
-      m.cj[k] = local[k].col();
-    }
+    m.outer.assign(outer, outer + n + 1);
+    m.inner.assign(inner, inner + nnz);
     ok = m.create(why);
   }
-  ok = ok && m.setup(why);
+  ok = ok && m.setup(local.valuePtr(), why);
   // A failure on one rank is every rank's (their next steps must agree).
   m.ready = w.sum(static_cast<long long>(ok ? 0 : 1)) == 0;
   if (m.ready) {
@@ -122,6 +129,14 @@ LinearSolveStatus DistributedLinearSolver::factorize(
   }
   m.message = w.first_message(why);
   return LinearSolveStatus::singular;
+}
+
+LinearSolveStatus DistributedLinearSolver::factorize(
+    int n, const std::vector<Eigen::Triplet<double>>& local, bool symmetric) {
+  Eigen::SparseMatrix<double> part(n, n);
+  part.setFromTriplets(local.begin(), local.end());
+  part.makeCompressed();
+  return factorize(part, symmetric);
 }
 
 LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {

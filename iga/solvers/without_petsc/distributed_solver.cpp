@@ -13,6 +13,9 @@ DistributedLinearSolver::DistributedLinearSolver(LinearMethod /*method*/) {
       "DistributedLinearSolver needs PETSc, and this build has none (IGA_WITH_PETSC=OFF)");
 }
 DistributedLinearSolver::~DistributedLinearSolver() = default;
+LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<double>&, bool) {
+  return LinearSolveStatus::invalid_input;
+}
 LinearSolveStatus DistributedLinearSolver::factorize(int,
                                                      const std::vector<Eigen::Triplet<double>>&,
                                                      bool) {
