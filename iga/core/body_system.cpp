@@ -40,35 +40,36 @@ void BodySystem::distribute(const Communicator& comm, std::vector<int> owner) {
 }
 
 void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
-  if (bodies_.size() == 1 && !distributed()) {  // the block is the whole: no copies
-    bodies_[0]->assemble(u, t, R, K);
-    return;
-  }
-  const int n = num_dofs();
-  R.setZero(n);
-  if (K) triplets_.clear();
-  // One body over several processes: its share is the whole system's (no copies of its
-  // tangent, which is most of a process's memory at the assembly's peak).
+  // One body: its residual and tangent (on several processes, its share) are the system's,
+  // without copies (the tangent's copies were most of a process's memory at its peak).
   const bool whole = bodies_.size() == 1;
+  const int n = num_dofs();
   // Over several processes a failure of one process's share is every process's: each takes
   // part in the reductions whatever happened, then all throw the first process's error (a
   // process that left alone would leave the others waiting).
   std::string error;
   try {
-    if (whole) bodies_[0]->assemble(u, t, R, K);
-    for (int b = 0; b < num_bodies() && !whole; ++b) {
-      const int o = offset(b), nb = offset(b + 1) - o;
-      bodies_[static_cast<std::size_t>(b)]->assemble(u.segment(o, nb), t, Rb_, K ? &Kb_ : nullptr);
-      R.segment(o, nb) = Rb_;
-      if (!K) continue;
-      for (int j = 0; j < Kb_.outerSize(); ++j)
-        for (SparseMatrix::InnerIterator it(Kb_, j); it; ++it)
-          triplets_.emplace_back(o + static_cast<int>(it.row()), o + static_cast<int>(it.col()),
-                                 it.value());
+    if (whole) {
+      bodies_[0]->assemble(u, t, R, K);
+    } else {
+      R.setZero(n);
+      if (K) triplets_.clear();
+      for (int b = 0; b < num_bodies(); ++b) {
+        const int o = offset(b), nb = offset(b + 1) - o;
+        bodies_[static_cast<std::size_t>(b)]->assemble(u.segment(o, nb), t, Rb_,
+                                                       K ? &Kb_ : nullptr);
+        R.segment(o, nb) = Rb_;
+        if (!K) continue;
+        for (int j = 0; j < Kb_.outerSize(); ++j)
+          for (SparseMatrix::InnerIterator it(Kb_, j); it; ++it)
+            triplets_.emplace_back(o + static_cast<int>(it.row()), o + static_cast<int>(it.col()),
+                                   it.value());
+      }
     }
   } catch (const std::exception& e) {
     if (!distributed()) throw;
     error = e.what();
+    if (R.size() != n) R.setZero(n);  // the reductions below need every process's n entries
   }
   if (distributed()) {
     comm_->sum(std::span<double>(R.data(), static_cast<std::size_t>(R.size())));
