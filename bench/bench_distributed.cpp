@@ -99,7 +99,8 @@ Fixture& fixture() {
     x->u = r.u;
     x->t = r.solver.t;
     x->solver.set_method(x->analysis->solver_settings().linear_method);
-    x->solver.set_distributed(x->analysis->problem().distributed());
+    x->solver.set_distributed(x->analysis->problem().distributed(),
+                              x->analysis->problem().layout());
     x->peak_mb = status_mb("VmHWM");
     // what the run holds: the resident memory once the allocator gave back what was freed
     malloc_trim(0);
@@ -183,6 +184,15 @@ int main(int argc, char** argv) {
                 world().rank(), f.base_mb, f.setup_mb, f.peak_mb, f.live_mb, f.assembly_peak_mb,
                 f.solve_peak_mb);
   for (const std::string& line : world().gather(mine)) std::printf("%s\n", line.c_str());
+  // What each process owns and reads of others (DofLayout): the values one exchange of a
+  // residual's parts sends, against the whole residual the replicated state summed.
+  if (const DofLayout* L = fixture().analysis->problem().layout()) {
+    std::snprintf(mine, sizeof mine,
+                  "rank %d: owns %zu of %d unknowns, %zu ghosts; an exchange sends %lld values",
+                  world().rank(), L->owned().size(), L->size(), L->ghosts().size(),
+                  L->sent_per_exchange());
+    for (const std::string& line : world().gather(mine)) std::printf("%s\n", line.c_str());
+  }
   bench::run_on_every_rank();
   return 0;
 }

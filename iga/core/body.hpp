@@ -36,6 +36,13 @@ class Body : public NonlinearProblem {
   const BodyShare& share() const { return share_; }
   void set_share(const BodyShare& s) { share_ = s; }
 
+  /// A body cut over `processes` (BodySystem::distribute, after set_share): owner[k] the process
+  /// that owns each of its unknowns k (the same on every process) and, appended to `reads`, the
+  /// unknowns this process's part reads or adds to (DofLayout). From then on this process adds
+  /// the terms of single control points (nodal loads, springs) at the points it owns. Default:
+  /// the body cannot be cut (std::logic_error).
+  virtual void partition(int rank, int processes, std::vector<int>& owner, std::vector<int>& reads);
+
   /// "rod", "shell": the kind of body, for file names and summaries.
   virtual std::string type() const = 0;
   /// One phrase, e.g. "rod of 8 elements (degree 3, 11 control points)".

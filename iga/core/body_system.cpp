@@ -24,19 +24,42 @@ void BodySystem::distribute(const Communicator& comm, std::vector<int> owner) {
   if (owner.size() != bodies_.size())
     throw std::invalid_argument("BodySystem::distribute: " + std::to_string(owner.size()) +
                                 " owners for " + std::to_string(bodies_.size()) + " bodies");
-  const int r = comm.rank();
-  for (std::size_t b = 0; b < owner.size(); ++b) {
+  for (std::size_t b = 0; b < owner.size(); ++b)
     if (owner[b] < -1 || owner[b] >= comm.size())
       throw std::invalid_argument("BodySystem::distribute: body " + std::to_string(b) +
                                   " owned by process " + std::to_string(owner[b]) + " of " +
                                   std::to_string(comm.size()));
-    const bool cut = owner[b] < 0;
-    bodies_[b]->set_share({cut || owner[b] == r, cut ? r == 0 : owner[b] == r});
-    if (cut)  // a part of each of its pairs on every process
-      for (int k = 0; k < bodies_[b]->num_pairs(); ++k) bodies_[b]->pair(k).spread(comm);
-  }
+  std::vector<int> dof_owner(static_cast<std::size_t>(num_dofs()), 0), reads;
+  partition(comm, owner, dof_owner, reads);
   comm_ = &comm;
   owner_ = std::move(owner);
+  layout_ = DofLayout(comm, std::move(dof_owner), reads);
+}
+
+void BodySystem::partition(const Communicator& comm, const std::vector<int>& owner,
+                           std::vector<int>& dof_owner, std::vector<int>& reads) {
+  const int r = comm.rank();
+  for (std::size_t b = 0; b < owner.size(); ++b) {
+    const bool cut = owner[b] < 0;
+    bodies_[b]->set_share({cut || owner[b] == r, cut ? r == 0 : owner[b] == r});
+    const int o = offsets_[b], nb = offsets_[b + 1] - o;
+    if (!cut) {  // its unknowns the process's
+      std::fill(dof_owner.begin() + o, dof_owner.begin() + o + nb, owner[b]);
+      if (owner[b] == r)
+        for (int k = 0; k < nb; ++k) reads.push_back(o + k);
+      continue;
+    }
+    for (int k = 0; k < bodies_[b]->num_pairs(); ++k)  // a part of each pair on every process
+      bodies_[b]->pair(k).spread(comm);
+    std::vector<int> ob, rb;
+    bodies_[b]->partition(r, comm.size(), ob, rb);
+    if (ob.size() != static_cast<std::size_t>(nb))
+      throw std::logic_error("BodySystem::distribute: body " + std::to_string(b) + " gave " +
+                             std::to_string(ob.size()) + " owners for " + std::to_string(nb) +
+                             " unknowns");
+    std::copy(ob.begin(), ob.end(), dof_owner.begin() + o);
+    for (const int k : rb) reads.push_back(o + k);
+  }
 }
 
 void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) {
@@ -72,7 +95,7 @@ void BodySystem::assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix
     if (R.size() != n) R.setZero(n);  // the reductions below need every process's n entries
   }
   if (distributed()) {
-    comm_->sum(std::span<double>(R.data(), static_cast<std::size_t>(R.size())));
+    layout_.add_to_owners(R);
     if (combine_tallies(!error.empty())) throw std::runtime_error(comm_->first_message(error));
   }
   if (!K || whole) return;
@@ -98,7 +121,7 @@ bool BodySystem::load_rate(const VectorXd& u, double t, double h, VectorXd& R_t)
   std::array<double, 1> cannot{can ? 0.0 : 1.0};
   comm_->max(cannot);
   if (cannot[0] != 0.0) return false;
-  comm_->sum(std::span<double>(R_t.data(), static_cast<std::size_t>(R_t.size())));
+  layout_.add_to_owners(R_t);
   return true;
 }
 

@@ -3,9 +3,12 @@
 // diagonal (bodies couple only through what a later pair between bodies adds); history,
 // multipliers, symmetry and status are the bodies'.
 //
-// Spread over the processes of a run (distribute): every process holds every body and the
-// whole u; each assembles its share of the bodies (Body::share), the residuals are summed over
-// the processes (every process has the whole R) and the tangent stays in parts (distributed());
+// Spread over the processes of a run (distribute): every process holds every body and a copy of
+// u; each assembles its share of the bodies (Body::share). Each unknown has an owner (layout():
+// a whole body's are its process's, a cut body's those of its points' owners, Body::partition);
+// the residuals' parts are added into the owners (every process has R complete at its own
+// unknowns), u is kept current at a process's own unknowns and its ghosts, and the tangent
+// stays in parts (distributed());
 // the pairs' figures of each assembly (counts, tool forces, round-off) are combined into every
 // process's pairs (ContactPair::set_total), the bodies' augmentation results into one.
 //
@@ -42,6 +45,8 @@ class BodySystem : public NonlinearProblem {
   /// owner(b) of distribute (0 on one process).
   int owner(int b) const { return owner_.empty() ? 0 : owner_.at(static_cast<std::size_t>(b)); }
   bool distributed() const override { return comm_->size() > 1; }
+  /// The owners and ghosts of the unknowns (distribute), null on one process.
+  const DofLayout* layout() const override { return distributed() ? &layout_ : nullptr; }
 
   int num_dofs() const override { return offsets_.back(); }
   void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) override;
@@ -64,6 +69,10 @@ class BodySystem : public NonlinearProblem {
   /// After an assembly over several processes: every pair's figures combined (set_total),
   /// unless some process `failed`. Returns whether one did.
   bool combine_tallies(bool failed);
+  /// distribute's shares, the bodies' owners of their unknowns (dof_owner, the system's) and
+  /// the unknowns this process reads.
+  void partition(const Communicator& comm, const std::vector<int>& owner,
+                 std::vector<int>& dof_owner, std::vector<int>& reads);
   /// The pairs of all bodies, in the bodies' order.
   std::vector<ContactPair*> all_pairs() const;
 
@@ -71,6 +80,7 @@ class BodySystem : public NonlinearProblem {
   const Communicator* comm_ = &serial_communicator();
   std::vector<int> owner_;       ///< empty: one process
   std::vector<int> offsets_{0};  ///< o_b, and the total at the end
+  DofLayout layout_;             ///< set by distribute
   // Work storage of assemble() for several bodies.
   VectorXd Rb_;
   SparseMatrix Kb_;

@@ -16,7 +16,7 @@ ControlPointProblem::ControlPointProblem(std::vector<Vector3d> X, std::string ow
     : dofs_(static_cast<int>(X.size()), std::move(owner), fail, num_scalars), X_(std::move(X)) {}
 
 ControlPointProblem::ControlPointProblem(const ControlPointProblem& o)
-    : Body(o), dofs_(o.dofs_), X_(o.X_), dead_loads_(o.dead_loads_) {
+    : Body(o), dofs_(o.dofs_), X_(o.X_), dead_loads_(o.dead_loads_), point_terms_(o.point_terms_) {
   for (const auto& p : o.pairs_) pairs_.push_back(p->clone());
 }
 
@@ -26,6 +26,7 @@ ControlPointProblem& ControlPointProblem::operator=(const ControlPointProblem& o
   dofs_ = o.dofs_;
   X_ = o.X_;
   dead_loads_ = o.dead_loads_;
+  point_terms_ = o.point_terms_;
   pairs_.clear();
   for (const auto& p : o.pairs_) pairs_.push_back(p->clone());
   return *this;
@@ -234,9 +235,45 @@ void ControlPointProblem::assemble(const VectorXd& u, double t, VectorXd& R, Spa
 
 void ControlPointProblem::subtract_dead_loads(double t, VectorXd& g) const {
   for (const NodalLoad& L : dead_loads_) {
-    if (!L.split && !share().point_terms) continue;  // added by another process
     const double lam = L.curve(t);
-    for (const auto& [i, F] : L.forces) g.segment<3>(3 * i) -= lam * F;  // g -= f_ext
+    for (const auto& [i, F] : L.forces)
+      if (L.split || adds_point_terms(i)) g.segment<3>(3 * i) -= lam * F;  // g -= f_ext
+  }
+}
+
+void ControlPointProblem::point_partition(int /*rank*/, int /*processes*/,
+                                          std::vector<int>& /*owner*/,
+                                          std::vector<char>& /*reads*/) const {
+  throw std::logic_error(describe() + " cannot be cut over several processes");
+}
+
+void ControlPointProblem::partition(int rank, int processes, std::vector<int>& owner,
+                                    std::vector<int>& reads) {
+  std::vector<int> point_owner;
+  std::vector<char> point_read;
+  point_partition(rank, processes, point_owner, point_read);
+  const int n = num_control_points();
+  if (point_owner.size() != static_cast<std::size_t>(n) || point_read.size() != point_owner.size())
+    throw std::logic_error(describe() + ": a partition of " + std::to_string(point_owner.size()) +
+                           " points for " + std::to_string(n));
+  point_terms_.assign(point_owner.size(), 0);
+  owner.assign(static_cast<std::size_t>(num_dofs()), -1);
+  for (int i = 0; i < n; ++i) {
+    const auto pi = static_cast<std::size_t>(i);
+    point_terms_[pi] = point_owner[pi] == rank ? 1 : 0;
+    for (int c = 0; c < 3; ++c) {
+      const int f = dofs_.dof(i, c);
+      if (f < 0) continue;
+      int& o = owner[static_cast<std::size_t>(f)];
+      if (o < 0) o = point_owner[pi];
+      if (point_read[pi] != 0 || point_owner[pi] == rank) reads.push_back(f);
+    }
+  }
+  for (int k = 0; k < num_scalars(); ++k) {  // (no body with scalars is cut: process 0's)
+    const int f = dofs_.scalar_dof(k);
+    if (f < 0) continue;
+    owner[static_cast<std::size_t>(f)] = 0;
+    reads.push_back(f);
   }
 }
 

@@ -91,6 +91,10 @@ class ControlPointProblem : public Body {
   /// right after commit() the increments are zero, so points that slipped sit on the slip
   /// surface (Phi = 0 up to round-off) and their stick/slip flags become arbitrary.
   std::vector<Vector3d> reactions(const VectorXd& u, double t) override;
+  /// The owners of the free unknowns from those of the points (point_partition): a free
+  /// unknown shared by tied points goes to the owner of the first of them.
+  void partition(int rank, int processes, std::vector<int>& owner,
+                 std::vector<int>& reads) override;
   /// The model's samples (sample_model) with the fields of every pair added.
   SampledMesh sample(const VectorXd& u, double t, int samples) const final;
 
@@ -140,10 +144,19 @@ class ControlPointProblem : public Body {
   virtual bool model_symmetric() const { return true; }
   /// The body sampled with its own fields, params and elements set (Body::sample).
   virtual SampledMesh sample_model(const VectorXd& u, double t, int samples) const = 0;
+  /// The owner of each control point of a body cut over `processes` and whether this process's
+  /// part reads it (Body::partition). Default: the body cannot be cut (std::logic_error).
+  virtual void point_partition(int rank, int processes, std::vector<int>& owner,
+                               std::vector<char>& reads) const;
+  /// Whether this process adds the terms of control point i alone (a nodal load, a spring): the
+  /// point's owner in a body cut by partition(), else the process of Body::share's point_terms.
+  bool adds_point_terms(int i) const {
+    return point_terms_.empty() ? share().point_terms : point_terms_[static_cast<std::size_t>(i)];
+  }
   /// A dead load: fixed nodal forces scaled by curve(t). `split`: the forces are this
   /// process's part of the load (integrated over its elements), added by every process;
-  /// otherwise the whole load, added by the process that adds the body's point terms
-  /// (Body::share).
+  /// otherwise the whole load, each point's force added by the process that adds its terms
+  /// (adds_point_terms).
   void add_nodal_load(std::vector<std::pair<int, Vector3d>> forces, LoadCurve curve,
                       bool split = false);
   /// Nodal forces f_i from a dense per-point array (zero entries dropped).
@@ -180,6 +193,7 @@ class ControlPointProblem : public Body {
   std::vector<Triplet> cart_triplets_;  // the tangent's, reduced in place to the free unknowns
   std::size_t cart_size_ = 0;           // their number at the last assembly (before reduction)
   PatternAssembler assembler_;          // K from them, its pattern kept
+  std::vector<char> point_terms_;  // per point: this process adds its terms (partition; empty: all)
 };
 
 }  // namespace iga

@@ -5,10 +5,13 @@
 // converged steps.
 #pragma once
 
+#include <cmath>
 #include <string>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+
+#include "iga/parallel/dof_layout.hpp"
 
 namespace iga {
 
@@ -67,11 +70,32 @@ class NonlinearProblem {
   virtual void assemble(const VectorXd& u, double t, VectorXd& R, SparseMatrix* K) = 0;
   /// Whether the tangent is symmetric (e.g. false with friction): picks CHOLMOD or UMFPACK.
   virtual bool symmetric() const { return true; }
-  /// Whether the problem is spread over the ranks of the run (iga/parallel): then assemble()
-  /// gives on every rank the whole residual R (summed over the ranks, the same everywhere) but
-  /// K holds only this rank's part, and the linear solver sums the parts over the ranks
-  /// (LinearSolver::set_distributed). Default false: K is the whole tangent.
+  /// Whether the problem is spread over the ranks of the run (iga/parallel): then K holds only
+  /// this rank's part, which the linear solver sums over the ranks (LinearSolver::set_distributed),
+  /// and R is complete as layout() says: where the problem has a layout, only at the unknowns
+  /// this rank owns, and u is current only at its own unknowns and its ghosts within a step (the
+  /// solvers take norms and dot products through dot() and make u current everywhere at a
+  /// converged step through synchronize()); without one, R is the whole residual on every rank.
+  /// Default false: K is the whole tangent.
   virtual bool distributed() const { return false; }
+  /// The ownership of the unknowns of a problem spread over the ranks (DofLayout), or null: R
+  /// and u the same on every rank (one process, or replicated).
+  virtual const DofLayout* layout() const { return nullptr; }
+  /// a . b over the unknowns (over the owners where the problem has a layout; collective then).
+  double dot(const VectorXd& a, const VectorXd& b) const {
+    const DofLayout* l = layout();
+    return l != nullptr ? l->dot(a, b) : a.dot(b);
+  }
+  /// |a| (collective where the problem has a layout).
+  double norm(const VectorXd& a) const {
+    const DofLayout* l = layout();
+    return l != nullptr ? std::sqrt(l->dot(a, a)) : a.norm();
+  }
+  /// Makes every entry of u its owner's value (collective where the problem has a layout; else
+  /// nothing): after a converged step, before anything reads u at any point.
+  void synchronize(VectorXd& u) const {
+    if (const DofLayout* l = layout()) l->gather(u);
+  }
   /// dR/dt at (u, t) as the one-sided difference R_t = (R(u, t + h) - R(u, t)) / h (h may be
   /// negative), where the problem can give it without assembling: where t enters R only
   /// through loads along load curves, R_t is their change alone and the internal forces, whose

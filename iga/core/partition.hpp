@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "geometry/knot_vector.hpp"
+
 namespace iga {
 
 /// A block of a patch's elements: columns [u0, u1), rows [v0, v1) of the element grid. The
@@ -39,6 +41,14 @@ std::array<int, 2> processor_grid(int processes, int nu, int nv);
 /// The block of process `rank` among P on the grid of processor_grid: columns and rows split
 /// as evenly as whole elements allow (the first n mod p blocks one element larger).
 ElementBlock element_block(int rank, int processes, int nu, int nv);
+
+/// The control points of a patch (U, V; point i + n_u j) cut over P processes as element_block
+/// does (DofLayout, docs/parallel.md): owner[i + n_u j] the process whose block holds the element
+/// of the point's Greville abscissae (an element of the point's support, so that the owner is one
+/// of the processes that read it); reads[...] whether the block of process `rank` has an element
+/// in the point's support.
+void patch_point_partition(const KnotVector& U, const KnotVector& V, int rank, int processes,
+                           std::vector<int>& owner, std::vector<char>& reads);
 
 /// The process of each body that is not cut, the bodies given by their work (e.g. control
 /// points) in the model's order: each goes whole to the process with the least work so far

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "iga/core/follower_pressure.hpp"
+#include "iga/core/partition.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -303,6 +304,11 @@ SampledMesh MembraneProblem::sample_model(const VectorXd& u, double t, int sampl
                     {C.S - R.S, ok ? n : Vector3d::Zero(), ok ? N : Vector3d::Zero()});
   }
   return m;
+}
+
+void MembraneProblem::point_partition(int rank, int processes, std::vector<int>& owner,
+                                      std::vector<char>& reads) const {
+  patch_point_partition(reference_.knots_u(), reference_.knots_v(), rank, processes, owner, reads);
 }
 
 }  // namespace iga

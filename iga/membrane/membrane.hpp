@@ -119,6 +119,9 @@ class MembraneProblem : public ControlPointProblem {
 
  protected:
   bool model_symmetric() const override { return pressures_.empty(); }
+  /// The patch's points cut as its elements are (patch_point_partition).
+  void point_partition(int rank, int processes, std::vector<int>& owner,
+                       std::vector<char>& reads) const override;
   /// The surface on a grid, `samples` intervals per element span and direction (kGrid), with
   /// the displacement, the normal, the principal stretches and the membrane forces S in the
   /// reference local frame e_1 = A_1/|A_1|, e_2 = A_3 x e_1 (N_11, N_22, N_12).

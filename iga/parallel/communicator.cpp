@@ -29,6 +29,16 @@ void SerialCommunicator::abort(int code, const std::string& message) const {
   std::exit(code);
 }
 
+std::vector<std::vector<double>> SerialCommunicator::exchange(
+    const std::vector<std::vector<double>>& to) const {
+  if (to.size() != static_cast<std::size_t>(size_))
+    throw std::invalid_argument("Communicator::exchange: " + std::to_string(to.size()) +
+                                " lists for " + std::to_string(size_) + " processes");
+  std::vector<std::vector<double>> from(to.size());
+  from[static_cast<std::size_t>(rank_)] = to[static_cast<std::size_t>(rank_)];
+  return from;
+}
+
 std::string Communicator::first_message(const std::string& s) const {
   std::string first;
   for (const std::string& m : gather(s))  // rank 0 only: the others gather nothing

@@ -41,6 +41,10 @@ class Communicator {
   virtual std::vector<std::string> gather(const std::string& s) const = 0;
   /// s of rank `from` on every rank.
   virtual void broadcast(std::string& s, int from = 0) const = 0;
+  /// Personalized all-to-all: to[q] (size() lists) goes to rank q; returns what each rank q sent
+  /// here, from[q] (MPI_Alltoallv). Integers up to 2^53 travel exactly as doubles.
+  virtual std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& to) const = 0;
   virtual void barrier() const = 0;
   /// The first non-empty of the ranks' strings, in rank order, on every rank (empty if all
   /// are): a failure's reason that every rank reports alike.
@@ -69,6 +73,9 @@ class SerialCommunicator final : public Communicator {
   void max(std::span<double>) const override {}
   std::vector<std::string> gather(const std::string& s) const override { return {s}; }
   void broadcast(std::string&, int) const override {}
+  /// What this process sends itself; nothing from the others (they are not there).
+  std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& to) const override;
   void barrier() const override {}
   [[noreturn]] void abort(int code, const std::string& message) const override;
   /// "serial", or "process 1 of 3, alone".

@@ -8,6 +8,7 @@
 
 #include "geometry/differential_geometry.hpp"
 #include "iga/core/follower_pressure.hpp"
+#include "iga/core/partition.hpp"
 #include "iga/core/quadrature.hpp"
 
 namespace iga {
@@ -207,7 +208,7 @@ void ShellProblem::add_spring_terms(std::span<const Vector3d> x, double t, Vecto
                                     std::vector<Triplet>* K) const {
   const std::vector<Vector3d>& X = reference_points();
   for (const Spring& s : springs_) {
-    if (!share().point_terms) break;  // added by another process
+    if (!adds_point_terms(s.point)) continue;  // added by another process
     const double k = s.k * s.curve(t);
     const std::size_t i = static_cast<std::size_t>(s.point);
     const Vector3d u = x[i] - X[i];
@@ -230,6 +231,12 @@ NurbsSurface ShellProblem::current_surface(const VectorXd& u, double t) const {
 Vector3d ShellProblem::displacement(double u, double v, const VectorXd& state, double t) const {
   const std::vector<Vector3d> x = current_points(state, t);
   return shell_.point(u, v, x) - shell_.point(u, v, reference_points());
+}
+
+void ShellProblem::point_partition(int rank, int processes, std::vector<int>& owner,
+                                   std::vector<char>& reads) const {
+  patch_point_partition(shell_.reference().knots_u(), shell_.reference().knots_v(), rank, processes,
+                        owner, reads);
 }
 
 }  // namespace iga

@@ -101,6 +101,9 @@ class ShellProblem : public ControlPointProblem {
 
  protected:
   bool model_symmetric() const override { return pressures_.empty(); }
+  /// The patch's points cut as its elements are (patch_point_partition).
+  void point_partition(int rank, int processes, std::vector<int>& owner,
+                       std::vector<char>& reads) const override;
   /// The surface sampled on a grid, `samples` intervals per element span and direction (kGrid),
   /// with the displacement, the normal, membrane forces and moments in a local Cartesian frame
   /// (ShellStresses) and the von Mises stress; a sample where they cannot be evaluated gets

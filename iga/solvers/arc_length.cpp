@@ -89,19 +89,19 @@ double assemble_with_rate(NonlinearProblem& problem, const VectorXd& u, double t
 /// The load increment dt of a correction from the cylindrical constraint
 /// |base + dt du_t|^2 = dl^2 (base = Delta u + du_R): a dt^2 + b dt + c = 0 [Cri81], the root
 /// whose new increment is nearest the current Du. Returns why there is none, or an empty string.
-std::string constraint_root(const VectorXd& base, const VectorXd& du_t, const VectorXd& Du,
-                            double dl, double& dt) {
-  const double qa = du_t.squaredNorm();
-  const double qb = 2.0 * du_t.dot(base);
-  const double qc = base.squaredNorm() - dl * dl;
+std::string constraint_root(const NonlinearProblem& p, const VectorXd& base, const VectorXd& du_t,
+                            const VectorXd& Du, double dl, double& dt) {
+  const double qa = p.dot(du_t, du_t);
+  const double qb = 2.0 * p.dot(du_t, base);
+  const double qc = p.dot(base, base) - dl * dl;
   const double disc = qb * qb - 4.0 * qa * qc;
   if (!std::isfinite(disc)) return "the constraint's coefficients are not finite";
   if (disc < 0.0) return "the arc-length constraint has no real root";
   // Roots without cancellation.
   const double q = -0.5 * (qb + std::copysign(std::sqrt(disc), qb));
   const double root1 = q / qa, root2 = q != 0.0 ? qc / q : root1;
-  const double score1 = (base + root1 * du_t).dot(Du);
-  const double score2 = (base + root2 * du_t).dot(Du);
+  const double score1 = p.dot(base + root1 * du_t, Du);
+  const double score2 = p.dot(base + root2 * du_t, Du);
   dt = score1 >= score2 ? root1 : root2;
   return {};
 }
@@ -109,10 +109,10 @@ std::string constraint_root(const VectorXd& base, const VectorXd& du_t, const Ve
 /// A converged arc-length step in `a`: the angle (degrees) between its increment Du and its
 /// predictor into a.turn_deg, and the outcome: converged, or refused (diverged, with why) if
 /// the angle is above max_turn_deg and the arc can still be cut (`can_cut`).
-void finish_arc_step(StepAttempt& a, const VectorXd& Du, const VectorXd& predictor,
-                     double max_turn_deg, bool can_cut) {
-  const double nn = Du.norm() * predictor.norm();
-  const double c = nn > 0.0 ? std::clamp(Du.dot(predictor) / nn, -1.0, 1.0) : 1.0;
+void finish_arc_step(const NonlinearProblem& p, StepAttempt& a, const VectorXd& Du,
+                     const VectorXd& predictor, double max_turn_deg, bool can_cut) {
+  const double nn = p.norm(Du) * p.norm(predictor);
+  const double c = nn > 0.0 ? std::clamp(p.dot(Du, predictor) / nn, -1.0, 1.0) : 1.0;
   a.turn_deg = std::acos(c) * 180.0 / std::numbers::pi;
   a.outcome = NewtonOutcome::converged;
   a.message.clear();
@@ -149,7 +149,7 @@ bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcS
     return finish(
         NewtonOutcome::linear_solve_failed,
         format("predictor: linear solve %s: %s", to_string(ls), linear_.message().c_str()));
-  const double nt = arc.du_t.norm();
+  const double nt = problem.norm(arc.du_t);
   if (!std::isfinite(nt))
     return finish(NewtonOutcome::not_finite, "predictor: the tangent solution is not finite");
   arc.flat = !(nt > 0.0);
@@ -166,7 +166,8 @@ bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcS
   }
   a.arc_length = arc.dl;
   // Forward at the first step; then on the side of the previous increment.
-  const double side = arc.du_prev.size() == w.n && arc.du_t.dot(arc.du_prev) < 0.0 ? -1.0 : 1.0;
+  const double side =
+      arc.du_prev.size() == w.n && problem.dot(arc.du_t, arc.du_prev) < 0.0 ? -1.0 : 1.0;
   Dt = side * arc.dl / nt;
   arc.du = Dt * arc.du_t;
   return true;
@@ -176,7 +177,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
                                  Workspace& w, StepAttempt& a, NonlinearSolverResult& r) {
   const NonlinearSolverSettings& s = settings_;
   linear_.set_symmetric(problem.symmetric());
-  linear_.set_distributed(problem.distributed());
+  linear_.set_distributed(problem.distributed(), problem.layout());
   if (linear_.method() == LinearMethod::krylov)  // the step's start (Newton's, there)
     linear_.set_near_null_space(problem.near_null_space(arc.u_last, arc.t));
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
@@ -206,7 +207,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
   LinearSolveStatus ls = LinearSolveStatus::success;
   // A converged step, unless its increment turned too far from the predictor.
   const auto converged = [&] {
-    finish_arc_step(a, Du, predictor, s.max_turn_deg, arc.dl > arc.dl_min * (1.0 + 1e-12));
+    finish_arc_step(problem, a, Du, predictor, s.max_turn_deg, arc.dl > arc.dl_min * (1.0 + 1e-12));
   };
 
   double r0 = 0.0, scale = 0.0, e1 = 0.0, r_prev = 0.0;
@@ -223,7 +224,7 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
       r0 = rk;
       // The force scale of the step: the load increment along the predictor, not only the
       // predictor's residual (small by construction).
-      scale = std::max(r0, std::abs(Dt) * arc.R_t.norm());
+      scale = std::max(r0, std::abs(Dt) * problem.norm(arc.R_t));
       w.r0_max = std::max(w.r0_max, scale);
       if (rk <= r_abs()) return converged();
     } else {
@@ -255,10 +256,11 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
                            linear_.message().c_str()));
     a.iterations = k + 1;
     double dt = 0.0;
-    if (std::string why = constraint_root(Du + arc.du_R, arc.du_t, Du, arc.dl, dt); !why.empty())
+    if (std::string why = constraint_root(problem, Du + arc.du_R, arc.du_t, Du, arc.dl, dt);
+        !why.empty())
       return finish(NewtonOutcome::diverged, format("iteration %d: %s", k + 1, why.c_str()));
     w.du = arc.du_R + dt * arc.du_t;
-    const double e = std::abs(w.du.dot(w.R));
+    const double e = std::abs(problem.dot(w.du, w.R));
     a.energy_norms.push_back(e);
     if (!std::isfinite(e))
       return finish(NewtonOutcome::not_finite, format("iteration %d: E is not finite", k + 1));
@@ -403,6 +405,7 @@ NonlinearSolverResult NonlinearSolver::solve_arc_length(NonlinearProblem& proble
     probe_refusal(a, arc.size(), arc.min_size(s));
 
     if (a.outcome == NewtonOutcome::converged) {
+      problem.synchronize(u);  // current everywhere: the callback reads any point
       arc.du_prev = u - arc.u_last;
       arc.u_last = u;
       arc.t = a.t;

@@ -3,9 +3,11 @@
 // rows: the parts of several ranks at one place are summed), as a compressed sparse matrix
 // (or as triplets); PETSc assembles the parts into one distributed AIJ matrix (coordinate
 // assembly: MatSetPreallocationCOO once per pattern, then MatSetValuesCOO straight from the
-// part's value array, no copy; rows split in even blocks), MUMPS (LDL^T with the inertia for a
-// symmetric K, LU otherwise) or a Krylov solver solves it, and every rank gets the whole
-// solution. The right-hand side is the same on every rank (the residual summed over the ranks).
+// part's value array, no copy), MUMPS (LDL^T with the inertia for a symmetric K, LU otherwise)
+// or a Krylov solver solves it. With a DofLayout (set_layout: the model's), a rank's rows are the
+// unknowns it owns, it hands in b at those alone, and it gets x at its own unknowns and its
+// ghosts (0 elsewhere). Without one, the rows are split in even blocks, b is the same on every
+// rank and every rank gets the whole x.
 // While no rank's pattern changed, the matrix keeps its pattern and MUMPS its analysis; what a
 // rank keeps to tell is its part's pattern (4 bytes an entry). In a build without PETSc the
 // constructor throws: one process needs no distribution (LinearSolver).
@@ -19,6 +21,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "iga/parallel/dof_layout.hpp"
 #include "iga/solvers/linear_solver.hpp"
 
 namespace iga {
@@ -40,13 +43,17 @@ class DistributedLinearSolver {
   /// The same with this rank's part as triplets (summed where they repeat a place).
   [[nodiscard]] LinearSolveStatus factorize(int n, const std::vector<Eigen::Triplet<double>>& local,
                                             bool symmetric);
-  /// Collective: x = K^-1 b with b (size n) the same on every rank; x, the whole solution, on
-  /// every rank.
+  /// Collective: x = K^-1 b (b and x of size n): without a layout, b the same on every rank and
+  /// x, the whole solution, on every rank; with one, b read at this rank's own unknowns and x
+  /// current at its own unknowns and its ghosts (0 elsewhere).
   [[nodiscard]] LinearSolveStatus solve(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   /// The Krylov method's near null space for the next factorize()s: columns of the whole
   /// matrix's rows, the same on every rank (NonlinearProblem::near_null_space); ignored by
   /// MUMPS.
   void set_near_null_space(const Eigen::MatrixXd& Z);
+  /// The ownership of the unknowns (not owned; it must outlive the solver), or null: rows split
+  /// evenly, b and x replicated. A new layout takes effect at the next factorize().
+  void set_layout(const DofLayout* layout);
   const std::string& message() const;
   /// The inertia's negative count after a symmetric MUMPS factorization, else -1.
   int negative_pivots() const;

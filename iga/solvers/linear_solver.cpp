@@ -195,6 +195,7 @@ struct LinearSolver::Impl {
   LinearMethod method = LinearMethod::suitesparse;
   std::unique_ptr<PetscEngine> engine;            ///< PETSc's solvers (method mumps or krylov)
   std::unique_ptr<DistributedLinearSolver> dist;  ///< the same over the ranks (distributed)
+  const DofLayout* layout = nullptr;              ///< dist's ownership of the unknowns, or null
   Eigen::MatrixXd modes;  ///< the Krylov method's near null space (set_near_null_space)
   LinearSolveStatus status = LinearSolveStatus::not_factorized;
   std::string message;
@@ -405,10 +406,11 @@ double LinearSolver::rcond() const {
 void LinearSolver::reset() {
   const bool symmetric = impl_->symmetric, distributed = impl_->dist != nullptr;
   const LinearMethod method = impl_->method;
+  const DofLayout* layout = impl_->layout;
   impl_ = std::make_unique<Impl>();
   impl_->symmetric = symmetric;
   if (method != LinearMethod::suitesparse) set_method(method);
-  set_distributed(distributed);
+  set_distributed(distributed, layout);
 }
 
 void LinearSolver::set_method(LinearMethod method) {
@@ -416,7 +418,10 @@ void LinearSolver::set_method(LinearMethod method) {
   if (m.dist && method == LinearMethod::suitesparse)
     throw std::invalid_argument("LinearSolver: a distributed solver needs a PETSc method");
   m.engine = method == LinearMethod::suitesparse ? nullptr : make_petsc_engine(method);
-  if (m.dist) m.dist = std::make_unique<DistributedLinearSolver>(method);
+  if (m.dist) {
+    m.dist = std::make_unique<DistributedLinearSolver>(method);
+    m.dist->set_layout(m.layout);
+  }
   m.method = method;
   m.backend = LinearBackend::none;
   m.status = LinearSolveStatus::not_factorized;
@@ -426,14 +431,21 @@ LinearMethod LinearSolver::method() const {
   return impl_->method;
 }
 
-void LinearSolver::set_distributed(bool distributed) {
+void LinearSolver::set_distributed(bool distributed, const DofLayout* layout) {
   Impl& m = *impl_;
-  if (distributed == (m.dist != nullptr)) return;
+  if (!distributed) layout = nullptr;
+  if (distributed == (m.dist != nullptr) && layout == m.layout) return;
   if (distributed && m.method == LinearMethod::suitesparse)
     throw std::invalid_argument(
         "LinearSolver: a problem spread over the ranks needs a PETSc solver (\"linear_solver\": "
         "\"mumps\" or \"krylov\")");
-  m.dist = distributed ? std::make_unique<DistributedLinearSolver>(m.method) : nullptr;
+  m.layout = layout;
+  if (!distributed) {
+    m.dist = nullptr;
+  } else if (!m.dist) {
+    m.dist = std::make_unique<DistributedLinearSolver>(m.method);
+  }
+  if (m.dist) m.dist->set_layout(layout);
   m.backend = LinearBackend::none;
   m.status = LinearSolveStatus::not_factorized;
 }

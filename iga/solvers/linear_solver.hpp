@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "iga/parallel/dof_layout.hpp"
 #include "iga/solvers/petsc_engine.hpp"
 
 namespace iga {
@@ -91,10 +92,12 @@ class LinearSolver {
   LinearMethod method() const;
   /// Distributed (NonlinearProblem::distributed): factorize() takes this rank's part of the
   /// matrix, summed over the ranks of the run by DistributedLinearSolver (MUMPS, or the Krylov
-  /// method), and solve() a right-hand side that is the same on every rank, whose whole solution
-  /// every rank gets; both are then collective. Needs a PETSc method (std::invalid_argument
+  /// method), and solve() is collective: without a layout, b is the same on every rank and every
+  /// rank gets the whole solution; with the problem's (NonlinearProblem::layout, not owned),
+  /// b is read at the rank's own unknowns and x is current at its own and its ghosts
+  /// (DistributedLinearSolver::set_layout). Needs a PETSc method (std::invalid_argument
   /// otherwise). Forgets the factorization.
-  void set_distributed(bool distributed);
+  void set_distributed(bool distributed, const DofLayout* layout = nullptr);
   bool distributed() const;
   bool symmetric() const;
   /// The Krylov method's near null space (the columns of Z, one entry per unknown: the

@@ -145,7 +145,7 @@ double assemble_residual(NonlinearProblem& problem, const VectorXd& u, double t,
                            std::to_string(R.size()) + " and tangent of size " +
                            std::to_string(K.rows()) + " x " + std::to_string(K.cols()) + " for " +
                            std::to_string(n) + " unknowns");
-  return R.norm();
+  return problem.norm(R);
 }
 
 /// R(u, t) alone (no tangent) into R, timed and counted in r. Returns |R|, or -1 with `error`
@@ -166,7 +166,7 @@ double assemble_rhs(NonlinearProblem& problem, const VectorXd& u, double t, int 
   if (R.size() != n)
     throw std::logic_error("NonlinearProblem::assemble: residual of size " +
                            std::to_string(R.size()) + " for " + std::to_string(n) + " unknowns");
-  return R.norm();
+  return problem.norm(R);
 }
 
 /// The Newton correction: K du = rhs, timed in r, the factorizations counted in a by backend.
@@ -383,10 +383,14 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
   a.residual_norms.reserve(static_cast<std::size_t>(s.max_iterations) + 1);
   a.energy_norms.reserve(static_cast<std::size_t>(s.max_iterations));
   linear_.set_symmetric(problem.symmetric());
-  linear_.set_distributed(problem.distributed());
-  // The Krylov path's multigrid gets the bodies' rigid-body motions at the step's start.
-  if (linear_.method() == LinearMethod::krylov)
+  linear_.set_distributed(problem.distributed(), problem.layout());
+  // The Krylov path's multigrid gets the bodies' rigid-body motions at the step's start (a
+  // re-solve's start is current only at each process's own unknowns and ghosts: made current
+  // everywhere first, since the motions are the whole body's).
+  if (linear_.method() == LinearMethod::krylov) {
+    problem.synchronize(u);
     linear_.set_near_null_space(problem.near_null_space(u, t));
+  }
 
   // Returns |R|, or -1 with `error` set when the problem threw.
   std::string error;
@@ -421,10 +425,10 @@ void NonlinearSolver::newton(NonlinearProblem& problem, VectorXd& u, double t, W
       return finish(
           NewtonOutcome::linear_solve_failed,
           format("iteration %d: linear solve %s: %s", k, to_string(ls), linear_.message().c_str()));
-    if (k == 1 && a.iterations == 0) a.predicted = std::max(a.predicted, w.du.norm());
+    if (k == 1 && a.iterations == 0) a.predicted = std::max(a.predicted, problem.norm(w.du));
     a.iterations = k;
 
-    const double e = std::abs(w.du.dot(w.R));  // E_k = |du_k . R_{k-1}|
+    const double e = std::abs(problem.dot(w.du, w.R));  // E_k = |du_k . R_{k-1}|
     a.energy_norms.push_back(e);
     if (!std::isfinite(e))
       return finish(NewtonOutcome::not_finite, format("iteration %d: E is not finite", k));
@@ -469,7 +473,7 @@ bool NonlinearSolver::linear_step(NonlinearProblem& problem, VectorXd& u, const 
   double r0 = -1.0;
   if (!factorized) {
     linear_.set_symmetric(problem.symmetric());
-    linear_.set_distributed(problem.distributed());
+    linear_.set_distributed(problem.distributed(), problem.layout());
     if (linear_.method() == LinearMethod::krylov)
       linear_.set_near_null_space(problem.near_null_space(u_ref, t));
     r0 = assemble_residual(problem, u_ref, t, w.n, w.R, w.K, r, error);
@@ -493,8 +497,8 @@ bool NonlinearSolver::linear_step(NonlinearProblem& problem, VectorXd& u, const 
     return true;
   }
   a.iterations = 1;
-  a.predicted = w.du.norm();
-  a.energy_norms.push_back(std::abs(w.du.dot(w.R)));
+  a.predicted = problem.norm(w.du);
+  a.energy_norms.push_back(std::abs(problem.dot(w.du, w.R)));
   u = u_ref + w.du;
   if (!w.du.allFinite()) {
     a.outcome = NewtonOutcome::not_finite;
@@ -677,7 +681,7 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     int hardest_solve = 0;  // the most iterations of one Newton solve of the step
     if (s.secant_predictor && u_prev.size() == n && t > t_prev) {
       u = u_last + (a.dt / (t - t_prev)) * (u_last - u_prev);
-      a.predicted = (u - u_last).norm();
+      a.predicted = problem.norm(u - u_last);
     }
     const bool linear_try = linear_path;
     try {
@@ -691,7 +695,8 @@ NonlinearSolverResult NonlinearSolver::solve(NonlinearProblem& problem, VectorXd
     settle_attempt(a, r, s.analysis, std::min(dt, a.dt), s.min_step);
 
     if (a.outcome == NewtonOutcome::converged) {
-      record_jump(a, r, (u - u_last).norm());
+      problem.synchronize(u);  // current everywhere: the callback reads any point
+      record_jump(a, r, problem.norm(u - u_last));
       u_prev = u_last;
       t_prev = t;
       t = t_new;

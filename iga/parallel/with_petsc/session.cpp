@@ -67,6 +67,33 @@ class MpiCommunicator final : public Communicator {
     s.resize(static_cast<std::size_t>(n));
     MPI_Bcast(s.data(), n, MPI_CHAR, from, PETSC_COMM_WORLD);
   }
+  std::vector<std::vector<double>> exchange(
+      const std::vector<std::vector<double>>& to) const override {
+    const auto P = static_cast<std::size_t>(size_);
+    if (to.size() != P)
+      throw std::invalid_argument("Communicator::exchange: " + std::to_string(to.size()) +
+                                  " lists for " + std::to_string(size_) + " processes");
+    std::vector<int> send_n(P), recv_n(P), send_at(P), recv_at(P);
+    std::vector<double> send;
+    for (std::size_t q = 0; q < P; ++q) {
+      send_n[q] = static_cast<int>(to[q].size());
+      send_at[q] = static_cast<int>(send.size());
+      send.insert(send.end(), to[q].begin(), to[q].end());
+    }
+    MPI_Alltoall(send_n.data(), 1, MPI_INT, recv_n.data(), 1, MPI_INT, PETSC_COMM_WORLD);
+    int total = 0;
+    for (std::size_t q = 0; q < P; ++q) {
+      recv_at[q] = total;
+      total += recv_n[q];
+    }
+    std::vector<double> recv(static_cast<std::size_t>(total));
+    MPI_Alltoallv(send.data(), send_n.data(), send_at.data(), MPI_DOUBLE, recv.data(),
+                  recv_n.data(), recv_at.data(), MPI_DOUBLE, PETSC_COMM_WORLD);
+    std::vector<std::vector<double>> from(P);
+    for (std::size_t q = 0; q < P; ++q)
+      from[q].assign(recv.begin() + recv_at[q], recv.begin() + recv_at[q] + recv_n[q]);
+    return from;
+  }
   void barrier() const override { MPI_Barrier(PETSC_COMM_WORLD); }
   [[noreturn]] void abort(int code, const std::string& message) const override {
     std::fprintf(stderr, "[rank %d of %d] %s\n", rank_, size_, message.c_str());

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "iga/parallel/communicator.hpp"
+#include "iga/parallel/dof_layout.hpp"
 #include "iga/solvers/distributed_solver.hpp"
 #include "iga/solvers/with_petsc/petsc_common.hpp"
 
@@ -29,7 +30,8 @@ struct DistributedLinearSolver::Impl {
   int negative = -1;
   bool reused = false;
   bool ready = false;
-  Eigen::MatrixXd modes;  ///< the Krylov method's near null space (empty: none)
+  Eigen::MatrixXd modes;              ///< the Krylov method's near null space (empty: none)
+  const DofLayout* layout = nullptr;  ///< rows by owner, ghosts (null: even split, replicated)
 
   ~Impl() { destroy(); }
   Impl() = default;
@@ -59,15 +61,23 @@ struct DistributedLinearSolver::Impl {
     std::vector<PetscInt> i(inner.begin(), inner.end()), j(inner.size());
     for (std::size_t c = 0; c + 1 < outer.size(); ++c)
       std::fill(j.begin() + outer[c], j.begin() + outer[c + 1], static_cast<PetscInt>(c));
+    PetscInt local = PETSC_DECIDE;
+    if (layout != nullptr) {  // the owners' rows: the layout's numbering
+      const std::vector<int>& row = layout->rows();
+      for (PetscInt& k : i) k = row[static_cast<std::size_t>(k)];
+      for (PetscInt& k : j) k = row[static_cast<std::size_t>(k)];
+      local = static_cast<PetscInt>(layout->owned().size());
+    }
     if (!call(MatCreate(PETSC_COMM_WORLD, &A), "MatCreate", why) ||
-        !call(MatSetSizes(A, PETSC_DECIDE, PETSC_DECIDE, n, n), "MatSetSizes", why) ||
+        !call(MatSetSizes(A, local, local, n, n), "MatSetSizes", why) ||
         !call(MatSetType(A, MATAIJ), "MatSetType", why) ||
         !call(MatSetPreallocationCOO(A, static_cast<PetscCount>(i.size()), i.data(), j.data()),
               "MatSetPreallocationCOO", why) ||
         !call(MatSetOption(A, MAT_SYMMETRIC, symmetric ? PETSC_TRUE : PETSC_FALSE), "MatSetOption",
               why) ||
         !call(MatCreateVecs(A, &x, &b), "MatCreateVecs", why) ||
-        !call(VecScatterCreateToAll(x, &to_all, &x_all), "VecScatterCreateToAll", why))
+        (layout == nullptr &&
+         !call(VecScatterCreateToAll(x, &to_all, &x_all), "VecScatterCreateToAll", why)))
       return false;
     return call(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate", why) &&
            call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
@@ -103,6 +113,10 @@ LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<d
   Impl& m = *impl_;
   const Communicator& w = world();
   const auto n = static_cast<PetscInt>(local.rows());
+  if (m.layout != nullptr && m.layout->size() != n)
+    throw std::invalid_argument("DistributedLinearSolver::factorize: a part of " +
+                                std::to_string(n) + " unknowns for a layout of " +
+                                std::to_string(m.layout->size()));
   const int* outer = local.outerIndexPtr();
   const int* inner = local.innerIndexPtr();
   const auto nnz = static_cast<std::size_t>(local.nonZeros());
@@ -155,7 +169,12 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
   bool ok = call(VecGetOwnershipRange(m.b, &lo, &hi), "VecGetOwnershipRange", why) &&
             call(VecGetArray(m.b, &bl), "VecGetArray", why);
   if (ok) {
-    std::copy(b.data() + lo, b.data() + hi, bl);
+    if (m.layout != nullptr) {  // this rank's own entries, complete here
+      const std::vector<int>& own = m.layout->owned();
+      for (std::size_t k = 0; k < own.size(); ++k) bl[k] = b[own[k]];
+    } else {
+      std::copy(b.data() + lo, b.data() + hi, bl);
+    }
     ok = call(VecRestoreArray(m.b, &bl), "VecRestoreArray", why);
   }
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -165,28 +184,61 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
     why = std::string("PETSc KSP did not converge: ") + KSPConvergedReasons[reason];
     ok = false;
   }
-  ok = ok &&
-       call(VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD),
-            "VecScatterBegin", why) &&
-       call(VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd",
-            why);
-  if (ok) {
-    const PetscScalar* xa = nullptr;
-    ok = call(VecGetArrayRead(m.x_all, &xa), "VecGetArrayRead", why);
+  if (m.layout != nullptr) {
+    // the owners' entries, then the ghosts' from their owners (collective whatever happened)
+    x.setZero(m.n);
+    const PetscScalar* xl = nullptr;
+    if (ok && call(VecGetArrayRead(m.x, &xl), "VecGetArrayRead", why)) {
+      const std::vector<int>& own = m.layout->owned();
+      for (std::size_t k = 0; k < own.size(); ++k) x[own[k]] = xl[k];
+      VecRestoreArrayRead(m.x, &xl);
+    }
+    m.layout->update_ghosts(x);
+  } else {
+    ok = ok &&
+         call(VecScatterBegin(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterBegin", why) &&
+         call(VecScatterEnd(m.to_all, m.x, m.x_all, INSERT_VALUES, SCATTER_FORWARD),
+              "VecScatterEnd", why);
     if (ok) {
-      x = Eigen::Map<const Eigen::VectorXd>(xa, m.n);
-      VecRestoreArrayRead(m.x_all, &xa);
+      const PetscScalar* xa = nullptr;
+      ok = call(VecGetArrayRead(m.x_all, &xa), "VecGetArrayRead", why);
+      if (ok) {
+        x = Eigen::Map<const Eigen::VectorXd>(xa, m.n);
+        VecRestoreArrayRead(m.x_all, &xa);
+      }
     }
   }
+  // every rank's part finite (with a layout, a rank holds only its part of x)
+  if (ok && !x.allFinite()) {
+    why = "the solution is not finite";
+    ok = false;
+  }
   const Communicator& w = world();
-  if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0 && x.allFinite())
-    return LinearSolveStatus::success;
-  m.message = why.empty() ? "the solution is not finite" : why;
+  if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0) return LinearSolveStatus::success;
+  m.message = w.first_message(why);
+  if (m.message.empty()) m.message = "the solution is not finite";
   return LinearSolveStatus::singular;
 }
 
 void DistributedLinearSolver::set_near_null_space(const Eigen::MatrixXd& Z) {
-  impl_->modes = Z;
+  const DofLayout* l = impl_->layout;
+  if (l == nullptr || Z.cols() == 0) {
+    impl_->modes = Z;
+    return;
+  }
+  // the rows in the matrix's numbering (the owners')
+  impl_->modes.resize(Z.rows(), Z.cols());
+  for (Eigen::Index i = 0; i < Z.rows(); ++i)
+    impl_->modes.row(l->rows()[static_cast<std::size_t>(i)]) = Z.row(i);
+}
+
+void DistributedLinearSolver::set_layout(const DofLayout* layout) {
+  if (layout == impl_->layout) return;
+  impl_->layout = layout;
+  impl_->outer.clear();  // a new matrix at the next factorize()
+  impl_->inner.clear();
+  impl_->ready = false;
 }
 
 const std::string& DistributedLinearSolver::message() const {

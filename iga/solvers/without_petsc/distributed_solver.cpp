@@ -25,6 +25,7 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd&, Eigen::
   return LinearSolveStatus::not_factorized;
 }
 void DistributedLinearSolver::set_near_null_space(const Eigen::MatrixXd& /*Z*/) {}
+void DistributedLinearSolver::set_layout(const DofLayout* /*layout*/) {}
 const std::string& DistributedLinearSolver::message() const {
   static const std::string none = "no PETSc";
   return none;

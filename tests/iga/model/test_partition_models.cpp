@@ -3,13 +3,17 @@
 // r of P standing alone (SerialCommunicator(r, P): it says so but sums nothing), assembled at a
 // state of the serial run. Its residual and tangent are then its own share; summed over r they must
 // be the model's (every shell element, contact point, load and spring once: a shell's surface load
-// split with its elements, point loads and springs on process 0 only, a rod whole on one process,
-// a membrane cut like a shell),
-// and so must the pairs' counts and tool forces. The processor grid and the parts' sizes are
-// checked too. The same analyses run under mpirun in tests/mpi/mpi_models.cpp; this test needs
-// neither MPI nor PETSc, so it runs in every build (the sanitizers' too).
+// split with its elements, point loads and springs on the process that owns the point, a rod
+// whole on one process, a membrane cut like a shell),
+// and so must the pairs' counts and tool forces. Each part's layout (DofLayout) must hold what
+// it assembles: every unknown owned by one process, the same owners on every process, and the
+// rows and entries of a part's residual and tangent among its own unknowns and its ghosts. The
+// processor grid and the parts' sizes are checked too. The same analyses run under mpirun in
+// tests/mpi/mpi_models.cpp; this test needs neither MPI nor PETSc, so it runs in every build (the
+// sanitizers' too).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -20,6 +24,7 @@
 #include "iga/membrane/membrane.hpp"
 #include "iga/model/analysis.hpp"
 #include "iga/parallel/communicator.hpp"
+#include "iga/parallel/dof_layout.hpp"
 #include "iga/shell/shell_problem.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
@@ -106,12 +111,40 @@ void check_parts_of(const Json& doc, const std::string& path, int steps, int P) 
   sum.K.resize(w.K.rows(), w.K.cols());
   sum.counts.resize(w.counts.size());
   sum.forces.assign(w.forces.size(), Vector3d::Zero());
-  int built = 0;  // surface elements built over the parts
+  int built = 0;            // surface elements built over the parts
+  std::vector<int> owners;  // process 0's owner of each unknown
+  std::vector<int> owned_by(static_cast<std::size_t>(w.R.size()), 0);  // how many own it
   for (int r = 0; r < P; ++r) {
     const SerialCommunicator comm(r, P);
     Analysis part = Analysis::from_json(doc, path, comm);
     CHECK(part.problem().distributed());
     const Assembly p = assemble(part, s);
+    const DofLayout* L = part.problem().layout();
+    REQUIRE(L != nullptr);
+    REQUIRE(L->size() == w.R.size());
+    std::vector<int> own(static_cast<std::size_t>(L->size()));
+    for (int i = 0; i < L->size(); ++i) own[static_cast<std::size_t>(i)] = L->owner(i);
+    if (r == 0) owners = own;
+    CHECK(own == owners);
+    std::vector<char> holds(own.size(), 0);  // own unknowns and ghosts
+    for (const int i : L->owned()) {
+      ++owned_by[static_cast<std::size_t>(i)];
+      holds[static_cast<std::size_t>(i)] = 1;
+      CHECK(L->owner(i) == r);
+    }
+    for (const int i : L->ghosts()) {
+      CHECK(L->owner(i) != r);
+      holds[static_cast<std::size_t>(i)] = 1;
+    }
+    int outside = 0;  // entries of the part outside what it holds
+    for (Eigen::Index i = 0; i < p.R.size(); ++i)
+      if (p.R[i] != 0.0 && holds[static_cast<std::size_t>(i)] == 0) ++outside;
+    for (int j = 0; j < p.K.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(p.K, j); it; ++it)
+        if (holds[static_cast<std::size_t>(it.row())] == 0 ||
+            holds[static_cast<std::size_t>(it.col())] == 0)
+          ++outside;
+    CHECK(outside == 0);
     sum.R += p.R;
     sum.K = SparseMatrix(sum.K + p.K);
     for (std::size_t k = 0; k < p.counts.size(); ++k) {
@@ -122,6 +155,7 @@ void check_parts_of(const Json& doc, const std::string& path, int steps, int P) 
     }
     built += surface_elements(part).first;
   }
+  CHECK(std::count(owned_by.begin(), owned_by.end(), 1) == static_cast<long>(owned_by.size()));
   const auto [whole_built, patch] = surface_elements(whole);
   CHECK(whole_built == patch);
   CHECK(built == patch);
@@ -180,6 +214,54 @@ TEST_CASE("element blocks tile the patch, as even as whole elements allow", "[pa
   }
   CHECK(ElementBlock{}.whole());
   CHECK(element_block(1, 2, 4, 2).describe() == "elements [2, 4) x [0, 2)");
+}
+
+TEST_CASE(
+    "a cut patch's control points: owned where their Greville point is, read by the blocks "
+    "of their support",
+    "[partition]") {
+  // Degree 2 x 3, non-uniform knots with a double knot (a C^0 line) in u.
+  const KnotVector U(2, {0, 0, 0, 0.1, 0.3, 0.3, 0.45, 0.7, 0.8, 1, 1, 1});
+  const KnotVector V(3, {0, 0, 0, 0, 0.2, 0.5, 0.6, 0.9, 1, 1, 1, 1});
+  const std::vector<double> bu = U.breaks(), bv = V.breaks();
+  const int nu = U.num_elements(), nv = V.num_elements(), mu = U.num_basis();
+  // whether basis i of W is non-zero inside element e (at its midpoint)
+  const auto supports = [](const KnotVector& W, const std::vector<double>& b, int i, int e) {
+    const double mid = 0.5 * (b[static_cast<std::size_t>(e)] + b[static_cast<std::size_t>(e) + 1]);
+    return W[i] < mid && mid < W[i + W.degree() + 1];
+  };
+  for (const int P : {2, 3, 4, 6}) {
+    CAPTURE(P);
+    std::vector<std::vector<int>> owners(static_cast<std::size_t>(P));
+    std::vector<std::vector<char>> reads(static_cast<std::size_t>(P));
+    for (int r = 0; r < P; ++r)
+      patch_point_partition(U, V, r, P, owners[static_cast<std::size_t>(r)],
+                            reads[static_cast<std::size_t>(r)]);
+    const std::vector<double> gu = U.greville(), gv = V.greville();
+    for (int r = 0; r < P; ++r) {
+      CHECK(owners[static_cast<std::size_t>(r)] == owners[0]);
+      const ElementBlock b = element_block(r, P, nu, nv);
+      for (int j = 0; j < V.num_basis(); ++j)
+        for (int i = 0; i < mu; ++i) {
+          const auto k = static_cast<std::size_t>(i + mu * j);
+          bool read = false;
+          for (int ev = b.v0; ev < b.v1; ++ev)
+            for (int eu = b.u0; eu < b.u1; ++eu)
+              read = read || (supports(U, bu, i, eu) && supports(V, bv, j, ev));
+          CHECK(static_cast<bool>(reads[static_cast<std::size_t>(r)][k]) == read);
+          // the owner's block holds the Greville point (u, v), and the owner reads the point
+          const bool holds =
+              bu[static_cast<std::size_t>(b.u0)] <= gu[static_cast<std::size_t>(i)] &&
+              gu[static_cast<std::size_t>(i)] <= bu[static_cast<std::size_t>(b.u1)] &&
+              bv[static_cast<std::size_t>(b.v0)] <= gv[static_cast<std::size_t>(j)] &&
+              gv[static_cast<std::size_t>(j)] <= bv[static_cast<std::size_t>(b.v1)];
+          if (owners[0][k] == r) {
+            CHECK(holds);
+            CHECK(read);
+          }
+        }
+    }
+  }
 }
 
 TEST_CASE("whole bodies go to the least loaded process, in order", "[partition]") {
