@@ -2,7 +2,6 @@
 #include "iga/parallel/dof_layout.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -97,13 +96,6 @@ double DofLayout::dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const 
   double s = 0.0;
   for (const int i : owned_) s += a[i] * b[i];
   return comm_->sum(s);
-}
-
-double DofLayout::max_abs(const Eigen::VectorXd& a) const {
-  if (!spread()) return a.size() == 0 ? 0.0 : a.cwiseAbs().maxCoeff();
-  double m = 0.0;
-  for (const int i : owned_) m = std::max(m, std::abs(a[i]));
-  return comm_->max(m);
 }
 
 long long DofLayout::sent_per_exchange() const {

@@ -55,8 +55,6 @@ class DofLayout {
   void gather(Eigen::VectorXd& x) const;
   /// Collective: a . b summed over the owners (the same on every process).
   double dot(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
-  /// Collective: max |a_i| over the owners.
-  double max_abs(const Eigen::VectorXd& a) const;
   /// The unknowns of any process that some other process reads: the values one add_to_owners
   /// sends from here.
   long long sent_per_exchange() const;

@@ -188,7 +188,8 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
     // the owners' entries, then the ghosts' from their owners (collective whatever happened)
     x.setZero(m.n);
     const PetscScalar* xl = nullptr;
-    if (ok && call(VecGetArrayRead(m.x, &xl), "VecGetArrayRead", why)) {
+    ok = ok && call(VecGetArrayRead(m.x, &xl), "VecGetArrayRead", why);
+    if (ok) {
       const std::vector<int>& own = m.layout->owned();
       for (std::size_t k = 0; k < own.size(); ++k) x[own[k]] = xl[k];
       VecRestoreArrayRead(m.x, &xl);
