@@ -17,6 +17,7 @@
 
 #include "geometry/json_reader.hpp"
 #include "iga/model/analysis.hpp"
+#include "iga/solvers/roundoff_probe.hpp"
 #include "tests/support/files.hpp"
 
 // The file's names, apart from its neighbours in the unity build (tests/CMakeLists.txt).
@@ -131,6 +132,12 @@ TEST_CASE("Arc length: the shallow arch snaps through both limit points (shootin
                  std::to_string(P.size()) + "_rod.vtu\"") != std::string::npos);
 
   // Load control: the run cannot pass the first limit point (a step jumps or fails there).
+  // Probe off for this run, as for the hinged roof's and the truss's load control: whether the
+  // step that crosses the limit point is reported as a jump is the ratio of its increment to the
+  // tangent's prediction (StepAttempt::jump_ratio), which depends on where that step starts,
+  // and the probe's refusals move the start (a start closer to the limit point has a larger
+  // prediction: seeds 4 and 6 with libm's FMA paths masked gave 9.3 against 15 unrefused).
+  const RoundoffProbeOff probe_off;
   Analysis b = Analysis::load(kModel);
   b.solver_settings().control = PathControl::load;
   b.solver_settings().min_step = 1e-4;
