@@ -215,7 +215,16 @@ TEST_CASE("capstan: frictionless, T = T0 at any pull, and the moments about the 
   const double dA = std::abs(x[static_cast<std::size_t>(m.end_a)].cross(m.out_a).z());
   const double dB =
       std::abs(x[static_cast<std::size_t>(m.end_b)].cross(r.reaction.normalized()).z());
-  CHECK(r.T_ratio == Approx(dA / dB).epsilon(1e-9));
+  // Exact at an exact equilibrium; the converged state's residual forces R_i at the points x_i
+  // add their moment about the axis, |sum x_i x R_i| <= sqrt(n) max|x_i| |R|, to T0 d_A. A step
+  // converged by the energy test may keep |R| ~ 1e-9 |R_0| (the round-off probe's seed 4 with
+  // libm's FMA paths masked: |R| = 2e-7, the balance off by 2.5e-8 relative).
+  const double residual = r.solver.attempts.back().residual_norms.back();
+  double lever = 0.0;
+  for (const Vector3d& xi : x) lever = std::max(lever, xi.norm());
+  const double moment_bound =
+      std::sqrt(static_cast<double>(x.size())) * lever * residual / (p.T0 * dB);
+  CHECK(std::abs(r.T_ratio / (dA / dB) - 1.0) <= 1e-9 + moment_bound);
   // Both lever arms are the contact radius R + r - |xi3| to within the discretization.
   CHECK(dA == Approx(p.radius + p.rope_radius).epsilon(3e-3));
   CHECK(dB == Approx(p.radius + p.rope_radius).epsilon(3e-3));

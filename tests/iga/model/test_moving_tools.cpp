@@ -110,7 +110,11 @@ TEST_CASE("moving tools: a belt on a driven drum carries T0 e^{+-mu phi} at its 
   REQUIRE(r.solver.status == NonlinearSolverStatus::converged);
   const double ratio = r.steps.back().reactions.at(0).norm() / kT0;
   INFO("after turning by 2e-5: " << a.pair(0).status() << ", T_B / T0 = " << ratio);
-  CHECK(r.steps.back().contact.stick > r.steps.back().contact.active / 2);
+  // Part of the arc sticks. How much is not asked: after so small a turn most points lie near
+  // the slip surface, where round-off and the step sequence decide the branch (the round-off
+  // probe's seeds 0, 1 and 4 with libm's FMA paths masked leave 42, 56 and 4 of 61 sticking);
+  // the tension between the two sliding limits below is what the sticking part gives.
+  CHECK(r.steps.back().contact.stick > 0);
   CHECK(ratio > std::exp(-kMu * phi) * 1.01);
   CHECK(ratio < std::exp(kMu * phi) * 0.99);
 }

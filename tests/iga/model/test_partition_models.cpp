@@ -315,7 +315,20 @@ TEST_CASE(
 
 TEST_CASE("a model's parts over 2 and 3 processes add up to it: two ropes, each whole on one",
           "[partition]") {
-  for (int P : {2, 3}) check_parts("two_ropes.json", 5, P);
+  // The penalty law, not the model's augmented Lagrange: the parts are assembled afresh at the
+  // run's state, without its multipliers, and an augmented state's gaps are round-off that may
+  // leave no point active (the round-off probe's seed 4 with libm's FMA paths masked did); a
+  // penalty state's points penetrate by N / eps_N.
+  const std::string path = kData + "two_ropes.json";
+  Json doc = read_json_file(path);
+  for (Json& c : doc["contact"]) {
+    c["enforcement"] = "penalty";
+    for (const char* key : {"penetration_tol", "max_augmentations", "slip_tol"}) c.erase(key);
+  }
+  for (int P : {2, 3}) {
+    CAPTURE(P);
+    check_parts_of(doc, path, 5, P);
+  }
 }
 
 TEST_CASE("a shell cut over more processes than it has elements is refused at its surface",
