@@ -13,7 +13,7 @@ packages=(
   libopenblas0-serial  # the BLAS of CHOLMOD's supernodal factorization (Debian's alternatives)
   python3 python3-matplotlib clang-format clang-tidy
   python3-dev python3-numpy python3-pytest pybind11-dev  # the Python module (python/)
-  libpetsc-real3.18-dev openmpi-bin  # distributed runs: PETSc with MUMPS and hypre, OpenMPI's mpirun
+  libpetsc-real3.18-dev libmumps-dev openmpi-bin  # distributed runs: PETSc with MUMPS (also called directly) and hypre, OpenMPI's mpirun
 )
 [[ "${1:-}" == "--fuzz" ]] && packages=(clang libclang-rt-dev)
 

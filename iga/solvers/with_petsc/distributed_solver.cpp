@@ -10,6 +10,7 @@
 #include "iga/parallel/communicator.hpp"
 #include "iga/parallel/dof_layout.hpp"
 #include "iga/solvers/distributed_solver.hpp"
+#include "iga/solvers/with_petsc/mumps_direct.hpp"
 #include "iga/solvers/with_petsc/petsc_common.hpp"
 
 namespace iga {
@@ -32,6 +33,16 @@ struct DistributedLinearSolver::Impl {
   bool ready = false;
   Eigen::MatrixXd modes;              ///< the Krylov method's near null space (empty: none)
   const DofLayout* layout = nullptr;  ///< rows by owner, ghosts (null: even split, replicated)
+  /// The direct method: MUMPS called directly (mumps_direct.hpp), the part's entries it is given
+  /// (their places in the part's value array: all, or a symmetric matrix's lower triangle) and
+  /// whether it holds the analysis of the last pattern.
+  std::unique_ptr<petsc::MumpsDirect> mumps;
+  /// MUMPS called directly (else through PETSc's interface: the PETSc option
+  /// -iga_mumps_through_petsc, PORD's ordering on Debian 12)
+  bool direct = false;
+  std::vector<int> kept;
+  std::vector<double> kept_values;
+  bool analyzed = false;
 
   ~Impl() { destroy(); }
   Impl() = default;
@@ -84,6 +95,73 @@ struct DistributedLinearSolver::Impl {
            petsc::configure(ksp, method, symmetric, why);
   }
 
+  /// factorize() by MUMPS called directly (reused already agreed by every rank).
+  LinearSolveStatus factorize_direct(const Eigen::SparseMatrix<double>& local, bool sym) {
+    const Communicator& w = world();
+    std::string why;
+    bool ok = true;
+    const double* values = local.valuePtr();
+    if (!reused) {
+      const int* outer_in = local.outerIndexPtr();
+      const int* inner_in = local.innerIndexPtr();
+      n = static_cast<PetscInt>(local.rows());
+      symmetric = sym;
+      outer.assign(outer_in, outer_in + n + 1);
+      inner.assign(inner_in, inner_in + local.nonZeros());
+      kept.clear();
+      std::vector<int> rows, cols;
+      for (int c = 0; c < local.outerSize(); ++c)
+        for (int k = outer_in[c]; k < outer_in[c + 1]; ++k)
+          if (!sym || inner_in[k] >= c) {
+            kept.push_back(k);
+            rows.push_back(inner_in[k]);
+            cols.push_back(c);
+          }
+      kept_values.resize(kept.size());
+      if (!mumps) mumps = std::make_unique<petsc::MumpsDirect>();
+      ok = mumps->analyze(static_cast<int>(n), sym, rows, cols, why);
+      analyzed = ok;  // a failed analysis is not kept (the next factorize analyses again)
+    }
+    if (ok) {
+      for (std::size_t q = 0; q < kept.size(); ++q) kept_values[q] = values[kept[q]];
+      ok = mumps->factorize(kept_values, why);
+    }
+    ready = w.sum(static_cast<long long>(ok ? 0 : 1)) == 0;
+    negative = ready ? mumps->negative_pivots() : -1;
+    if (ready) {
+      message.clear();
+      return LinearSolveStatus::success;
+    }
+    message = w.first_message(why);
+    return LinearSolveStatus::singular;
+  }
+
+  /// solve() by MUMPS called directly: b from the owners (or the even blocks), x everywhere,
+  /// then with a layout only the own unknowns' and the ghosts' entries kept.
+  bool solve_direct(const Eigen::VectorXd& rhs, Eigen::VectorXd& sol, std::string& why) const {
+    std::vector<int> at;
+    if (layout != nullptr) {
+      at = layout->owned();
+    } else {
+      const Communicator& w = world();
+      const auto lo = static_cast<int>(static_cast<long long>(n) * w.rank() / w.size());
+      const auto hi = static_cast<int>(static_cast<long long>(n) * (w.rank() + 1) / w.size());
+      for (int i = lo; i < hi; ++i) at.push_back(i);
+    }
+    std::vector<double> mine(at.size());
+    for (std::size_t k = 0; k < at.size(); ++k) mine[k] = rhs[at[k]];
+    Eigen::VectorXd all;
+    if (!mumps->solve(at, mine, all, why)) return false;
+    if (layout == nullptr) {
+      sol = std::move(all);
+    } else {
+      sol.setZero(n);
+      for (const int i : layout->owned()) sol[i] = all[i];
+      for (const int i : layout->ghosts()) sol[i] = all[i];
+    }
+    return true;
+  }
+
   bool setup(const double* values, std::string& why) {
     return call(MatSetValuesCOO(A, values, INSERT_VALUES), "MatSetValuesCOO", why) &&
            (method != LinearMethod::krylov || petsc::set_near_null_space(A, modes, why)) &&
@@ -99,6 +177,9 @@ DistributedLinearSolver::DistributedLinearSolver(LinearMethod method)
     throw std::invalid_argument("DistributedLinearSolver: suitesparse runs on one process only");
   ensure_petsc();
   impl_->method = method;
+  PetscBool through_petsc = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-iga_mumps_through_petsc", &through_petsc);
+  impl_->direct = method == LinearMethod::mumps && !through_petsc;
 }
 
 DistributedLinearSolver::~DistributedLinearSolver() = default;
@@ -120,13 +201,14 @@ LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<d
   const int* outer = local.outerIndexPtr();
   const int* inner = local.innerIndexPtr();
   const auto nnz = static_cast<std::size_t>(local.nonZeros());
-  const bool same = m.A != nullptr && n == m.n && symmetric == m.symmetric &&
+  const bool same = (m.A != nullptr || m.analyzed) && n == m.n && symmetric == m.symmetric &&
                     m.outer.size() == static_cast<std::size_t>(n) + 1 && m.inner.size() == nnz &&
                     std::equal(m.outer.begin(), m.outer.end(), outer) &&
                     std::equal(m.inner.begin(), m.inner.end(), inner);
   m.reused = w.sum(static_cast<long long>(same ? 0 : 1)) == 0;  // every rank's unchanged
   std::string why;
   bool ok = true;
+  if (m.direct) return m.factorize_direct(local, symmetric);
   if (!m.reused) {
     m.n = n;
     m.symmetric = symmetric;
@@ -153,6 +235,25 @@ LinearSolveStatus DistributedLinearSolver::factorize(
   return factorize(part, symmetric);
 }
 
+namespace {
+
+/// A solve's outcome, the same on every rank: a success where every rank's solve succeeded and
+/// its x is finite (with a layout a rank holds only its part of x), else the first rank's reason.
+LinearSolveStatus agree_on_solution(bool ok, std::string why, const Eigen::VectorXd& x,
+                                    std::string& message) {
+  if (ok && !x.allFinite()) {
+    why = "the solution is not finite";
+    ok = false;
+  }
+  const Communicator& w = world();
+  if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0) return LinearSolveStatus::success;
+  message = w.first_message(why);
+  if (message.empty()) message = "the solution is not finite";
+  return LinearSolveStatus::singular;
+}
+
+}  // namespace
+
 LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   Impl& m = *impl_;
   if (!m.ready) {
@@ -164,6 +265,10 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
                                 std::to_string(b.size()) + " for " + std::to_string(m.n) +
                                 " unknowns");
   std::string why;
+  if (m.direct) {
+    const bool ok = m.solve_direct(b, x, why);
+    return agree_on_solution(ok, why, x, m.message);
+  }
   PetscInt lo = 0, hi = 0;
   PetscScalar* bl = nullptr;
   bool ok = call(VecGetOwnershipRange(m.b, &lo, &hi), "VecGetOwnershipRange", why) &&
@@ -210,16 +315,7 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
       }
     }
   }
-  // every rank's part finite (with a layout, a rank holds only its part of x)
-  if (ok && !x.allFinite()) {
-    why = "the solution is not finite";
-    ok = false;
-  }
-  const Communicator& w = world();
-  if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0) return LinearSolveStatus::success;
-  m.message = w.first_message(why);
-  if (m.message.empty()) m.message = "the solution is not finite";
-  return LinearSolveStatus::singular;
+  return agree_on_solution(ok, why, x, m.message);
 }
 
 void DistributedLinearSolver::set_near_null_space(const Eigen::MatrixXd& Z) {
@@ -253,7 +349,17 @@ bool DistributedLinearSolver::reused_analysis() const {
 }
 std::pair<int, int> DistributedLinearSolver::owned_rows() const {
   PetscInt lo = 0, hi = 0;
-  if (impl_->A) MatGetOwnershipRange(impl_->A, &lo, &hi);
+  const Impl& m = *impl_;
+  if (m.A) {
+    MatGetOwnershipRange(m.A, &lo, &hi);
+  } else if (m.analyzed && m.layout != nullptr) {  // MUMPS: the rows this rank gives b at
+    lo = m.layout->first_row();
+    hi = lo + static_cast<PetscInt>(m.layout->owned().size());
+  } else if (m.analyzed) {
+    const Communicator& w = world();
+    lo = static_cast<PetscInt>(static_cast<long long>(m.n) * w.rank() / w.size());
+    hi = static_cast<PetscInt>(static_cast<long long>(m.n) * (w.rank() + 1) / w.size());
+  }
   return {static_cast<int>(lo), static_cast<int>(hi)};
 }
 
