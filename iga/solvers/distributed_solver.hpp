@@ -1,26 +1,24 @@
 // K du = b over the ranks of the run (world(), iga/parallel/communicator.hpp): each rank hands
 // in its part of the tangent, the sum of its own elements' entries (global free DOF numbers, any
 // rows: the parts of several ranks at one place are summed), as a compressed sparse matrix
-// (or as triplets).
-// - The direct method (mumps): MUMPS itself (with_petsc/mumps_direct.hpp) takes each rank's
-//   entries as they are (its distributed assembled input; a symmetric matrix's lower triangle),
-//   ordered by METIS's nested dissection of the whole pattern, computed once per pattern on
-//   rank 0 (Debian's MUMPS has PORD alone, 27 % more work on shell tangents); LDL^T with the
-//   inertia for a symmetric K, LU otherwise. b is gathered on rank 0, x sent to every rank.
-//   The PETSc option -iga_mumps_through_petsc takes PETSc's MUMPS interface instead (PETSc's
-//   matrix as for Krylov, MUMPS's own ordering).
-// - The Krylov method: PETSc assembles the parts into one distributed AIJ matrix (coordinate
-//   assembly: MatSetPreallocationCOO once per pattern, then MatSetValuesCOO straight from the
-//   part's value array, no copy) for GMRES with GAMG or PETSc's options.
-// With a DofLayout (set_layout: the model's), a rank gives b at the unknowns it owns and gets x
-// at its own unknowns and its ghosts (0 elsewhere); PETSc's rows of a rank are its own unknowns.
+// (or as triplets). PETSc assembles the parts into one distributed AIJ matrix (coordinate
+// assembly: MatSetPreallocationCOO once per pattern, then MatSetValuesCOO straight from the
+// part's value array, no copy), and b into a PETSc vector; then
+// - the direct method (mumps): MUMPS itself (with_petsc/mumps_direct.hpp) takes each rank's rows
+//   of that matrix (a symmetric matrix's lower triangle), ordered by METIS's nested dissection of
+//   the whole pattern, computed once per pattern on rank 0 (Debian's MUMPS has PORD alone, 27 %
+//   more work on shell tangents); LDL^T with the inertia for a symmetric K, LU otherwise; b and x
+//   pass through rank 0 (PETSc's scatters). The PETSc option -iga_mumps_through_petsc takes
+//   PETSc's MUMPS interface instead (MUMPS's own ordering);
+// - the Krylov method: GMRES with GAMG, or PETSc's options.
+// With a DofLayout (set_layout: the model's), a rank's rows are the unknowns it owns (numbered by
+// owner), it gives b at those, and gets x at its own unknowns and its ghosts (0 elsewhere).
 // Without one, the rows are split in even blocks, b is the same on every rank and every rank
 // gets the whole x.
-// While no rank's pattern changed, the analysis is kept (MUMPS's, or PETSc's matrix and
-// preconditioner set-up); what a rank keeps to tell is its part's pattern (4 bytes an entry).
-// MUMPS's controls pass in PETSc's options (-mat_mumps_icntl_<k>, -mat_mumps_cntl_<k>), as for
-// PETSc's own interface. In a build without PETSc the constructor throws: one process needs no
-// distribution (LinearSolver).
+// While no rank's pattern changed, the matrix keeps its pattern and the solver its analysis;
+// what a rank keeps to tell is its part's pattern (4 bytes an entry). MUMPS's controls pass in
+// PETSc's options (-mat_mumps_icntl_<k>, -mat_mumps_cntl_<k>) on either path. In a build without
+// PETSc the constructor throws: one process needs no distribution (LinearSolver).
 // References: [MUMPS], [PETSc] as in petsc_engine.hpp; [METIS] Karypis, Kumar, SIAM J. Sci.
 // Comput. 20(1), 1998.
 #pragma once

@@ -21,8 +21,8 @@ struct DistributedLinearSolver::Impl {
   LinearMethod method = LinearMethod::mumps;
   Mat A = nullptr;
   KSP ksp = nullptr;
-  Vec b = nullptr, x = nullptr, x_all = nullptr;
-  VecScatter to_all = nullptr;
+  Vec b = nullptr, x = nullptr, x_all = nullptr, b_zero = nullptr;
+  VecScatter to_all = nullptr, to_zero = nullptr;
   PetscInt n = -1;
   bool symmetric = true;
   /// this rank's part's pattern (column starts, row indices), the pattern's signature
@@ -33,16 +33,12 @@ struct DistributedLinearSolver::Impl {
   bool ready = false;
   Eigen::MatrixXd modes;              ///< the Krylov method's near null space (empty: none)
   const DofLayout* layout = nullptr;  ///< rows by owner, ghosts (null: even split, replicated)
-  /// The direct method: MUMPS called directly (mumps_direct.hpp), the part's entries it is given
-  /// (their places in the part's value array: all, or a symmetric matrix's lower triangle) and
-  /// whether it holds the analysis of the last pattern.
+  /// The direct method: MUMPS called directly (mumps_direct.hpp) on this rank's rows of A (else
+  /// through PETSc's interface: the PETSc option -iga_mumps_through_petsc, PORD's ordering on
+  /// Debian 12), and the values of those rows handed to it (a symmetric matrix's lower triangle).
   std::unique_ptr<petsc::MumpsDirect> mumps;
-  /// MUMPS called directly (else through PETSc's interface: the PETSc option
-  /// -iga_mumps_through_petsc, PORD's ordering on Debian 12)
   bool direct = false;
-  std::vector<int> kept;
-  std::vector<double> kept_values;
-  bool analyzed = false;
+  std::vector<double> row_values;
 
   ~Impl() { destroy(); }
   Impl() = default;
@@ -58,11 +54,13 @@ struct DistributedLinearSolver::Impl {
     if (b) VecDestroy(&b);
     if (x) VecDestroy(&x);
     if (x_all) VecDestroy(&x_all);
+    if (b_zero) VecDestroy(&b_zero);
     if (to_all) VecScatterDestroy(&to_all);
+    if (to_zero) VecScatterDestroy(&to_zero);
     ksp = nullptr;
     A = nullptr;
-    b = x = x_all = nullptr;
-    to_all = nullptr;
+    b = x = x_all = b_zero = nullptr;
+    to_all = to_zero = nullptr;
   }
 
   /// A new matrix of this rank's pattern (collective), with its solver and vectors.
@@ -90,76 +88,92 @@ struct DistributedLinearSolver::Impl {
         (layout == nullptr &&
          !call(VecScatterCreateToAll(x, &to_all, &x_all), "VecScatterCreateToAll", why)))
       return false;
+    if (direct)  // b on rank 0 for MUMPS, x back to the rows' owners
+      return call(VecScatterCreateToZero(b, &to_zero, &b_zero), "VecScatterCreateToZero", why);
     return call(KSPCreate(PETSC_COMM_WORLD, &ksp), "KSPCreate", why) &&
            call(KSPSetOperators(ksp, A, A), "KSPSetOperators", why) &&
            petsc::configure(ksp, method, symmetric, why);
   }
 
-  /// factorize() by MUMPS called directly (reused already agreed by every rank).
-  LinearSolveStatus factorize_direct(const Eigen::SparseMatrix<double>& local, bool sym) {
-    const Communicator& w = world();
-    std::string why;
-    bool ok = true;
-    const double* values = local.valuePtr();
-    if (!reused) {
-      const int* outer_in = local.outerIndexPtr();
-      const int* inner_in = local.innerIndexPtr();
-      n = static_cast<PetscInt>(local.rows());
-      symmetric = sym;
-      outer.assign(outer_in, outer_in + n + 1);
-      inner.assign(inner_in, inner_in + local.nonZeros());
-      kept.clear();
-      std::vector<int> rows, cols;
-      for (int c = 0; c < local.outerSize(); ++c)
-        for (int k = outer_in[c]; k < outer_in[c + 1]; ++k)
-          if (!sym || inner_in[k] >= c) {
-            kept.push_back(k);
-            rows.push_back(inner_in[k]);
-            cols.push_back(c);
+  /// This rank's rows of A (its own unknowns; PETSc's numbering), as MUMPS takes them: the
+  /// values, a symmetric matrix's lower triangle only, row by row (the diagonal block's entries,
+  /// then the off-diagonal block's), and with `rows`, `cols` their places.
+  bool own_rows(std::vector<int>* rows, std::vector<int>* cols, std::string& why) {
+    Mat blocks[2] = {A, nullptr};
+    const PetscInt* colmap = nullptr;
+    PetscBool spread = PETSC_FALSE;
+    PetscInt lo = 0, hi = 0;
+    if (!call(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(A), MATMPIAIJ, &spread),
+              "PetscObjectTypeCompare", why) ||
+        (spread && !call(MatMPIAIJGetSeqAIJ(A, &blocks[0], &blocks[1], &colmap),
+                         "MatMPIAIJGetSeqAIJ", why)) ||
+        !call(MatGetOwnershipRange(A, &lo, &hi), "MatGetOwnershipRange", why))
+      return false;
+    row_values.clear();
+    for (int part = 0; part < 2; ++part) {
+      Mat B = blocks[part];
+      if (B == nullptr) continue;
+      const PetscInt *ia = nullptr, *ja = nullptr;
+      PetscInt rows_here = 0;
+      PetscBool done = PETSC_FALSE;
+      const PetscScalar* v = nullptr;
+      if (!call(MatGetRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &rows_here, &ia, &ja, &done),
+                "MatGetRowIJ", why) ||
+          !done || !call(MatSeqAIJGetArrayRead(B, &v), "MatSeqAIJGetArrayRead", why))
+        return false;
+      for (PetscInt r = 0; r < rows_here; ++r)
+        for (PetscInt k = ia[r]; k < ia[r + 1]; ++k) {
+          const PetscInt i = lo + r, j = part == 0 ? lo + ja[k] : colmap[ja[k]];
+          if (symmetric && i < j) continue;
+          row_values.push_back(v[k]);
+          if (rows != nullptr) {
+            rows->push_back(static_cast<int>(i));
+            cols->push_back(static_cast<int>(j));
           }
-      kept_values.resize(kept.size());
-      if (!mumps) mumps = std::make_unique<petsc::MumpsDirect>();
-      ok = mumps->analyze(static_cast<int>(n), sym, rows, cols, why);
-      analyzed = ok;  // a failed analysis is not kept (the next factorize analyses again)
-    }
-    if (ok) {
-      for (std::size_t q = 0; q < kept.size(); ++q) kept_values[q] = values[kept[q]];
-      ok = mumps->factorize(kept_values, why);
-    }
-    ready = w.sum(static_cast<long long>(ok ? 0 : 1)) == 0;
-    negative = ready ? mumps->negative_pivots() : -1;
-    if (ready) {
-      message.clear();
-      return LinearSolveStatus::success;
-    }
-    message = w.first_message(why);
-    return LinearSolveStatus::singular;
-  }
-
-  /// solve() by MUMPS called directly: b from the owners (or the even blocks), x everywhere,
-  /// then with a layout only the own unknowns' and the ghosts' entries kept.
-  bool solve_direct(const Eigen::VectorXd& rhs, Eigen::VectorXd& sol, std::string& why) const {
-    std::vector<int> at;
-    if (layout != nullptr) {
-      at = layout->owned();
-    } else {
-      const Communicator& w = world();
-      const auto lo = static_cast<int>(static_cast<long long>(n) * w.rank() / w.size());
-      const auto hi = static_cast<int>(static_cast<long long>(n) * (w.rank() + 1) / w.size());
-      for (int i = lo; i < hi; ++i) at.push_back(i);
-    }
-    std::vector<double> mine(at.size());
-    for (std::size_t k = 0; k < at.size(); ++k) mine[k] = rhs[at[k]];
-    Eigen::VectorXd all;
-    if (!mumps->solve(at, mine, all, why)) return false;
-    if (layout == nullptr) {
-      sol = std::move(all);
-    } else {
-      sol.setZero(n);
-      for (const int i : layout->owned()) sol[i] = all[i];
-      for (const int i : layout->ghosts()) sol[i] = all[i];
+        }
+      MatSeqAIJRestoreArrayRead(B, &v);
+      MatRestoreRowIJ(B, 0, PETSC_FALSE, PETSC_FALSE, &rows_here, &ia, &ja, &done);
     }
     return true;
+  }
+
+  /// MUMPS's analysis (a new pattern) and factorization of A's values (collective).
+  bool factor_direct(std::string& why) {
+    if (!mumps) mumps = std::make_unique<petsc::MumpsDirect>();
+    std::vector<int> rows, cols;
+    const bool read = reused ? own_rows(nullptr, nullptr, why) : own_rows(&rows, &cols, why);
+    if (world().sum(static_cast<long long>(read ? 0 : 1)) != 0) return false;  // before MUMPS
+    if (!reused && !mumps->analyze(static_cast<int>(n), symmetric, rows, cols, why)) {
+      outer.clear();  // not kept: the next factorize analyses again
+      return false;
+    }
+    if (!mumps->factorize(row_values, why)) return false;
+    negative = mumps->negative_pivots();
+    return true;
+  }
+
+  /// x = A^-1 b by MUMPS (collective): b gathered on rank 0, solved there, x sent back to the
+  /// rows' owners.
+  bool solve_direct(std::string& why) {
+    PetscScalar* host = nullptr;
+    bool ok = call(VecScatterBegin(to_zero, b, b_zero, INSERT_VALUES, SCATTER_FORWARD),
+                   "VecScatterBegin", why) &&
+              call(VecScatterEnd(to_zero, b, b_zero, INSERT_VALUES, SCATTER_FORWARD),
+                   "VecScatterEnd", why) &&
+              call(VecGetArray(b_zero, &host), "VecGetArray", why);
+    // MUMPS's solve is collective: every rank takes part whatever happened here
+    std::string mumps_why;
+    const bool solved = mumps->solve(host, mumps_why);
+    if (host != nullptr) VecRestoreArray(b_zero, &host);
+    if (ok && !solved) {
+      why = mumps_why;
+      ok = false;
+    }
+    return ok &&
+           call(VecScatterBegin(to_zero, b_zero, x, INSERT_VALUES, SCATTER_REVERSE),
+                "VecScatterBegin", why) &&
+           call(VecScatterEnd(to_zero, b_zero, x, INSERT_VALUES, SCATTER_REVERSE), "VecScatterEnd",
+                why);
   }
 
   bool setup(const double* values, std::string& why) {
@@ -201,14 +215,13 @@ LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<d
   const int* outer = local.outerIndexPtr();
   const int* inner = local.innerIndexPtr();
   const auto nnz = static_cast<std::size_t>(local.nonZeros());
-  const bool same = (m.A != nullptr || m.analyzed) && n == m.n && symmetric == m.symmetric &&
+  const bool same = m.A != nullptr && n == m.n && symmetric == m.symmetric &&
                     m.outer.size() == static_cast<std::size_t>(n) + 1 && m.inner.size() == nnz &&
                     std::equal(m.outer.begin(), m.outer.end(), outer) &&
                     std::equal(m.inner.begin(), m.inner.end(), inner);
   m.reused = w.sum(static_cast<long long>(same ? 0 : 1)) == 0;  // every rank's unchanged
   std::string why;
   bool ok = true;
-  if (m.direct) return m.factorize_direct(local, symmetric);
   if (!m.reused) {
     m.n = n;
     m.symmetric = symmetric;
@@ -216,7 +229,17 @@ LinearSolveStatus DistributedLinearSolver::factorize(const Eigen::SparseMatrix<d
     m.inner.assign(inner, inner + nnz);
     ok = m.create(why);
   }
-  ok = ok && m.setup(local.valuePtr(), why);
+  if (m.direct) {
+    // A's values summed from the parts, then MUMPS; a failure before MUMPS is agreed on first
+    // (MUMPS's calls are collective)
+    ok = ok && call(MatSetValuesCOO(m.A, local.valuePtr(), INSERT_VALUES), "MatSetValuesCOO", why);
+    if (w.sum(static_cast<long long>(ok ? 0 : 1)) == 0)
+      ok = m.factor_direct(why);
+    else
+      ok = false;
+  } else {
+    ok = ok && m.setup(local.valuePtr(), why);
+  }
   // A failure on one rank is every rank's (their next steps must agree).
   m.ready = w.sum(static_cast<long long>(ok ? 0 : 1)) == 0;
   if (m.ready) {
@@ -265,10 +288,6 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
                                 std::to_string(b.size()) + " for " + std::to_string(m.n) +
                                 " unknowns");
   std::string why;
-  if (m.direct) {
-    const bool ok = m.solve_direct(b, x, why);
-    return agree_on_solution(ok, why, x, m.message);
-  }
   PetscInt lo = 0, hi = 0;
   PetscScalar* bl = nullptr;
   bool ok = call(VecGetOwnershipRange(m.b, &lo, &hi), "VecGetOwnershipRange", why) &&
@@ -283,8 +302,13 @@ LinearSolveStatus DistributedLinearSolver::solve(const Eigen::VectorXd& b, Eigen
     ok = call(VecRestoreArray(m.b, &bl), "VecRestoreArray", why);
   }
   KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
-  ok = ok && call(KSPSolve(m.ksp, m.b, m.x), "KSPSolve", why) &&
-       call(KSPGetConvergedReason(m.ksp, &reason), "KSPGetConvergedReason", why);
+  if (m.direct) {
+    // MUMPS's solve is collective: a failure before it is agreed on first
+    ok = world().sum(static_cast<long long>(ok ? 0 : 1)) == 0 && m.solve_direct(why);
+  } else {
+    ok = ok && call(KSPSolve(m.ksp, m.b, m.x), "KSPSolve", why) &&
+         call(KSPGetConvergedReason(m.ksp, &reason), "KSPGetConvergedReason", why);
+  }
   if (ok && reason < 0) {
     why = std::string("PETSc KSP did not converge: ") + KSPConvergedReasons[reason];
     ok = false;
@@ -349,17 +373,7 @@ bool DistributedLinearSolver::reused_analysis() const {
 }
 std::pair<int, int> DistributedLinearSolver::owned_rows() const {
   PetscInt lo = 0, hi = 0;
-  const Impl& m = *impl_;
-  if (m.A) {
-    MatGetOwnershipRange(m.A, &lo, &hi);
-  } else if (m.analyzed && m.layout != nullptr) {  // MUMPS: the rows this rank gives b at
-    lo = m.layout->first_row();
-    hi = lo + static_cast<PetscInt>(m.layout->owned().size());
-  } else if (m.analyzed) {
-    const Communicator& w = world();
-    lo = static_cast<PetscInt>(static_cast<long long>(m.n) * w.rank() / w.size());
-    hi = static_cast<PetscInt>(static_cast<long long>(m.n) * (w.rank() + 1) / w.size());
-  }
+  if (impl_->A) MatGetOwnershipRange(impl_->A, &lo, &hi);
   return {static_cast<int>(lo), static_cast<int>(hi)};
 }
 

@@ -235,40 +235,15 @@ bool MumpsDirect::factorize(std::span<const double> values, std::string& why) {
   return true;
 }
 
-bool MumpsDirect::solve(std::span<const int> at, std::span<const double> b, Eigen::VectorXd& x,
-                        std::string& why) {
-  // b on process 0, from the processes that give it
-  int size = 1;
-  MPI_Comm_size(comm(), &size);
-  const int count = static_cast<int>(at.size());
-  std::vector<int> counts(static_cast<std::size_t>(size)), offsets(counts.size() + 1, 0);
-  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm());
-  std::vector<int> where;
-  std::vector<double> values;
-  const bool host = rank() == 0;
-  if (host) {
-    for (std::size_t r = 0; r < counts.size(); ++r) offsets[r + 1] = offsets[r] + counts[r];
-    where.resize(static_cast<std::size_t>(offsets.back()));
-    values.resize(where.size());
-  }
-  MPI_Gatherv(at.data(), count, MPI_INT, where.data(), counts.data(), offsets.data(), MPI_INT, 0,
-              comm());
-  MPI_Gatherv(b.data(), count, MPI_DOUBLE, values.data(), counts.data(), offsets.data(), MPI_DOUBLE,
-              0, comm());
-  rhs_.assign(host ? static_cast<std::size_t>(n_) : 1, 0.0);
-  for (std::size_t k = 0; k < where.size(); ++k)
-    rhs_[static_cast<std::size_t>(where[k])] += values[k];
+bool MumpsDirect::solve(double* rhs, std::string& why) {
   id_.nrhs = 1;
   id_.lrhs = n_;
-  id_.rhs = rhs_.data();
+  id_.rhs = rhs;
   run(3);
   if (id_.infog[0] < 0) {
     why = error("solve");
     return false;
   }
-  x.resize(n_);
-  if (host) std::copy(rhs_.begin(), rhs_.end(), x.data());
-  MPI_Bcast(x.data(), n_, MPI_DOUBLE, 0, comm());
   return true;
 }
 

@@ -7,10 +7,10 @@
 // nested dissection (METIS and SCOTCH asked for fall back to PORD), whose orderings of shell
 // tangents cost 27 % more floating-point work than METIS's (20.3 against 15.9 GFlop on the 160 x
 // 160 plate; docs/parallel.md), and PETSc passes a user ordering to MUMPS only for a matrix
-// centralized on one process. Here each process hands MUMPS its own entries (distributed
-// assembled input, ICNTL(18) = 3, entries at one place summed by MUMPS), the analysis is
-// MUMPS's sequential one on process 0 with the ordering given (ICNTL(7) = 1, ICNTL(28) = 1), the
-// right-hand side is gathered on process 0 and the solution sent to every process.
+// centralized on one process. Here each process hands MUMPS the entries of its rows of PETSc's
+// matrix (distributed assembled input, ICNTL(18) = 3), the analysis is MUMPS's sequential one on
+// process 0 with the ordering given (ICNTL(7) = 1, ICNTL(28) = 1), and the right-hand side and
+// the solution are dense on process 0 (the caller gathers and scatters them with PETSc).
 //
 // Notation: n unknowns; a process's entries (i, j, a_ij), 0-based here, 1-based for MUMPS; for
 // a symmetric matrix only i >= j (MUMPS sums what it is given, SYM = 2: LDL^T with the inertia);
@@ -49,10 +49,8 @@ class MumpsDirect {
   /// The factorization with this process's values, in the order of analyze's entries (read
   /// until the next factorize).
   bool factorize(std::span<const double> values, std::string& why);
-  /// x = A^-1 b where this process gives b at the unknowns `at` (each unknown by one process);
-  /// x, all n entries, on every process.
-  bool solve(std::span<const int> at, std::span<const double> b, Eigen::VectorXd& x,
-             std::string& why);
+  /// x = A^-1 b in place on process 0 (`rhs`: its n entries there; not read elsewhere).
+  bool solve(double* rhs, std::string& why);
   /// INFOG(12) after a symmetric factorization, else -1.
   int negative_pivots() const { return symmetric_ && factorized_ ? id_.infog[11] : -1; }
   /// Whether the ordering given to MUMPS was METIS's (else MUMPS chose its own).
@@ -68,7 +66,7 @@ class MumpsDirect {
   bool live_ = false, symmetric_ = true, factorized_ = false, metis_ = false;
   int n_ = 0;
   std::vector<MUMPS_INT> irn_, jcn_, perm_;
-  std::vector<double> a_, rhs_;
+  std::vector<double> a_;
 };
 
 }  // namespace iga::petsc
