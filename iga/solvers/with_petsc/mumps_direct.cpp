@@ -184,7 +184,8 @@ bool MumpsDirect::analyze(int n, bool symmetric, std::span<const int> rows,
     MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, comm());
     long long total = 0;
     for (std::size_t r = 0; r < counts.size(); ++r) total += counts[r];
-    int fits = rank() != 0 || total <= INT_MAX;  // the gather's offsets are ints
+    // the gather's offsets are ints (a count past them was clamped to INT_MAX)
+    int fits = rank() != 0 || total < INT_MAX;
     MPI_Bcast(&fits, 1, MPI_INT, 0, comm());
     if (fits) {
       std::vector<int> pairs;
