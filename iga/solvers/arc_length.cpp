@@ -125,6 +125,18 @@ void finish_arc_step(const NonlinearProblem& p, StepAttempt& a, const VectorXd& 
       a.turn_deg, max_turn_deg);
 }
 
+/// The energy test of an arc-length iteration (off when both tolerances are 0): E <=
+/// tol_energy_rel E_1 or E <= tol_energy_abs; or, with |R| at its floor, E below its round-off
+/// floor e_floor (machine epsilon times the step's work scale, its force scale times its
+/// increment). Where E_1 is itself round-off (a first correction all but orthogonal to the
+/// residual), E <= tol E_1 can never hold: the von Mises truss under the round-off probe's seed 6
+/// stalled at |R| = 1e-17 with E between 1e-36 and 1e-34 for 20 iterations.
+bool energy_passes(const NonlinearSolverSettings& s, double e, double e1, bool at_floor,
+                   double e_floor) {
+  if (!(s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0)) return true;
+  return e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs || (at_floor && e <= e_floor);
+}
+
 }  // namespace
 
 bool NonlinearSolver::arc_predictor(NonlinearProblem& problem, VectorXd& u, ArcState& arc,
@@ -213,7 +225,6 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
 
   double r0 = 0.0, scale = 0.0, e1 = 0.0, r_prev = 0.0;
   int increases = 0;
-  const bool energy_test = s.tol_energy_rel > 0.0 || s.tol_energy_abs > 0.0;
   const auto r_abs = [&] { return residual_floor(s, w.r0_max, problem); };
   for (int k = 0;; ++k) {
     u = arc.u_last + Du;
@@ -229,17 +240,11 @@ void NonlinearSolver::arc_newton(NonlinearProblem& problem, VectorXd& u, ArcStat
       w.r0_max = std::max(w.r0_max, scale);
       if (rk <= r_abs()) return converged();
     } else {
-      const double e = a.energy_norms.back();
-      const bool residual_ok = rk <= r_abs() || rk <= s.tol_residual_rel * scale;
-      // The energy's round-off floor: machine epsilon times the step's work scale (its force
-      // scale times its increment). Where E_1 is itself round-off (a first correction all but
-      // orthogonal to the residual), E <= tol E_1 can never hold, though |R| is at its floor:
-      // the von Mises truss under the round-off probe's seed 6 stalled at |R| = 1e-17 with E
-      // between 1e-36 and 1e-34 for 20 iterations.
+      const bool at_floor = rk <= r_abs();
+      const bool residual_ok = at_floor || rk <= s.tol_residual_rel * scale;
       const double e_floor = std::numeric_limits<double>::epsilon() * scale * problem.norm(Du);
-      const bool energy_ok = !energy_test || e <= s.tol_energy_rel * e1 || e <= s.tol_energy_abs ||
-                             (rk <= r_abs() && e <= e_floor);
-      if (residual_ok && energy_ok) return converged();
+      if (residual_ok && energy_passes(s, a.energy_norms.back(), e1, at_floor, e_floor))
+        return converged();
       if (const double floor = problem.residual_roundoff(); floor > 0.0 && rk <= floor)
         return converged();
       if (std::string why =
