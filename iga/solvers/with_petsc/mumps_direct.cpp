@@ -168,8 +168,8 @@ bool MumpsDirect::analyze(int n, bool symmetric, std::span<const int> rows,
   id_.a_loc = a_.data();
 
   // METIS's ordering on process 0 from every process's pattern, unless another was asked for
-  metis_ = false;
   if (id_.icntl[6] == 1 || id_.icntl[6] == 7) {
+    bool metis = false;
     std::vector<int> mine;
     mine.reserve(2 * rows.size());
     for (std::size_t k = 0; k < rows.size(); ++k)
@@ -201,10 +201,10 @@ bool MumpsDirect::analyze(int n, bool symmetric, std::span<const int> rows,
         ordered = perm_.empty() ? 0 : 1;
       }
       MPI_Bcast(&ordered, 1, MPI_INT, 0, comm());
-      metis_ = ordered == 1;
+      metis = ordered == 1;
     }
-    id_.icntl[6] = metis_ ? 1 : 7;  // else MUMPS's own choice
-    id_.perm_in = metis_ && rank() == 0 ? perm_.data() : nullptr;
+    id_.icntl[6] = metis ? 1 : 7;  // else MUMPS's own choice
+    id_.perm_in = metis && rank() == 0 ? perm_.data() : nullptr;
   }
   run(1);
   if (id_.infog[0] < 0) {

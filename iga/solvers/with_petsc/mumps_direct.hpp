@@ -53,8 +53,6 @@ class MumpsDirect {
   bool solve(double* rhs, std::string& why);
   /// INFOG(12) after a symmetric factorization, else -1.
   int negative_pivots() const { return symmetric_ && factorized_ ? id_.infog[11] : -1; }
-  /// Whether the ordering given to MUMPS was METIS's (else MUMPS chose its own).
-  bool ordered_by_metis() const { return metis_; }
 
  private:
   void start(bool symmetric);
@@ -63,7 +61,7 @@ class MumpsDirect {
   void run(int job);
   std::string error(const char* phase) const;
   DMUMPS_STRUC_C id_{};
-  bool live_ = false, symmetric_ = true, factorized_ = false, metis_ = false;
+  bool live_ = false, symmetric_ = true, factorized_ = false;
   int n_ = 0;
   std::vector<MUMPS_INT> irn_, jcn_, perm_;
   std::vector<double> a_;
